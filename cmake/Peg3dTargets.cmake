@@ -1,0 +1,22 @@
+# Per-target settings shared by the library, tools, experiments and tests.
+
+# Warnings: an interface target linked PRIVATE by every peg3d target.
+add_library(peg3d_warnings INTERFACE)
+target_compile_options(peg3d_warnings INTERFACE -Wall -Wextra -pedantic $<$<BOOL:${PEG3D_WERROR}>:-Werror>)
+
+# Sanitizers: an interface target linked PUBLIC by the library so every consumer is instrumented too.
+add_library(peg3d_sanitizers INTERFACE)
+if(PEG3D_SANITIZE)
+  list(JOIN PEG3D_SANITIZE "," _peg3d_san)
+  target_compile_options(peg3d_sanitizers INTERFACE -fsanitize=${_peg3d_san} -fno-omit-frame-pointer
+                                                    -fno-sanitize-recover=all)
+  target_link_options(peg3d_sanitizers INTERFACE -fsanitize=${_peg3d_san})
+endif()
+
+# peg3d_add_executable(name SOURCES ...): a thin executable linking the library.
+function(peg3d_add_executable name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE peg3d::peg3d peg3d_warnings ${ARG_LIBS})
+  target_compile_features(${name} PRIVATE cxx_std_20)
+endfunction()

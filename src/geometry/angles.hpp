@@ -1,0 +1,41 @@
+#pragma once
+// Angles and headings in 3D. A heading is the paper's pair (alpha, theta): alpha is the azimuth of the
+// velocity's projection on the x-y plane measured from +x, theta the polar angle from +z (paper eq. 1).
+
+#include <cmath>
+#include <numbers>
+
+#include "geometry/vector.hpp"
+
+namespace peg3d {
+
+inline constexpr double kPi = std::numbers::pi;
+
+/// Wraps an angle to (-pi, pi].
+inline double wrap_angle(double a) {
+  a = std::remainder(a, 2.0 * kPi);  // in [-pi, pi]
+  return a == -kPi ? kPi : a;
+}
+
+/// A heading: azimuth alpha in (-pi, pi] (rad) and polar angle theta in [0, pi] (rad).
+struct Heading {
+  double alpha = 0.0;        ///< rad, angle of the x-y projection from +x, wrapped to (-pi, pi]
+  double theta = kPi / 2.0;  ///< rad, angle from +z, in [0, pi]; pi/2 is level flight
+};
+
+/// Unit velocity direction of a heading: (sin th cos al, sin th sin al, cos th).
+inline Vec3 direction(const Heading& h) {
+  const double s = std::sin(h.theta);
+  return {s * std::cos(h.alpha), s * std::sin(h.alpha), std::cos(h.theta)};
+}
+
+/// Heading of a non-zero direction. A vertical direction gets alpha = 0.
+inline Heading heading_of(const Vec3& d) {
+  const double horizontal = std::hypot(d.x(), d.y());
+  return {horizontal > 0.0 ? std::atan2(d.y(), d.x()) : 0.0, std::atan2(horizontal, d.z())};
+}
+
+/// Unsigned angle between two non-zero vectors in [0, pi]; atan2 form stays accurate near 0 and pi.
+inline double angle_between(const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); }
+
+}  // namespace peg3d

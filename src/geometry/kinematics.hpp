@@ -1,0 +1,50 @@
+#pragma once
+// The paper's kinematic model (eq. 1) with the sample time made explicit:
+//   p(t+dt) = p(t) + v dt (sin th cos al, sin th sin al, cos th).
+// The steering U = [d_alpha, d_theta] is read as a bounded change of the heading angles (docs/paper-notes.md).
+
+#include "geometry/angles.hpp"
+#include "geometry/vector.hpp"
+
+namespace peg3d {
+
+/// How the steering bound is read.
+enum class SteeringReading {
+  kPerStep,    ///< |d_alpha|, |d_theta| <= max_turn each sample (the paper's [-pi/4, pi/4] per step)
+  kPerSecond,  ///< |d_alpha|, |d_theta| <= max_turn * dt: max_turn is a turn rate in rad/s
+};
+
+/// Steering limits of one agent.
+struct SteeringConfig {
+  double max_turn = kPi / 4.0;  ///< rad per step (kPerStep) or rad/s (kPerSecond); (0, pi] per step
+  SteeringReading reading = SteeringReading::kPerStep;
+
+  /// Bound on each heading change for one sample of length dt (s), rad.
+  double step_bound(double dt) const { return reading == SteeringReading::kPerStep ? max_turn : max_turn * dt; }
+  /// Throws InvalidParameter naming the field.
+  void validate() const;
+};
+
+/// Steering command: requested changes of the heading angles for one sample (rad).
+struct Steering {
+  double d_alpha = 0.0;  ///< rad, change of azimuth
+  double d_theta = 0.0;  ///< rad, change of polar angle
+};
+
+/// Position and heading of one agent.
+struct KinematicState {
+  Vec3 position = Vec3::Zero();  ///< m
+  Heading heading;
+};
+
+/// Applies a steering command: each component is clamped to [-bound, bound], theta is clamped to [0, pi]
+/// (an agent can point straight up or down but not over the pole) and alpha is wrapped to (-pi, pi].
+Heading steer(const Heading& h, const Steering& u, double bound);
+
+/// One sample of eq. (1): the heading is steered first, then the agent moves speed*dt along it. The new
+/// position is clamped to `bounds` (pass the arena shrunk by the agent's radius), so agents slide along
+/// the arena boundary instead of leaving it.
+KinematicState step(const KinematicState& s, const Steering& u, double speed, double dt, double bound,
+                    const Box& bounds);
+
+}  // namespace peg3d
