@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
-exec build/bin/peg-demo "$@"
+exec build/bin/peg-apollonius "$@"

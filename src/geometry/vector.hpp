@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 
 namespace peg3d {
 

@@ -1,0 +1,88 @@
+#include "geometry/kinematics.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/validation.hpp"
+#include "test_vectors.hpp"
+
+namespace peg3d {
+namespace {
+
+const Box kArena{{0, 0, 0}, {35, 35, 20}};
+
+TEST(Kinematics, MovesSpeedTimesDtAlongTheHeading) {
+  // Eq. (1) with dt: theta = pi/2 and alpha = 0 is +x; theta = 0 is +z.
+  KinematicState s{{10, 10, 10}, {0.0, kPi / 2}};
+  KinematicState n = step(s, {}, 1.1, 0.1, kPi / 4, kArena);
+  EXPECT_LT((n.position - Vec3(10.11, 10, 10)).norm(), 1e-12);
+  s.heading = {0.3, 0.0};
+  n = step(s, {}, 2.0, 0.5, kPi / 4, kArena);
+  EXPECT_LT((n.position - Vec3(10, 10, 11)).norm(), 1e-12);
+  s.heading = {kPi / 4, kPi / 4};
+  n = step(s, {}, 1.0, 1.0, kPi / 4, kArena);
+  EXPECT_LT((n.position - Vec3(10.5, 10.5, 10 + std::sqrt(0.5))).norm(), 1e-12);
+}
+
+TEST(Kinematics, SteeringIsClampedToTheBound) {
+  const Heading h = steer({0.0, kPi / 2}, {2.0, -3.0}, kPi / 4);
+  EXPECT_DOUBLE_EQ(h.alpha, kPi / 4);
+  EXPECT_DOUBLE_EQ(h.theta, kPi / 4);
+  const Heading g = steer({0.0, kPi / 2}, {-0.1, 0.2}, kPi / 4);
+  EXPECT_DOUBLE_EQ(g.alpha, -0.1);
+  EXPECT_DOUBLE_EQ(g.theta, kPi / 2 + 0.2);
+}
+
+TEST(Kinematics, HeadingsStayValid) {
+  Rng rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Heading h;
+  for (int i = 0; i < 100000; ++i) {
+    h = steer(h, {u(rng) * 2, u(rng) * 2}, kPi / 4);
+    ASSERT_GT(h.alpha, -kPi);
+    ASSERT_LE(h.alpha, kPi);
+    ASSERT_GE(h.theta, 0.0);
+    ASSERT_LE(h.theta, kPi);
+  }
+  EXPECT_DOUBLE_EQ(steer({3.0, 0.1}, {0.5, -0.5}, kPi / 4).alpha, 3.5 - 2 * kPi);  // wrapped
+  EXPECT_DOUBLE_EQ(steer({3.0, 0.1}, {0.5, -0.5}, kPi / 4).theta, 0.0);            // not over the pole
+}
+
+TEST(Kinematics, PositionsRespectTheArenaBounds) {
+  const Box inner = kArena.shrunk(0.25);
+  KinematicState s{{34.7, 1.0, 19.7}, {0.0, kPi / 4}};  // heading +x and up, into the corner
+  for (int i = 0; i < 50; ++i) {
+    s = step(s, {}, 1.1, 0.1, kPi / 4, inner);
+    ASSERT_TRUE(inner.contains(s.position));
+  }
+  EXPECT_DOUBLE_EQ(s.position.x(), 34.75);
+  EXPECT_DOUBLE_EQ(s.position.z(), 19.75);
+}
+
+TEST(Kinematics, PerSecondReadingScalesTheBoundByDt) {
+  SteeringConfig c{kPi / 4, SteeringReading::kPerSecond};
+  EXPECT_DOUBLE_EQ(c.step_bound(0.1), kPi / 40);
+  c.reading = SteeringReading::kPerStep;
+  EXPECT_DOUBLE_EQ(c.step_bound(0.1), kPi / 4);
+}
+
+TEST(Kinematics, DirectionAndHeadingRoundTrip) {
+  Rng rng(5);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 d = testing::random_unit(rng);
+    EXPECT_LT((direction(heading_of(d)) - d).norm(), 1e-12);
+  }
+}
+
+TEST(Kinematics, RejectsInvalidSteeringBound) {
+  for (double bad : {0.0, -0.1, 4.0, std::nan("")}) {
+    try {
+      SteeringConfig{bad, SteeringReading::kPerStep}.validate();
+      ADD_FAILURE() << bad;
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.parameter(), "steering.max_turn");
+    }
+  }
+}
+
+}  // namespace
+}  // namespace peg3d
