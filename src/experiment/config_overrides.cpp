@@ -33,7 +33,8 @@ std::string describe_level(const json& node, std::string_view path) {
 
 [[noreturn]] void fail(const std::string& key, std::string_view problem, const json& level,
                        std::string_view level_path) {
-  throw ConfigError(key, fmt::format("configuration key '{}': {}; {}", key, problem, describe_level(level, level_path)));
+  throw ConfigError(key,
+                    fmt::format("configuration key '{}': {}; {}", key, problem, describe_level(level, level_path)));
 }
 
 std::string_view kind(const json& j) {
