@@ -64,8 +64,8 @@ struct WilcoxonTest {
 };
 
 /// Wilcoxon signed-rank test. Zero differences are dropped; tied |differences| (equal as doubles, as in R:
-/// round metrics first if 0.1 + 0.2 and 0.3 should tie) get their average rank and
-/// the variance is tie-corrected: n(n+1)(2n+1)/24 - sum(t^3 - t)/48 over the tie groups. z is
+/// round metrics first if 0.1 + 0.2 and 0.3 should tie) get their average rank, and the variance is
+/// tie-corrected: n(n+1)(2n+1)/24 - sum(t^3 - t)/48 over the tie groups. z is
 /// (W - n(n+1)/4 - sign(W - n(n+1)/4) * 0.5) / sqrt(variance): R's continuity correction.
 /// p: exact (enumerated null distribution of W, as R) when allow_exact, n < 50 and there were no ties and
 /// no zero differences; otherwise 2 * (1 - Phi(|z|)), as R with exact = FALSE or with ties.
