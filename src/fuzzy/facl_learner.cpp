@@ -7,13 +7,13 @@
 
 namespace peg3d::fuzzy {
 
-void FaclConfig::validate() const {
-  require_in_range("facl.actor_rate", actor_rate, 0.0, 1.0, /*lo_open=*/true);
-  require_in_range("facl.critic_rate", critic_rate, 0.0, 1.0, /*lo_open=*/true);
-  require_in_range("facl.discount", discount, 0.0, 1.0, false, /*hi_open=*/true);
-  require_positive("facl.exploration_variance", exploration_variance);
-  require_finite("facl.initial_actor", initial_actor);
-  require_finite("facl.initial_critic", initial_critic);
+void FaclConfig::validate(const std::string& prefix) const {
+  require_in_range(prefix + ".actor_rate", actor_rate, 0.0, 1.0, /*lo_open=*/true);
+  require_in_range(prefix + ".critic_rate", critic_rate, 0.0, 1.0, /*lo_open=*/true);
+  require_in_range(prefix + ".discount", discount, 0.0, 1.0, false, /*hi_open=*/true);
+  require_positive(prefix + ".exploration_variance", exploration_variance);
+  require_finite(prefix + ".initial_actor", initial_actor);
+  require_finite(prefix + ".initial_critic", initial_critic);
 }
 
 FaclLearner::FaclLearner(RuleBase rules, int actions, const FaclConfig& config, std::uint64_t seed)

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <random>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/random.hpp"
@@ -28,8 +29,8 @@ struct FaclConfig {
   double initial_actor = 0.0;          ///< initial consequent of every actor rule (output units), finite
   double initial_critic = 0.0;         ///< initial consequent of every critic rule, finite
 
-  /// Throws InvalidParameter naming the field, e.g. "facl.actor_rate".
-  void validate() const;
+  /// Throws InvalidParameter naming the field, e.g. "facl.actor_rate" (prefix "facl").
+  void validate(const std::string& prefix = "facl") const;
 };
 
 class FaclLearner {

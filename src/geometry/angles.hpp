@@ -35,6 +35,20 @@ inline Heading heading_of(const Vec3& d) {
   return {horizontal > 0.0 ? std::atan2(d.y(), d.x()) : 0.0, std::atan2(horizontal, d.z())};
 }
 
+/// Signed errors that turn a heading towards a direction: d_alpha = wrap(azimuth(d) - alpha) in (-pi, pi] and
+/// d_theta = polar(d) - theta in [-pi, pi]. Steering by exactly these errors points the heading along d. A
+/// vertical d has no azimuth; its azimuth error is 0.
+struct AngleErrors {
+  double azimuth = 0.0;    ///< rad
+  double elevation = 0.0;  ///< rad (positive: the direction is further from +z than the heading)
+};
+
+inline AngleErrors angle_errors(const Heading& h, const Vec3& d) {
+  const Heading t = heading_of(d);
+  const bool vertical = d.x() == 0.0 && d.y() == 0.0;
+  return {vertical ? 0.0 : wrap_angle(t.alpha - h.alpha), t.theta - h.theta};
+}
+
 /// Unsigned angle between two non-zero vectors in [0, pi]; atan2 form stays accurate near 0 and pi.
 inline double angle_between(const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); }
 

@@ -6,11 +6,11 @@
 
 namespace peg3d {
 
-void SteeringConfig::validate() const {
+void SteeringConfig::validate(const std::string& prefix) const {
   if (reading == SteeringReading::kPerStep) {
-    require_in_range("steering.max_turn", max_turn, 0.0, kPi, /*lo_open=*/true);
+    require_in_range(prefix + ".max_turn", max_turn, 0.0, kPi, /*lo_open=*/true);
   } else {
-    require_positive("steering.max_turn", max_turn);
+    require_positive(prefix + ".max_turn", max_turn);
   }
 }
 

@@ -3,6 +3,8 @@
 //   p(t+dt) = p(t) + v dt (sin th cos al, sin th sin al, cos th).
 // The steering U = [d_alpha, d_theta] is read as a bounded change of the heading angles (docs/paper-notes.md).
 
+#include <string>
+
 #include "geometry/angles.hpp"
 #include "geometry/vector.hpp"
 
@@ -21,8 +23,8 @@ struct SteeringConfig {
 
   /// Bound on each heading change for one sample of length dt (s), rad.
   double step_bound(double dt) const { return reading == SteeringReading::kPerStep ? max_turn : max_turn * dt; }
-  /// Throws InvalidParameter naming the field.
-  void validate() const;
+  /// Throws InvalidParameter naming the field, e.g. "steering.max_turn" (prefix "steering").
+  void validate(const std::string& prefix = "steering") const;
 };
 
 /// Steering command: requested changes of the heading angles for one sample (rad).

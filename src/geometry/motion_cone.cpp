@@ -28,7 +28,7 @@ Vec3 any_perpendicular(const Vec3& v) {
 
 double pursuer_cone_half_angle(double pursuer_speed, double evader_speed) {
   require_positive("pursuer_speed", pursuer_speed);
-  require_positive("evader_speed", evader_speed);
+  require_non_negative("evader_speed", evader_speed);
   const double a = evader_speed / pursuer_speed;
   return a >= 1.0 ? kPi / 2.0 : std::asin(a);
 }

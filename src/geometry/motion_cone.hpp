@@ -21,7 +21,7 @@ struct Cone {
 };
 
 /// alpha2* = asin(vE / vP) (eq. 6), rad. For vE >= vP the cone opens to a half-space (pi/2).
-/// Throws InvalidParameter on non-positive or non-finite speeds.
+/// Throws InvalidParameter on a non-positive pursuer speed, a negative evader speed or non-finite ones.
 double pursuer_cone_half_angle(double pursuer_speed, double evader_speed);
 
 /// The pursuer's motion cone about P->E. P and E must differ.

@@ -86,3 +86,29 @@ TEST(Kinematics, RejectsInvalidSteeringBound) {
 
 }  // namespace
 }  // namespace peg3d
+
+namespace peg3d {
+namespace {
+
+TEST(AngleErrors, SteeringByTheErrorsPointsAtTheDirection) {
+  Rng rng(23);
+  for (int i = 0; i < 1000; ++i) {
+    const Heading h = heading_of(testing::random_unit(rng));
+    const Vec3 d = testing::random_unit(rng);
+    const AngleErrors e = angle_errors(h, d);
+    ASSERT_LE(std::abs(e.azimuth), kPi);
+    ASSERT_LE(std::abs(e.elevation), kPi);
+    const Heading aimed = steer(h, {e.azimuth, e.elevation}, kPi);
+    EXPECT_LT((direction(aimed) - d).norm(), 1e-9);
+  }
+}
+
+TEST(AngleErrors, SignsFollowTheHeadingAngles) {
+  const Heading level_x{0.0, kPi / 2};
+  EXPECT_NEAR(angle_errors(level_x, Vec3(1, 1, 0)).azimuth, kPi / 4, 1e-15);   // to the left: +alpha
+  EXPECT_NEAR(angle_errors(level_x, Vec3(1, 0, 1)).elevation, -kPi / 4, 1e-15);  // above: theta decreases
+  EXPECT_NEAR(std::abs(angle_errors(level_x, Vec3(-1, 0, 0)).azimuth), kPi, 1e-15);
+}
+
+}  // namespace
+}  // namespace peg3d

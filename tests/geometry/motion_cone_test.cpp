@@ -53,7 +53,9 @@ TEST(MotionCone, HeadingOppositeToTheAxisProjectsDeterministically) {
   EXPECT_NEAR(angle_between(q1, Vec3::UnitX()), 0.5, 1e-12);
 }
 
-TEST(MotionCone, RejectsNonPositiveSpeeds) {
+TEST(MotionCone, MotionlessEvaderGivesAZeroWidthCone) { EXPECT_DOUBLE_EQ(pursuer_cone_half_angle(1.1, 0.0), 0.0); }
+
+TEST(MotionCone, RejectsInvalidSpeeds) {
   EXPECT_THROW(pursuer_cone_half_angle(0.0, 1.0), InvalidParameter);
   EXPECT_THROW(pursuer_cone_half_angle(1.1, -1.0), InvalidParameter);
   EXPECT_THROW(pursuer_cone_half_angle(std::nan(""), 1.0), InvalidParameter);

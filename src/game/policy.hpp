@@ -1,0 +1,50 @@
+#pragma once
+// A policy steers one agent. The game calls, per step, act() with what the agent sees now and, when the
+// agent learns, learn() with the reward of that step and what it sees after it. Policies never touch the
+// world or the other agent's state beyond the view they are given.
+
+#include <cstdint>
+#include <memory>
+
+#include "game/game_config.hpp"
+#include "game/percept.hpp"
+#include "geometry/kinematics.hpp"
+
+namespace peg3d::game {
+
+/// Everything an agent may use to decide, at one instant.
+struct AgentView {
+  Role role = Role::kPursuer;
+  KinematicState self;
+  KinematicState other;
+  double self_speed = 0.0;   ///< m/s
+  double other_speed = 0.0;  ///< m/s
+  double dt = 0.1;           ///< s
+  Percept percept;
+  Box arena;                 ///< the arena box (the agent's centre stays radius inside it)
+};
+
+class Policy {
+ public:
+  virtual ~Policy() = default;
+  /// Called before the first act() of an episode; `learning` says whether learn() will follow each act().
+  virtual void begin_episode(const AgentView& view, bool learning) {
+    (void)view;
+    (void)learning;
+  }
+  /// The requested heading change for this step (rad); the game clamps it to the steering bound and
+  /// applies the motion space.
+  virtual Steering act(const AgentView& view) = 0;
+  /// The reward of the step just taken and the view after it; `terminal` when that view ends the episode
+  /// (capture or a terminating collision; not the time limit, which truncates).
+  virtual void learn(double reward, const AgentView& next, bool terminal) {
+    (void)reward;
+    (void)next;
+    (void)terminal;
+  }
+};
+
+/// Builds the policy named by config.policy for `role`; `seed` feeds any randomness it has.
+std::unique_ptr<Policy> make_policy(const AgentConfig& config, Role role, std::uint64_t seed);
+
+}  // namespace peg3d::game

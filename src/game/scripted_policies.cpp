@@ -1,0 +1,107 @@
+#include "game/scripted_policies.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "geometry/apollonius.hpp"
+
+namespace peg3d::game {
+namespace {
+
+Steering toward(const AgentView& view, const Vec3& direction) {
+  if (direction.squaredNorm() == 0.0) return {};
+  const AngleErrors e = angle_errors(view.self.heading, direction);
+  return {e.azimuth, e.elevation};
+}
+
+Vec3 velocity(const KinematicState& s, double speed) { return speed * peg3d::direction(s.heading); }
+
+// Fixed, evenly spread unit directions (a Fibonacci sphere) to search the Apollonius sphere with.
+constexpr int kSearchDirections = 256;
+const std::array<Vec3, kSearchDirections>& search_directions() {
+  static const std::array<Vec3, kSearchDirections> dirs = [] {
+    std::array<Vec3, kSearchDirections> d;
+    const double golden = kPi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < kSearchDirections; ++i) {
+      const double z = 1.0 - 2.0 * (i + 0.5) / kSearchDirections;
+      const double r = std::sqrt(1.0 - z * z);
+      d[i] = Vec3(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    }
+    return d;
+  }();
+  return dirs;
+}
+
+}  // namespace
+
+Vec3 repulsion(const AgentView& view) {
+  auto push = [](double d) {
+    const double k = (kAvoidDistance - d) / kAvoidDistance;
+    return d < kAvoidDistance ? 3.0 * k * k : 0.0;
+  };
+  Vec3 r = Vec3::Zero();
+  const Vec3& p = view.self.position;
+  for (int axis = 0; axis < 3; ++axis) {
+    r[axis] += push(p[axis] - view.arena.lo[axis]);
+    r[axis] -= push(view.arena.hi[axis] - p[axis]);
+  }
+  const ObstacleSense& o = view.percept.obstacle;
+  const Vec3 away = p - o.point;
+  if (o.found && away.squaredNorm() > 0.0) r += push(o.distance) * away.normalized();
+  return r;
+}
+
+Steering PurePursuit::act(const AgentView& view) { return toward(view, view.other.position - view.self.position); }
+
+Steering ProportionalNavigation::act(const AgentView& view) {
+  const Vec3 r = view.other.position - view.self.position;
+  const Vec3 dir = peg3d::direction(view.self.heading);
+  if (r.squaredNorm() == 0.0 || dir.dot(r) <= 0.0) return toward(view, r);
+  const Vec3 v_rel = velocity(view.other, view.other_speed) - velocity(view.self, view.self_speed);
+  const Vec3 omega = r.cross(v_rel) / r.squaredNorm();  // line-of-sight rotation rate, rad/s
+  const Vec3 turned = dir + gain_ * omega.cross(dir) * view.dt;
+  return toward(view, turned);
+}
+
+Steering ApolloniusInterceptor::act(const AgentView& view) {
+  const Vec3& p = view.self.position;
+  const Vec3& e = view.other.position;
+  if (view.other_speed > 0.0) {
+    const auto x = interception_point(p, e, peg3d::direction(view.other.heading), view.other_speed / view.self_speed);
+    if (x) return toward(view, view.arena.clamp(*x) - p);
+  }
+  return toward(view, e - p);
+}
+
+Steering FleeLineOfSight::act(const AgentView& view) {
+  const Vec3 away = (view.self.position - view.other.position).normalized();
+  return toward(view, away + repulsion(view));
+}
+
+Steering FleeApollonius::act(const AgentView& view) {
+  const Vec3& e = view.self.position;
+  const Vec3& p = view.other.position;
+  const double a = view.other_speed > 0.0 ? view.self_speed / view.other_speed : 2.0;
+  if (a >= 1.0 - kUnitRatioTolerance || (e - p).squaredNorm() == 0.0) {
+    return toward(view, (e - p).normalized() + repulsion(view));  // no bounded dominance region: flee
+  }
+  const ApolloniusSurface surface(p, e, a);
+  const Box inside = view.arena.shrunk(1.0);
+  Vec3 goal = inside.clamp(surface.sphere().center);
+  double best = (goal - p).squaredNorm();
+  for (const Vec3& d : search_directions()) {
+    const Vec3 x = surface.sphere().center + surface.sphere().radius * d;
+    if (!inside.contains(x)) continue;
+    if (const double dist = (x - p).squaredNorm(); dist > best) {
+      best = dist;
+      goal = x;
+    }
+  }
+  const Vec3 to_goal = goal - e;
+  const double n = to_goal.norm();
+  return toward(view, (n > 1e-9 ? Vec3(to_goal / n) : Vec3((e - p).normalized())) + repulsion(view));
+}
+
+Steering RandomWalk::act(const AgentView&) { return {bound_ * u_(rng_), bound_ * u_(rng_)}; }
+
+}  // namespace peg3d::game

@@ -1,0 +1,71 @@
+#pragma once
+// Classic guidance laws and scripted evaders, as baselines for the learned agents. Each computes a desired
+// direction and requests the heading change towards it (the game clamps it to the steering bound).
+
+#include <random>
+
+#include "core/random.hpp"
+#include "game/policy.hpp"
+
+namespace peg3d::game {
+
+/// Pure pursuit: head straight at the opponent.
+class PurePursuit final : public Policy {
+ public:
+  Steering act(const AgentView& view) override;
+};
+
+/// 3D proportional navigation: the velocity direction turns at N times the rotation rate of the line of
+/// sight, omega = (r x v_rel) / |r|^2. While the target is behind (closing is impossible by PN alone) it
+/// pursues directly.
+class ProportionalNavigation final : public Policy {
+ public:
+  explicit ProportionalNavigation(double gain) : gain_(gain) {}
+  Steering act(const AgentView& view) override;
+
+ private:
+  double gain_;
+};
+
+/// Apollonius interceptor: constant bearing to the point where the evader, holding its current heading,
+/// meets the pursuer (the interception point on the Apollonius sphere), clamped into the arena; pure
+/// pursuit when there is none.
+class ApolloniusInterceptor final : public Policy {
+ public:
+  Steering act(const AgentView& view) override;
+};
+
+/// Flee along the line of sight, away from the pursuer, pushed off the arena boundary and the nearest
+/// obstacle by a repulsion that grows as they come within `kAvoidDistance`.
+class FleeLineOfSight final : public Policy {
+ public:
+  Steering act(const AgentView& view) override;
+};
+
+/// Head for the farthest point from the pursuer of the evader's Apollonius dominance region (the ball of
+/// points it reaches first) that lies inside the arena, with the same repulsion as FleeLineOfSight.
+class FleeApollonius final : public Policy {
+ public:
+  Steering act(const AgentView& view) override;
+};
+
+/// Random heading changes, uniform within the steering bound, from the policy's own seeded engine.
+class RandomWalk final : public Policy {
+ public:
+  RandomWalk(double bound, std::uint64_t seed) : bound_(bound), rng_(seed) {}
+  Steering act(const AgentView& view) override;
+
+ private:
+  double bound_;
+  Rng rng_;
+  std::uniform_real_distribution<double> u_{-1.0, 1.0};
+};
+
+/// Distance (m) within which the scripted evaders feel the boundary and obstacles.
+inline constexpr double kAvoidDistance = 4.0;
+
+/// The scripted evaders' repulsion: the sum over the arena faces and the nearest obstacle within
+/// kAvoidDistance of unit vectors away from them, weighted ((kAvoidDistance - d) / kAvoidDistance)^2 * 3.
+Vec3 repulsion(const AgentView& view);
+
+}  // namespace peg3d::game
