@@ -8,15 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/validation.hpp"
+#include "experiment/result_files.hpp"
 #include "geometry/angles.hpp"
 #include "geometry/apollonius.hpp"
 #include "geometry/motion_cone.hpp"
-
-namespace {
-
-nlohmann::json to_json(const peg3d::Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace peg3d;
@@ -44,33 +39,9 @@ int main(int argc, char** argv) {
     if ((p - e).norm() == 0.0) throw InvalidParameter("evader", "the pursuer's position", "must differ from the pursuer");
     ratios.insert(ratios.begin(), ve / vp);
 
-    nlohmann::json out;
-    out["pursuer"] = to_json(p);
-    out["evader"] = to_json(e);
-    out["vp"] = vp;
-    out["ve"] = ve;
-    for (double a : ratios) {
-      const ApolloniusSurface s(p, e, a);
-      nlohmann::json item{{"a", a}};
-      if (s.is_plane()) {
-        item["kind"] = "plane";
-        item["point"] = to_json(s.plane().point);
-        item["normal"] = to_json(s.plane().normal);
-      } else {
-        item["kind"] = "sphere";
-        item["center"] = to_json(s.sphere().center);
-        item["radius"] = s.sphere().radius;
-        item["encloses"] = a < 1.0 ? "evader" : "pursuer";
-      }
-      out["surfaces"].push_back(item);
-    }
+    const nlohmann::json out = experiment::apollonius_to_json(p, e, vp, ve, ratios);
     const Cone pc = pursuer_motion_cone(p, e, vp, ve);
     const Cone ec = evader_motion_cone(p, e);
-    out["pursuer_cone"] = {{"axis", to_json(pc.axis)}, {"half_angle_rad", pc.half_angle}};
-    out["evader_cone"] = {{"axis", to_json(ec.axis)}, {"half_angle_rad", ec.half_angle}};
-    // Where a pursuer heading straight for it meets an evader fleeing straight away from it.
-    if (const auto x = interception_point(p, e, ec.axis, ve / vp)) out["interception_fleeing"] = to_json(*x);
-
     if (json) {
       std::puts(out.dump(2).c_str());
       return 0;

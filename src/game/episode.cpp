@@ -75,26 +75,45 @@ AgentView Game::view(Role role, const EpisodeState& s) const {
   v.dt = config_.dt;
   v.arena = arena_->bounds();
   const world::NearestObstacle n = arena_->nearest_obstacle(v.self.position);
-  v.percept = perceive(role, self, v.self, v.other, {n.distance, n.point, n.found}, v.arena, arena_->max_distance());
+  v.field = {n.distance, n.point, n.found};
+  v.percept = perceive(role, self, v.self, v.other, v.field, v.arena, arena_->max_distance());
   return v;
 }
 
-Heading Game::next_heading(Role role, const EpisodeState& s, const Steering& u) const {
+Heading Game::next_heading(Role role, const EpisodeState& s, const AgentView& v, const Steering& u) const {
   const AgentConfig& c = config_.agent(role);
   const KinematicState& self = role == Role::kPursuer ? s.pursuer : s.evader;
   const double bound = c.steering.step_bound(config_.dt);
-  Heading h = steer(self.heading, u, bound);
+  const double margin = c.steering.polar_margin;
+  Vec3 d = direction(steer(self.heading, u, bound, margin));
+  bool changed = false;
   const Vec3 pe = s.evader.position - s.pursuer.position;
-  if (!c.motion_space || pe.squaredNorm() == 0.0) return h;
-  // Paper section 3.1: the pursuer keeps alpha2 <= asin(vE/vP) about P->E, the evader alpha1 >= pi/2. The
-  // heading turns towards the nearest direction of that space, within the same steering bound.
-  const Cone cone = role == Role::kPursuer
-                        ? pursuer_motion_cone(s.pursuer.position, s.evader.position, config_.pursuer.speed, config_.evader.speed)
-                        : evader_motion_cone(s.pursuer.position, s.evader.position);
-  const Vec3 d = direction(h);
-  if (cone.contains(d)) return h;
-  const AngleErrors e = angle_errors(self.heading, cone.project(d));
-  return steer(self.heading, {e.azimuth, e.elevation}, bound);
+  if (c.motion_space && pe.squaredNorm() > 0.0) {
+    // Paper section 3.1: the pursuer keeps alpha2 <= asin(vE/vP) about P->E, the evader alpha1 >= pi/2.
+    const Cone cone = role == Role::kPursuer ? pursuer_motion_cone(s.pursuer.position, s.evader.position,
+                                                                   config_.pursuer.speed, config_.evader.speed)
+                                             : evader_motion_cone(s.pursuer.position, s.evader.position);
+    if (!cone.contains(d)) {
+      d = cone.project(d);
+      changed = true;
+    }
+  }
+  // The guard comes last: staying clear of obstacles outranks the motion space.
+  const Vec3 away = self.position - v.field.point;
+  if (c.guard.enabled && v.field.found && v.field.distance < c.guard.warn_distance && away.squaredNorm() > 0.0) {
+    const double excluded = 0.5 * kPi *
+                            std::min(1.0, (c.guard.warn_distance - v.field.distance) /
+                                              (c.guard.warn_distance - c.guard.stop_distance));
+    const Cone allowed{away.normalized(), kPi - excluded};
+    if (!allowed.contains(d)) {
+      d = allowed.project(d);
+      changed = true;
+    }
+  }
+  if (!changed) return steer(self.heading, u, bound, margin);
+  // Turn towards the constrained direction within the same steering bound.
+  const AngleErrors e = angle_errors(self.heading, d);
+  return steer(self.heading, {e.azimuth, e.elevation}, bound, margin);
 }
 
 EpisodeResult Game::play(const world::Scenario& scenario, Policy& pursuer, Policy& evader, bool learning,
@@ -117,8 +136,8 @@ EpisodeResult Game::play(const world::Scenario& scenario, Policy& pursuer, Polic
     const Steering ue = evader.act(ve);
 
     EpisodeState n = s;
-    n.pursuer.heading = next_heading(Role::kPursuer, s, up);
-    n.evader.heading = next_heading(Role::kEvader, s, ue);
+    n.pursuer.heading = next_heading(Role::kPursuer, s, vp, up);
+    n.evader.heading = next_heading(Role::kEvader, s, ve, ue);
     n.pursuer.position = p_box.clamp(s.pursuer.position + config_.pursuer.speed * config_.dt * direction(n.pursuer.heading));
     n.evader.position = e_box.clamp(s.evader.position + config_.evader.speed * config_.dt * direction(n.evader.heading));
 

@@ -94,7 +94,7 @@ class Game {
 
  private:
   AgentView view(Role role, const EpisodeState& s) const;
-  Heading next_heading(Role role, const EpisodeState& s, const Steering& u) const;
+  Heading next_heading(Role role, const EpisodeState& s, const AgentView& v, const Steering& u) const;
 
   std::shared_ptr<const world::Arena> arena_;
   GameConfig config_;

@@ -87,6 +87,10 @@ void validate_agent(const AgentConfig& a, const std::string& p, Role role) {
   require_non_negative(p + ".reward.w_a", r.w_a);
   require_non_negative(p + ".reward.collision_penalty", r.collision_penalty);
   require_positive(p + ".pn_gain", a.pn_gain);
+  require_positive(p + ".guard.stop_distance", a.guard.stop_distance);
+  if (!(a.guard.warn_distance > a.guard.stop_distance)) {
+    throw InvalidParameter(p + ".guard.warn_distance", format_value(a.guard.warn_distance), "must be > guard.stop_distance");
+  }
   if (a.structure == FaclStructure::kPerAngle && a.observation.angles != AngleInputs::kAzimuthElevation) {
     throw InvalidParameter(p + ".structure", "\"per-angle\"", "needs observation.angles = azimuth-elevation");
   }
@@ -113,6 +117,7 @@ AgentConfig agent_preset(const std::string& name, Role role) {
   a.speed = role == Role::kPursuer ? 1.1 : 1.0;
   if (name == "peg3d") return a;
   if (name == "paper") {
+    a.guard.enabled = false;
     a.observation.angles = AngleInputs::kAzimuth;
     a.observation.evader_reference = EvaderReference::kTowardPursuer;
     a.observation.boundary_is_obstacle = false;
@@ -142,8 +147,13 @@ void to_json(nlohmann::json& j, const AgentConfig& a) {
       {"policy", a.policy},
       {"speed", a.speed},
       {"radius", a.radius},
-      {"steering", {{"max_turn", a.steering.max_turn}, {"reading", enum_name(kReading, a.steering.reading)}}},
+      {"steering",
+       {{"max_turn", a.steering.max_turn},
+        {"reading", enum_name(kReading, a.steering.reading)},
+        {"polar_margin", a.steering.polar_margin}}},
       {"motion_space", a.motion_space},
+      {"guard",
+       {{"enabled", a.guard.enabled}, {"stop_distance", a.guard.stop_distance}, {"warn_distance", a.guard.warn_distance}}},
       {"observation",
        {{"angles", enum_name(kAngleInputs, a.observation.angles)},
         {"evader_reference", enum_name(kEvaderReference, a.observation.evader_reference)},
@@ -179,8 +189,14 @@ void from_json(const nlohmann::json& j, AgentConfig& a) {
   if (const auto s = j.find("steering"); s != j.end()) {
     read(*s, "max_turn", a.steering.max_turn);
     read_enum(*s, "reading", kReading, a.steering.reading, "steering.reading");
+    read(*s, "polar_margin", a.steering.polar_margin);
   }
   read(j, "motion_space", a.motion_space);
+  if (const auto g = j.find("guard"); g != j.end()) {
+    read(*g, "enabled", a.guard.enabled);
+    read(*g, "stop_distance", a.guard.stop_distance);
+    read(*g, "warn_distance", a.guard.warn_distance);
+  }
   if (const auto o = j.find("observation"); o != j.end()) {
     read_enum(*o, "angles", kAngleInputs, a.observation.angles, "observation.angles");
     read_enum(*o, "evader_reference", kEvaderReference, a.observation.evader_reference, "observation.evader_reference");

@@ -77,6 +77,16 @@ struct RewardConfig {
   double collision_penalty = 0.0;  ///< subtracted from the colliding agent's reward, >= 0 (paper: none)
 };
 
+/// A safety layer on top of any policy: near an obstacle of the map (not the arena boundary), headings that
+/// approach it are excluded, like the motion space excludes headings that lose ground. Within
+/// `stop_distance` of the obstacle the heading may not approach it at all; between `stop_distance` and
+/// `warn_distance` the excluded cone about the direction to the obstacle narrows linearly to nothing.
+struct ObstacleGuard {
+  bool enabled = true;
+  double stop_distance = 0.8;  ///< m, > 0; covers radius + one step + the distance field's voxel error
+  double warn_distance = 2.0;  ///< m, > stop_distance
+};
+
 /// One agent: who drives it and how it moves, senses, is rewarded and learns.
 struct AgentConfig {
   /// facl | pure-pursuit | pn | apollonius | flee | flee-apollonius | random
@@ -85,6 +95,7 @@ struct AgentConfig {
   double radius = 0.25;  ///< m, collision sphere, > 0
   SteeringConfig steering;
   bool motion_space = true;  ///< keep the heading in the paper's optimal motion space (section 3.1)
+  ObstacleGuard guard;
   ObservationConfig observation;
   RewardConfig reward;
   fuzzy::FaclConfig facl;

@@ -15,7 +15,7 @@ std::unique_ptr<Policy> make_policy(const AgentConfig& config, Role role, std::u
   if (p == "apollonius") return std::make_unique<ApolloniusInterceptor>();
   if (p == "flee") return std::make_unique<FleeLineOfSight>();
   if (p == "flee-apollonius") return std::make_unique<FleeApollonius>();
-  if (p == "random") return std::make_unique<RandomWalk>(config.steering.max_turn, seed);
+  if (p == "random") return std::make_unique<RandomWalk>(config.steering, seed);
   throw std::invalid_argument("unknown policy '" + p + "'");
 }
 

@@ -21,6 +21,7 @@ struct AgentView {
   double other_speed = 0.0;  ///< m/s
   double dt = 0.1;           ///< s
   Percept percept;
+  ObstacleSense field;       ///< the map's nearest obstacle as the distance field reports it (no boundary)
   Box arena;                 ///< the arena box (the agent's centre stays radius inside it)
 };
 

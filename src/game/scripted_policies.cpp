@@ -102,6 +102,9 @@ Steering FleeApollonius::act(const AgentView& view) {
   return toward(view, (n > 1e-9 ? Vec3(to_goal / n) : Vec3((e - p).normalized())) + repulsion(view));
 }
 
-Steering RandomWalk::act(const AgentView&) { return {bound_ * u_(rng_), bound_ * u_(rng_)}; }
+Steering RandomWalk::act(const AgentView& view) {
+  const double bound = steering_.step_bound(view.dt);
+  return {bound * u_(rng_), bound * u_(rng_)};
+}
 
 }  // namespace peg3d::game

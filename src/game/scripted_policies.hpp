@@ -52,11 +52,11 @@ class FleeApollonius final : public Policy {
 /// Random heading changes, uniform within the steering bound, from the policy's own seeded engine.
 class RandomWalk final : public Policy {
  public:
-  RandomWalk(double bound, std::uint64_t seed) : bound_(bound), rng_(seed) {}
+  RandomWalk(const SteeringConfig& steering, std::uint64_t seed) : steering_(steering), rng_(seed) {}
   Steering act(const AgentView& view) override;
 
  private:
-  double bound_;
+  SteeringConfig steering_;
   Rng rng_;
   std::uniform_real_distribution<double> u_{-1.0, 1.0};
 };

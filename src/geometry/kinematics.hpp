@@ -20,6 +20,10 @@ enum class SteeringReading {
 struct SteeringConfig {
   double max_turn = kPi / 4.0;  ///< rad per step (kPerStep) or rad/s (kPerSecond); (0, pi] per step
   SteeringReading reading = SteeringReading::kPerStep;
+  /// rad, in [0, pi/2): theta is kept in [polar_margin, pi - polar_margin]. 0 (the paper) allows vertical
+  /// flight; a margin is a climb/dive limit that keeps the heading away from the poles, where the azimuth
+  /// (and every azimuth error) is undefined.
+  double polar_margin = 0.0;
 
   /// Bound on each heading change for one sample of length dt (s), rad.
   double step_bound(double dt) const { return reading == SteeringReading::kPerStep ? max_turn : max_turn * dt; }
@@ -39,14 +43,15 @@ struct KinematicState {
   Heading heading;
 };
 
-/// Applies a steering command: each component is clamped to [-bound, bound], theta is clamped to [0, pi]
-/// (an agent can point straight up or down but not over the pole) and alpha is wrapped to (-pi, pi].
-Heading steer(const Heading& h, const Steering& u, double bound);
+/// Applies a steering command: each component is clamped to [-bound, bound], theta is clamped to
+/// [polar_margin, pi - polar_margin] (with margin 0 an agent can point straight up or down but not over the
+/// pole) and alpha is wrapped to (-pi, pi].
+Heading steer(const Heading& h, const Steering& u, double bound, double polar_margin = 0.0);
 
 /// One sample of eq. (1): the heading is steered first, then the agent moves speed*dt along it. The new
 /// position is clamped to `bounds` (pass the arena shrunk by the agent's radius), so agents slide along
 /// the arena boundary instead of leaving it.
 KinematicState step(const KinematicState& s, const Steering& u, double speed, double dt, double bound,
-                    const Box& bounds);
+                    const Box& bounds, double polar_margin = 0.0);
 
 }  // namespace peg3d

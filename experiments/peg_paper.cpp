@@ -1,0 +1,89 @@
+// peg-paper: the paper's experiment end to end. For every scenario of the map (S1..S4 on maps/paper.yaml)
+// and every algorithm (peg3d's FACL, the paper's configuration, the Al-Mahbashi-style baseline), repeats of
+// co-learning followed by a greedy evaluation; results, statistics and figures in --out (docs/results.md).
+#include <chrono>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "experiment/paper_experiment.hpp"
+#include "experiment/progress_reporter.hpp"
+#include "experiment/result_files.hpp"
+#include "game/episode.hpp"
+
+using namespace peg3d;
+
+int main(int argc, char** argv) {
+  CLI::App app{"peg-paper: the paper's four scenarios, FACL against the baseline, with statistics and figures"};
+  cli::SweepOptions o;
+  o.map = "maps/paper.yaml";
+  o.out = "results/paper";
+  std::vector<std::string> algorithms{"peg3d", "baseline", "paper"};
+  bool plots = true;
+  cli::add_sweep_options(app, o);
+  app.add_option("--algorithms", algorithms, "algorithms to compare (peg3d, baseline, paper)")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_flag("!--no-plots", plots, "skip the figures");
+
+  return cli::guarded_main(app, argc, argv, [&] {
+    const auto wall_start = std::chrono::steady_clock::now();
+    const std::vector<experiment::Algorithm> algs = experiment::make_algorithms(algorithms, o.sets);
+    const auto arena = cli::load_arena(o.map, !o.no_cache);
+    const auto& scenarios = arena->map().scenarios;
+    // Reject impossible starts (an agent inside an obstacle) before any work.
+    for (const auto& a : algs)
+      for (const auto& s : scenarios) game::Game(arena, a.config).start(s, 0);
+    cli::prepare_output_dir(o.out);
+    const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+    experiment::SweepSettings settings{o.seed, o.episodes, o.repeats, o.threads, 0};
+    const std::size_t runs = scenarios.size() * algs.size() * o.repeats;
+    experiment::ProgressReporter progress(runs, runs * (o.episodes + 1), stderr, o.plain_progress);
+    const auto run_start = std::chrono::steady_clock::now();
+    experiment::PaperResults results = experiment::run_paper_experiment(arena, algs, settings, &progress);
+    progress.finish();
+    const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+
+    // Outputs: nothing is written before every run has finished.
+    std::vector<std::string> scenario_names, algorithm_names;
+    for (const auto& s : scenarios) scenario_names.push_back(s.name);
+    nlohmann::ordered_json config{{"map", cli::resolve_input(o.map).string()}, {"seed", o.seed}, {"episodes", o.episodes},
+                          {"repeats", o.repeats}, {"algorithms", nlohmann::ordered_json::object()}};
+    for (const auto& a : algs) {
+      algorithm_names.push_back(a.name);
+      config["algorithms"][a.name] = nlohmann::ordered_json::parse(nlohmann::json(a.config).dump());
+    }
+    const double time_limit = algs.front().config.time_limit;
+    const nlohmann::ordered_json summary = experiment::summarize(results.runs, scenario_names, algorithm_names, time_limit);
+    std::filesystem::create_directories(o.out / "trajectories");
+    std::filesystem::create_directories(o.out / "policies");
+    experiment::write_json(o.out / "config.json", config);
+    experiment::write_runs_csv(o.out / "runs.csv", results.runs);
+    experiment::write_learning_curves_csv(o.out / "learning_curves.csv", results.runs, results.curves);
+    experiment::write_json(o.out / "summary.json", summary);
+    for (const auto& [key, trace] : results.traces) {
+      experiment::write_trajectory_csv(o.out / "trajectories" / (key + ".csv"), trace);
+    }
+    for (const auto& [key, policy] : results.policies) {
+      if (policy) experiment::save_policy(o.out / "policies" / (key + ".json"), *policy);
+    }
+    experiment::write_json(o.out / "map.json", experiment::map_to_json(*arena));
+    experiment::write_json(o.out / "apollonius.json",
+                           experiment::apollonius_to_json({10, 10, 10}, {-10, -10, 10}, 1.1, 1.0, {0.5, 1.0, 2.0}));
+    experiment::write_json(o.out / "timing.json", nlohmann::ordered_json{{"world_build_s", build_seconds},
+                                                   {"runs_s", run_seconds},
+                                                   {"runs", runs},
+                                                   {"steps", results.steps},
+                                                   {"steps_per_second", results.steps / run_seconds},
+                                                   {"threads", o.threads},
+                                                   {"world_cache", arena->stats().cache_status}});
+    if (plots) cli::run_plot_script("plot_paper.py", o.out);
+
+    std::fputs(experiment::summary_table(summary).c_str(), stdout);
+    std::printf("\n%zu runs, %lld steps in %.1f s (%.0f steps/s); results in %s\n", runs, results.steps, run_seconds,
+                results.steps / run_seconds, o.out.string().c_str());
+    return 0;
+  });
+}

@@ -1,0 +1,67 @@
+#pragma once
+// The paper's experiment (section 4): for every scenario of a map and every algorithm, `repeats` trials of
+// co-learning from the scenario's start followed by a greedy evaluation. Runs of the same scenario and
+// repeat share their seed across algorithms, so algorithms are compared on paired runs.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiment/result_files.hpp"
+#include "game/game_config.hpp"
+#include "world/arena.hpp"
+
+namespace peg3d::experiment {
+
+class ProgressReporter;
+
+/// An algorithm of the comparison: a name and the whole game configuration it plays with.
+struct Algorithm {
+  std::string name;
+  game::GameConfig config;
+};
+
+/// Builds algorithms from preset names and applies `--set` overrides. An override whose first key is an
+/// algorithm's name applies to that algorithm only ("paper.pursuer.facl.actor_rate=0.01"); any other
+/// applies to every algorithm ("evader.motion_space=false"). Throws ConfigError / InvalidParameter naming the
+/// key.
+std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, const std::vector<std::string>& overrides);
+
+/// Applies overrides to one configuration (no algorithm prefixes).
+game::GameConfig apply_game_overrides(game::GameConfig config, const std::vector<std::string>& overrides);
+
+struct SweepSettings {
+  std::uint64_t seed = 1;  ///< root seed
+  int episodes = 200;      ///< training episodes per run
+  int repeats = 20;        ///< runs per scenario and algorithm
+  int threads = 0;         ///< worker threads, 0: all cores
+  int trace_repeat = 0;    ///< repeat whose evaluation is recorded step by step and whose policies are kept
+};
+
+struct PaperResults {
+  std::vector<RunRecord> runs;                            ///< scenario-major, then algorithm, then repeat
+  std::vector<std::vector<game::EpisodeResult>> curves;   ///< training episodes of each run
+  std::map<std::string, std::vector<game::StepRecord>> traces;       ///< "<scenario>_<algorithm>" -> steps
+  std::map<std::string, std::unique_ptr<game::Policy>> policies;     ///< "<scenario>_<algorithm>_<role>"
+  long long steps = 0;                                     ///< simulated steps, training and evaluation
+};
+
+/// The seed of a scenario's repeat (shared by all algorithms).
+std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat);
+
+PaperResults run_paper_experiment(std::shared_ptr<const world::Arena> arena, const std::vector<Algorithm>& algorithms,
+                                  const SweepSettings& settings, ProgressReporter* progress = nullptr);
+
+/// summary.json (docs/results.md): per scenario and algorithm rates and means with 95% intervals, and paired
+/// comparisons of every pair of algorithms.
+nlohmann::ordered_json summarize(const std::vector<RunRecord>& runs, const std::vector<std::string>& scenarios,
+                         const std::vector<std::string>& algorithms, double time_limit);
+
+/// The summary as a plain-text table for stdout.
+std::string summary_table(const nlohmann::ordered_json& summary);
+
+}  // namespace peg3d::experiment

@@ -1,0 +1,57 @@
+#pragma once
+// The files experiments write (docs/results.md). Every writer goes through AtomicFile, so a file is either
+// complete or absent.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "game/episode.hpp"
+#include "game/policy.hpp"
+#include "world/arena.hpp"
+
+namespace peg3d::experiment {
+
+/// One run of a sweep: its identity and its greedy evaluation after training.
+struct RunRecord {
+  std::string scenario;
+  std::string algorithm;
+  int repeat = 0;
+  std::uint64_t seed = 0;
+  game::EpisodeResult evaluation;
+  int train_captures = 0;
+};
+
+/// runs.csv: one row per record, in the given order.
+void write_runs_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs);
+
+/// learning_curves.csv: `curves[i]` holds the training episodes of `runs[i]`.
+void write_learning_curves_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs,
+                               const std::vector<std::vector<game::EpisodeResult>>& curves);
+
+/// A trajectory file: every recorded step of one episode.
+void write_trajectory_csv(const std::filesystem::path& file, const std::vector<game::StepRecord>& steps);
+
+/// Pretty-printed JSON, atomically.
+void write_json(const std::filesystem::path& file, const nlohmann::json& value);
+void write_json(const std::filesystem::path& file, const nlohmann::ordered_json& value);
+
+/// The arena's box, obstacles, terrain triangles and scenarios (map.json).
+nlohmann::json map_to_json(const world::Arena& arena);
+
+/// The Apollonius surfaces for each ratio a = vE / vP and both motion cones for P and E (apollonius.json and
+/// `peg-apollonius --json`). `ratios` are shown in order; vP and vE give the cones.
+nlohmann::json apollonius_to_json(const Vec3& pursuer, const Vec3& evader, double pursuer_speed, double evader_speed,
+                                  const std::vector<double>& ratios);
+
+/// Saves a trained policy as a versioned JSON document; only FACL policies have something to save
+/// (returns false for the others).
+bool save_policy(const std::filesystem::path& file, const game::Policy& policy);
+
+/// Loads a policy document; errors name the file.
+std::unique_ptr<game::Policy> load_policy(const std::filesystem::path& file, std::uint64_t seed = 0);
+
+}  // namespace peg3d::experiment
