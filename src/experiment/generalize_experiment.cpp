@@ -1,0 +1,120 @@
+#include "experiment/generalize_experiment.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/random.hpp"
+#include "experiment/atomic_file.hpp"
+#include "experiment/csv_writer.hpp"
+#include "experiment/paper_experiment.hpp"
+#include "experiment/parallel_runner.hpp"
+#include "experiment/progress_reporter.hpp"
+#include "experiment/statistics.hpp"
+#include "experiment/trial.hpp"
+
+namespace peg3d::experiment {
+
+std::vector<GeneralizeRecord> run_generalization(std::shared_ptr<const world::Arena> train,
+                                                 const std::vector<std::shared_ptr<const world::Arena>>& evals,
+                                                 const game::GameConfig& config, const GeneralizeSettings& s,
+                                                 ProgressReporter* progress,
+                                                 std::vector<std::pair<std::string, std::unique_ptr<game::Policy>>>* keep) {
+  const auto& scenarios = train->map().scenarios;
+  const std::size_t jobs = scenarios.size() * static_cast<std::size_t>(s.repeats);
+  std::vector<std::vector<GeneralizeRecord>> per_job(jobs);
+  std::vector<TrialResult> kept(scenarios.size());
+  run_indexed(jobs, s.threads, [&](std::size_t i) {
+    const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
+    const std::uint64_t seed = run_seed(s.seed, sc, rep);
+    TrialResult t = run_trial(train, {&scenarios[sc], config, seed, s.episodes, false}, progress);
+    for (std::size_t m = 0; m < evals.size(); ++m) {
+      const auto& eval_scenarios = evals[m]->map().scenarios;
+      for (std::size_t k = 0; k < eval_scenarios.size(); ++k) {
+        per_job[i].push_back({scenarios[sc].name, rep, evals[m]->map().name, eval_scenarios[k].name,
+                              evaluate(evals[m], config, eval_scenarios[k], *t.pursuer, *t.evader,
+                                       derive_seed(seed, {20, m, k}))});
+        if (progress) progress->episode_done();
+      }
+    }
+    if (rep == 0) kept[sc] = std::move(t);
+    if (progress) progress->run_done();
+  });
+  if (keep) {
+    for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
+      keep->emplace_back(scenarios[sc].name + "_pursuer", std::move(kept[sc].pursuer));
+      keep->emplace_back(scenarios[sc].name + "_evader", std::move(kept[sc].evader));
+    }
+  }
+  std::vector<GeneralizeRecord> out;
+  for (auto& v : per_job) std::move(v.begin(), v.end(), std::back_inserter(out));
+  return out;
+}
+
+void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records) {
+  AtomicFile out(file);
+  CsvWriter csv(out.stream(), {"train_scenario", "repeat", "eval_map", "eval_scenario", "outcome", "captured",
+                               "capture_time_s", "final_distance_m", "pursuer_path_m", "collisions",
+                               "evader_pinned_fraction"});
+  for (const GeneralizeRecord& r : records) {
+    const game::EpisodeResult& e = r.result;
+    csv.row()
+        .add(r.train_scenario)
+        .add(r.repeat)
+        .add(r.eval_map)
+        .add(r.eval_scenario)
+        .add(game::to_string(e.outcome))
+        .add(static_cast<int>(e.captured()))
+        .add(e.captured() ? e.duration : std::numeric_limits<double>::quiet_NaN())
+        .add(e.final_distance)
+        .add(e.pursuer_path)
+        .add(e.collisions)
+        .add(e.pinned_fraction(game::Role::kEvader))
+        .end();
+  }
+  out.commit();
+}
+
+nlohmann::ordered_json summarize_generalization(const std::vector<GeneralizeRecord>& records,
+                                                const std::vector<std::string>& maps) {
+  const auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const std::string& m : maps) {
+    std::size_t runs = 0, caps = 0, coll = 0;
+    std::vector<double> time;
+    for (const auto& r : records) {
+      if (r.eval_map != m) continue;
+      ++runs;
+      caps += r.result.captured();
+      coll += r.result.collisions > 0;
+      if (r.result.captured()) time.push_back(r.result.duration);
+    }
+    const ProportionInterval cr = wilson_interval(caps, runs), kr = wilson_interval(coll, runs);
+    out.push_back({{"map", m},
+                   {"runs", runs},
+                   {"captures", caps},
+                   {"capture_rate", {{"rate", num(cr.rate)}, {"lo", cr.lo}, {"hi", cr.hi}}},
+                   {"collision_runs", coll},
+                   {"collision_rate", {{"rate", num(kr.rate)}, {"lo", kr.lo}, {"hi", kr.hi}}},
+                   {"capture_time_s", num(mean_interval(time).mean)}});
+  }
+  return out;
+}
+
+std::string generalization_table(const nlohmann::ordered_json& summary) {
+  const auto num = [](const nlohmann::ordered_json& j) { return j.is_number() ? j.get<double>() : std::nan(""); };
+  std::string s = fmt::format("{:<16} {:>9} {:>20} {:>20} {:>14}\n", "evaluation map", "captures", "capture rate [95%]",
+                              "collision rate [95%]", "capture t (s)");
+  for (const auto& r : summary) {
+    s += fmt::format("{:<16} {:>4}/{:<4} {:>20} {:>20} {:>14.1f}\n", r["map"].get<std::string>(),
+                     r["captures"].get<int>(), r["runs"].get<int>(),
+                     fmt::format("{:.2f} [{:.2f}, {:.2f}]", num(r["capture_rate"]["rate"]), num(r["capture_rate"]["lo"]),
+                                 num(r["capture_rate"]["hi"])),
+                     fmt::format("{:.2f} [{:.2f}, {:.2f}]", num(r["collision_rate"]["rate"]),
+                                 num(r["collision_rate"]["lo"]), num(r["collision_rate"]["hi"])),
+                     num(r["capture_time_s"]));
+  }
+  return s;
+}
+
+}  // namespace peg3d::experiment
