@@ -1,0 +1,101 @@
+#pragma once
+// The arena: the fixed, read-only model of a map shared by every episode and thread (like MuJoCo's mjModel).
+// It holds the map, the imported terrain triangles, the OctoMap octree (serialized) and the distance field.
+// Built once per map; a second build of the same map is read from an on-disk cache.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/vector.hpp"
+#include "world/distance_field.hpp"
+#include "world/map_spec.hpp"
+#include "world/triangle_mesh.hpp"
+
+namespace peg3d::world {
+
+/// What an obstacle is; kBoundary is a face of the arena box (distance field only, never a collision).
+enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary };
+
+/// Name of a kind: "sphere", "cylinder", "mesh", "boundary".
+const char* to_string(ObstacleKind kind);
+
+/// Figures about a built arena.
+struct ArenaStats {
+  std::size_t spheres = 0;            ///< sphere obstacles
+  std::size_t cylinders = 0;          ///< cylinder obstacles
+  std::size_t meshes = 0;             ///< terrain meshes
+  std::size_t triangles = 0;          ///< triangles over all meshes
+  double resolution = 0.0;            ///< m, effective voxel edge
+  std::size_t occupied_voxels = 0;    ///< voxels (at the resolution) marked occupied in the octree
+  std::array<int, 3> field_dims{};    ///< distance-field cells on x, y, z (the arena plus one cell each side)
+  std::size_t field_cells = 0;        ///< product of field_dims
+  std::size_t field_bytes = 0;        ///< memory the Arena keeps for the distance field
+  std::size_t octree_bytes = 0;       ///< size of the serialized octree (.bt)
+  std::size_t build_peak_bytes = 0;   ///< estimated transient memory of building the field (0 on a cache hit)
+  double voxelize_seconds = 0.0;      ///< occupancy from the shapes
+  double octree_seconds = 0.0;        ///< filling and pruning the OcTree
+  double edt_seconds = 0.0;           ///< DynamicEDTOctomap and the copy into the compact field
+  double build_seconds = 0.0;         ///< whole Arena::build wall time, mesh import and cache included
+  bool loaded_from_cache = false;
+  std::uint64_t cache_key = 0;        ///< content hash keying the cache file
+  std::filesystem::path cache_file;   ///< empty when caching is off
+  std::string cache_status;           ///< "off", "hit", "stored", or why the cache was not used
+};
+
+/// How to build an arena.
+struct BuildOptions {
+  std::optional<double> resolution_override;         ///< m, replaces the map's resolution; > 0
+  std::optional<std::filesystem::path> cache_dir;    ///< where built worlds are cached; nullopt: no cache
+  std::size_t max_field_bytes = std::size_t{4} << 30;  ///< refuse builds whose estimated peak memory is larger
+};
+
+class Arena {
+ public:
+  /// Imports the meshes, voxelizes every obstacle conservatively into an OctoMap OcTree and computes the
+  /// distance field with dynamicEDT3D, or loads both from the cache. Throws MapError for bad input (mesh
+  /// files, a resolution that is too fine or needs more than max_field_bytes).
+  static std::shared_ptr<const Arena> build(const MapSpec& spec, const BuildOptions& options = {});
+
+  const MapSpec& map() const { return spec_; }
+  const Box& bounds() const { return spec_.bounds; }
+  const ArenaStats& stats() const { return stats_; }
+  double max_distance() const { return spec_.max_distance; }
+  double resolution() const { return stats_.resolution; }
+  /// Terrain meshes in world coordinates, in map order (index = obstacle id of kMesh contacts).
+  const std::vector<TriangleMesh>& meshes() const { return meshes_; }
+  const DistanceField& distance_field() const { return field_; }
+
+  /// Distance (m, capped at max_distance) from p to the nearest occupied voxel, and that voxel's point nearest
+  /// to p. Thread-safe, no allocation, no locking.
+  NearestObstacle nearest_obstacle(const Vec3& p) const { return field_.nearest(p); }
+
+  /// A distance no obstacle point (of any kind, in or outside the arena) is nearer to p than (m, may be < 0).
+  double clearance_lower_bound(const Vec3& p) const { return field_.clearance_lower_bound(p); }
+
+  /// Writes the octree as an OctoMap .bt file (view it with octovis). Written to a temporary file then
+  /// renamed, so a crash never leaves half a file. Throws std::runtime_error if it cannot be written.
+  void save_octree(const std::filesystem::path& bt_file) const;
+
+  /// The octree in OctoMap's binary format (.bt file contents).
+  const std::string& octree_data() const { return octree_bt_; }
+
+ private:
+  Arena() = default;
+
+  MapSpec spec_;
+  ArenaStats stats_;
+  std::vector<TriangleMesh> meshes_;
+  DistanceField field_;
+  std::string octree_bt_;
+};
+
+/// The default cache folder: $PEG3D_CACHE_DIR, else $XDG_CACHE_HOME/peg3d, else ~/.cache/peg3d.
+std::filesystem::path default_cache_dir();
+
+}  // namespace peg3d::world

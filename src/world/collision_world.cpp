@@ -1,0 +1,249 @@
+#include "world/collision_world.hpp"
+
+#include <cassert>
+#include <vector>
+
+#include <btBulletCollisionCommon.h>
+
+#include "core/validation.hpp"
+
+namespace peg3d::world {
+namespace {
+
+// Agents get their own filter group: obstacles (StaticFilter) accept it, agents do not accept each other.
+// Bullet's defaults would put kinematic agents and static obstacles in groups that never pair.
+constexpr int kAgentGroup = 1 << 6;
+constexpr int kObstacleGroup = btBroadphaseProxy::StaticFilter;
+
+// After a hit the agent is set back this far along its path, so it ends outside the obstacle even when
+// Bullet's conservative advancement (which stops within 1 mm of contact) overshoots on a curved surface.
+constexpr double kBackoff = 1e-3;  // m
+
+btVector3 bt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+Vec3 vec(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+
+/// Closest swept hit against obstacles only; remembers the triangle of a mesh hit.
+struct SweepCallback : btCollisionWorld::ClosestConvexResultCallback {
+  int triangle = -1;
+  SweepCallback(const btVector3& from, const btVector3& to) : ClosestConvexResultCallback(from, to) {
+    m_collisionFilterGroup = kAgentGroup;
+    m_collisionFilterMask = kObstacleGroup;
+  }
+  btScalar addSingleResult(btCollisionWorld::LocalConvexResult& r, bool normal_in_world) override {
+    triangle = r.m_localShapeInfo != nullptr ? r.m_localShapeInfo->m_triangleIndex : -1;
+    return ClosestConvexResultCallback::addSingleResult(r, normal_in_world);
+  }
+};
+
+/// Deepest penetrating contact of one agent with obstacles.
+struct OverlapCallback : btCollisionWorld::ContactResultCallback {
+  const btCollisionObject* agent;
+  double depth = 0.0;  // most negative distance seen
+  const btCollisionObject* obstacle = nullptr;
+  int triangle = -1;
+  btVector3 point{0, 0, 0}, normal{0, 0, 1};
+
+  explicit OverlapCallback(const btCollisionObject* a) : agent(a) {
+    m_collisionFilterGroup = kAgentGroup;
+    m_collisionFilterMask = kObstacleGroup;
+  }
+  btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int index0,
+                           const btCollisionObjectWrapper* w1, int, int index1) override {
+    const double d = cp.getDistance();
+    if (d >= depth) return 0;
+    depth = d;
+    // m_normalWorldOnB points from B towards A; report it from the obstacle towards the agent.
+    if (w0->getCollisionObject() == agent) {
+      obstacle = w1->getCollisionObject();
+      triangle = index1;
+      point = cp.getPositionWorldOnB();
+      normal = cp.m_normalWorldOnB;
+    } else {
+      obstacle = w0->getCollisionObject();
+      triangle = index0;
+      point = cp.getPositionWorldOnA();
+      normal = -cp.m_normalWorldOnB;
+    }
+    return 0;
+  }
+};
+
+}  // namespace
+
+struct CollisionWorld::Impl {
+  struct Agent {
+    std::unique_ptr<btSphereShape> shape;
+    std::unique_ptr<btCollisionObject> body;
+    Vec3 position = Vec3::Zero();
+    double radius = 0.0;
+    bool synced = false;  // body transform and broadphase AABB match position
+  };
+
+  std::shared_ptr<const Arena> arena;
+  CollisionOptions options;
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher{&configuration};
+  btDbvtBroadphase broadphase;
+  btCollisionWorld world{&dispatcher, &broadphase, &configuration};
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> mesh_arrays;  // views of the Arena's triangles
+  std::vector<std::unique_ptr<btCollisionObject>> obstacles;
+  std::vector<Agent> agents;
+  long long sweeps = 0;
+
+  Impl(std::shared_ptr<const Arena> a, const CollisionOptions& o) : arena(std::move(a)), options(o) {
+    // Static obstacles never move: do not refresh their AABBs on every query.
+    world.setForceUpdateAllAabbs(false);
+    const MapSpec& spec = arena->map();
+    for (std::size_t i = 0; i < spec.spheres.size(); ++i) {
+      const SphereObstacle& s = spec.spheres[i];
+      add_obstacle(std::make_unique<btSphereShape>(s.radius), s.center, ObstacleKind::kSphere, int(i));
+    }
+    for (std::size_t i = 0; i < spec.cylinders.size(); ++i) {
+      const CylinderObstacle& c = spec.cylinders[i];
+      auto shape = std::make_unique<btCylinderShapeZ>(btVector3(c.radius, c.radius, 0.5 * c.height));
+      add_obstacle(std::move(shape), c.base + Vec3(0, 0, 0.5 * c.height), ObstacleKind::kCylinder, int(i));
+    }
+    for (std::size_t i = 0; i < arena->meshes().size(); ++i) {
+      const TriangleMesh& m = arena->meshes()[i];
+      // Bullet reads the Arena's arrays in place (the shared_ptr keeps them alive); it never writes them.
+      auto array = std::make_unique<btTriangleIndexVertexArray>(
+          int(m.faces.size()), const_cast<int*>(m.faces.front().data()), int(sizeof(m.faces[0])),
+          int(m.vertices.size()), const_cast<btScalar*>(m.vertices.front().data()), int(sizeof(Vec3)));
+      auto shape = std::make_unique<btBvhTriangleMeshShape>(array.get(), /*useQuantizedAabbCompression=*/true);
+      mesh_arrays.push_back(std::move(array));
+      add_obstacle(std::move(shape), Vec3::Zero(), ObstacleKind::kMesh, int(i));
+    }
+  }
+
+  ~Impl() {
+    // btCollisionWorld's destructor touches its objects' proxies: take them out while they still exist.
+    for (auto& a : agents) world.removeCollisionObject(a.body.get());
+    for (auto& o : obstacles) world.removeCollisionObject(o.get());
+  }
+
+  void add_obstacle(std::unique_ptr<btCollisionShape> shape, const Vec3& at, ObstacleKind kind, int id) {
+    auto object = std::make_unique<btCollisionObject>();
+    object->setCollisionShape(shape.get());
+    object->setWorldTransform(btTransform(btQuaternion::getIdentity(), bt(at)));
+    object->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT);
+    object->setUserIndex(static_cast<int>(kind));
+    object->setUserIndex2(id);
+    world.addCollisionObject(object.get(), kObstacleGroup, kAgentGroup);
+    shapes.push_back(std::move(shape));
+    obstacles.push_back(std::move(object));
+  }
+
+  void sync(Agent& a) {
+    if (a.synced) return;
+    a.body->setWorldTransform(btTransform(btQuaternion::getIdentity(), bt(a.position)));
+    world.updateSingleAabb(a.body.get());
+    a.synced = true;
+  }
+
+  std::optional<Contact> overlap(int id) {
+    Agent& a = agents[std::size_t(id)];
+    sync(a);
+    OverlapCallback cb(a.body.get());
+    world.contactTest(a.body.get(), cb);
+    if (cb.obstacle == nullptr) return std::nullopt;
+    Contact c;
+    c.agent = id;
+    c.kind = static_cast<ObstacleKind>(cb.obstacle->getUserIndex());
+    c.obstacle_id = cb.obstacle->getUserIndex2();
+    c.triangle = c.kind == ObstacleKind::kMesh ? cb.triangle : -1;
+    c.fraction = 0.0;
+    c.point = vec(cb.point);
+    c.normal = vec(cb.normal.normalized());
+    c.penetration = -cb.depth;
+    return c;
+  }
+
+  std::optional<Contact> move(int id, const Vec3& to) {
+    Agent& a = agents[std::size_t(id)];
+    const Vec3 from = a.position;
+    const Vec3 delta = to - from;
+    const double length = delta.norm();
+    if (length == 0.0) return std::nullopt;
+    if (options.distance_early_out && arena->clearance_lower_bound(from) > length + a.radius) {
+      a.position = to;
+      a.synced = false;
+      return std::nullopt;
+    }
+    ++sweeps;
+    const btTransform start(btQuaternion::getIdentity(), bt(from));
+    const btTransform end(btQuaternion::getIdentity(), bt(to));
+    SweepCallback cb(start.getOrigin(), end.getOrigin());
+    world.convexSweepTest(a.shape.get(), start, end, cb, /*allowedCcdPenetration=*/0.0);
+    if (!cb.hasHit()) {
+      a.position = to;
+      a.synced = false;
+      return std::nullopt;
+    }
+    Contact c;
+    c.agent = id;
+    c.kind = static_cast<ObstacleKind>(cb.m_hitCollisionObject->getUserIndex());
+    c.obstacle_id = cb.m_hitCollisionObject->getUserIndex2();
+    c.triangle = c.kind == ObstacleKind::kMesh ? cb.triangle : -1;
+    c.fraction = cb.m_closestHitFraction;
+    c.point = vec(cb.m_hitPointWorld);
+    c.normal = vec(cb.m_hitNormalWorld.normalized());
+    a.position = from + std::max(0.0, c.fraction - kBackoff / length) * delta;
+    a.synced = false;
+    if (c.fraction == 0.0) {
+      // Stopped where it stood: it may have started inside the obstacle (after place_agent).
+      if (auto o = overlap(id)) c.penetration = o->penetration;
+    }
+    return c;
+  }
+};
+
+CollisionWorld::CollisionWorld(std::shared_ptr<const Arena> arena, const CollisionOptions& options)
+    : impl_(std::make_unique<Impl>(std::move(arena), options)) {}
+CollisionWorld::~CollisionWorld() = default;
+CollisionWorld::CollisionWorld(CollisionWorld&&) noexcept = default;
+CollisionWorld& CollisionWorld::operator=(CollisionWorld&&) noexcept = default;
+
+int CollisionWorld::add_agent(double radius) {
+  require_positive("agent radius", radius);
+  Impl::Agent a;
+  a.radius = radius;
+  a.shape = std::make_unique<btSphereShape>(radius);
+  a.body = std::make_unique<btCollisionObject>();
+  a.body->setCollisionShape(a.shape.get());
+  a.body->setCollisionFlags(btCollisionObject::CF_KINEMATIC_OBJECT);
+  a.body->setActivationState(DISABLE_DEACTIVATION);
+  a.body->setWorldTransform(btTransform::getIdentity());
+  const int id = static_cast<int>(impl_->agents.size());
+  a.body->setUserIndex(-1);
+  a.body->setUserIndex2(id);
+  impl_->world.addCollisionObject(a.body.get(), kAgentGroup, kObstacleGroup);
+  a.synced = true;
+  impl_->agents.push_back(std::move(a));
+  return id;
+}
+
+void CollisionWorld::place_agent(int agent, const Vec3& p) {
+  assert(agent >= 0 && agent < agent_count());
+  auto& a = impl_->agents[std::size_t(agent)];
+  a.position = p;
+  a.synced = false;
+}
+
+std::optional<Contact> CollisionWorld::move_agent(int agent, const Vec3& to) {
+  assert(agent >= 0 && agent < agent_count());
+  return impl_->move(agent, to);
+}
+
+std::optional<Contact> CollisionWorld::overlap(int agent) const {
+  assert(agent >= 0 && agent < agent_count());
+  return impl_->overlap(agent);
+}
+
+Vec3 CollisionWorld::agent_position(int agent) const { return impl_->agents[std::size_t(agent)].position; }
+double CollisionWorld::agent_radius(int agent) const { return impl_->agents[std::size_t(agent)].radius; }
+int CollisionWorld::agent_count() const { return static_cast<int>(impl_->agents.size()); }
+const Arena& CollisionWorld::arena() const { return *impl_->arena; }
+long long CollisionWorld::sweep_count() const { return impl_->sweeps; }
+
+}  // namespace peg3d::world

@@ -1,0 +1,71 @@
+#pragma once
+// Collision detection for agents moving through an Arena, with Bullet (double precision). Obstacles are
+// static Bullet shapes (btSphereShape, btCylinderShapeZ, btBvhTriangleMeshShape over the Arena's triangles),
+// agents kinematic spheres. Every move is a swept-sphere test from the old to the new position, so no step is
+// long enough to tunnel through a thin obstacle.
+//
+// A CollisionWorld is mutable scratch for one thread (Bullet's broadphase keeps a shared ray-test stack); build
+// one per thread or per run from the shared, const Arena. Bullet types stay in the .cpp.
+
+#include <memory>
+#include <optional>
+
+#include "geometry/vector.hpp"
+#include "world/arena.hpp"
+
+namespace peg3d::world {
+
+/// A collision of an agent with an obstacle.
+struct Contact {
+  int agent = -1;                            ///< agent index from add_agent
+  ObstacleKind kind = ObstacleKind::kSphere; ///< what was hit (never kBoundary: faces are the game's business)
+  int obstacle_id = -1;                      ///< index into MapSpec::spheres / cylinders / meshes by kind
+  int triangle = -1;                         ///< triangle index within the mesh for kMesh, else -1
+  double fraction = 0.0;                     ///< time of impact along the move, in [0, 1]; 0 for overlaps
+  Vec3 point = Vec3::Zero();                 ///< m, contact point on the obstacle's surface
+  Vec3 normal = Vec3::UnitZ();               ///< unit, obstacle surface normal at the contact, towards the agent
+  double penetration = 0.0;                  ///< m, >= 0: overlap depth when the agent already intersects
+};
+
+/// Options of a CollisionWorld.
+struct CollisionOptions {
+  /// Skip the Bullet sweep when the distance field proves the move cannot reach an obstacle. Never changes an
+  /// answer (tests compare against always sweeping); off only for testing and benchmarking.
+  bool distance_early_out = true;
+};
+
+class CollisionWorld {
+ public:
+  explicit CollisionWorld(std::shared_ptr<const Arena> arena, const CollisionOptions& options = {});
+  ~CollisionWorld();
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+  CollisionWorld(CollisionWorld&&) noexcept;
+  CollisionWorld& operator=(CollisionWorld&&) noexcept;
+
+  /// Adds a kinematic sphere of `radius` m (> 0) at the origin; returns its index 0, 1, ...
+  int add_agent(double radius);
+  /// Teleports an agent without any check (use overlap() to test the new place).
+  void place_agent(int agent, const Vec3& p);
+  /// Sweeps the agent's sphere from its position to `to`. On a hit the agent stops at the time of impact, a
+  /// hair (at most 1 mm) before touching, and the contact is returned; otherwise it ends at `to`. An agent
+  /// already overlapping an obstacle is stopped (fraction 0, with the penetration) unless it moves out of it.
+  /// Agents never collide with each other. No allocation.
+  std::optional<Contact> move_agent(int agent, const Vec3& to);
+  /// The deepest overlap of the agent's sphere with an obstacle at its current position, if any.
+  std::optional<Contact> overlap(int agent) const;
+
+  Vec3 agent_position(int agent) const;
+  double agent_radius(int agent) const;
+  int agent_count() const;
+  const Arena& arena() const;
+
+  /// Bullet sweeps run so far (moves not settled by the distance field), for tests and benchmarks.
+  long long sweep_count() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace peg3d::world

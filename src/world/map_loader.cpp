@@ -1,0 +1,561 @@
+// load_map(): the YAML map format of docs/maps.md. Every check names the file, the line and the field.
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+#include <tuple>
+#include <utility>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "world/map_spec.hpp"
+#include "world/obstacle_geometry.hpp"
+#include "world/random_obstacles.hpp"
+#include "world/triangle_mesh.hpp"
+
+namespace peg3d::world {
+
+const Scenario* MapSpec::find_scenario(const std::string& wanted) const {
+  for (const Scenario& s : scenarios) {
+    if (s.name == wanted) return &s;
+  }
+  return nullptr;
+}
+
+namespace {
+
+std::string format_error(const std::filesystem::path& file, int line, const std::string& field,
+                         const std::string& message) {
+  std::string where = line > 0 ? fmt::format("{}:{}", file.string(), line) : file.string();
+  return field.empty() ? fmt::format("{}: {}", where, message) : fmt::format("{}: {}: {}", where, field, message);
+}
+
+}  // namespace
+
+MapError::MapError(std::filesystem::path file, int line, std::string field, const std::string& message)
+    : std::runtime_error(format_error(file, line, field, message)),
+      file_(std::move(file)),
+      line_(line),
+      field_(std::move(field)) {}
+
+namespace {
+
+using YAML::Node;
+
+constexpr int kFormatVersion = 1;
+
+int line_of(const Node& n) {
+  if (!n.IsDefined()) return 0;
+  const int line = n.Mark().line;
+  return line >= 0 ? line + 1 : 0;
+}
+
+std::string describe(const Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Null:
+      return "nothing (an empty value)";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a mapping";
+    case YAML::NodeType::Scalar:
+      return fmt::format("\"{}\"", n.Scalar());
+    default:
+      return "an undefined value";
+  }
+}
+
+/// Levenshtein distance, to suggest the key a typo meant.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string join(const std::vector<std::string_view>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) out += ", ";
+    out += items[i];
+  }
+  return out;
+}
+
+std::string format_vec(const Vec3& v) { return fmt::format("({}, {}, {})", v.x(), v.y(), v.z()); }
+
+/// Where a start came from, for messages about it.
+struct StartRef {
+  Vec3 position;
+  std::string field;
+  int line;
+};
+
+class Loader {
+ public:
+  explicit Loader(std::filesystem::path file) : file_(std::move(file)) {}
+
+  MapSpec load();
+
+ private:
+  /// A YAML mapping whose keys are checked: duplicates and (after allow()) unknown keys are errors.
+  class Fields {
+   public:
+    Fields(const Loader& loader, const Node& node, std::string path) : loader_(loader), node_(node), path_(std::move(path)) {
+      if (!node.IsMap()) loader.fail(node, path_, fmt::format("expected a mapping (key: value), got {}", describe(node)));
+      for (auto it = node.begin(); it != node.end(); ++it) {
+        const Node key = it->first;
+        if (!key.IsScalar()) loader.fail(key, path_, "keys must be plain words");
+        const std::string name = key.Scalar();
+        for (const auto& e : entries_) {
+          if (e.name == name) {
+            loader.fail(key, field(name), fmt::format("duplicate key (first given at line {})", line_of(e.key)));
+          }
+        }
+        entries_.push_back({name, key, it->second});
+      }
+    }
+
+    /// Rejects keys not in `allowed`, suggesting the nearest allowed one.
+    void allow(const std::vector<std::string_view>& allowed) const {
+      for (const auto& e : entries_) {
+        if (std::find(allowed.begin(), allowed.end(), e.name) != allowed.end()) continue;
+        std::string_view best;
+        std::size_t best_distance = 3;  // suggest only close matches
+        for (std::string_view a : allowed) {
+          const std::size_t d = edit_distance(e.name, a);
+          if (d < best_distance) best_distance = d, best = a;
+        }
+        const std::string hint = best.empty() ? "" : fmt::format("; did you mean '{}'?", best);
+        loader_.fail(e.key, field(e.name), fmt::format("unknown key (allowed: {}){}", join(allowed), hint));
+      }
+    }
+
+    const Node* find(std::string_view name) const {
+      for (const auto& e : entries_) {
+        if (e.name == name) return &e.value;
+      }
+      return nullptr;
+    }
+
+    const Node& need(std::string_view name) const {
+      if (const Node* n = find(name)) return *n;
+      loader_.fail(node_, field(name), "missing required field");
+    }
+
+    std::string field(std::string_view name) const {
+      return path_.empty() ? std::string(name) : fmt::format("{}.{}", path_, name);
+    }
+    const Node& node() const { return node_; }
+    const std::string& path() const { return path_; }
+
+   private:
+    struct Entry {
+      std::string name;
+      Node key;
+      Node value;
+    };
+    const Loader& loader_;
+    Node node_;
+    std::string path_;
+    std::vector<Entry> entries_;
+  };
+
+  [[noreturn]] void fail(int line, const std::string& field, const std::string& message) const {
+    throw MapError(file_, line, field, message);
+  }
+  [[noreturn]] void fail(const Node& at, const std::string& field, const std::string& message) const {
+    fail(line_of(at), field, message);
+  }
+
+  // Typed readers: each checks the YAML type and the value and fails with the field's name.
+  double number(const Node& n, const std::string& field) const {
+    if (!n.IsScalar() || n.Tag() == "!") fail(n, field, fmt::format("expected a number, got {}", describe(n)));
+    double v = 0.0;
+    if (!YAML::convert<double>::decode(n, v)) fail(n, field, fmt::format("expected a number, got {}", describe(n)));
+    if (!std::isfinite(v)) fail(n, field, fmt::format("must be a finite number, got {}", n.Scalar()));
+    return v;
+  }
+  double positive(const Node& n, const std::string& field) const {
+    const double v = number(n, field);
+    if (!(v > 0.0)) fail(n, field, fmt::format("must be > 0, got {}", v));
+    return v;
+  }
+  double non_negative(const Node& n, const std::string& field) const {
+    const double v = number(n, field);
+    if (!(v >= 0.0)) fail(n, field, fmt::format("must be >= 0, got {}", v));
+    return v;
+  }
+  long long integer(const Node& n, const std::string& field) const {
+    long long v = 0;
+    if (!n.IsScalar() || n.Tag() == "!" || !YAML::convert<long long>::decode(n, v)) {
+      fail(n, field, fmt::format("expected an integer, got {}", describe(n)));
+    }
+    return v;
+  }
+  std::uint64_t unsigned_integer(const Node& n, const std::string& field) const {
+    unsigned long long v = 0;
+    if (!n.IsScalar() || n.Tag() == "!" || !YAML::convert<unsigned long long>::decode(n, v)) {
+      fail(n, field, fmt::format("expected a non-negative integer, got {}", describe(n)));
+    }
+    return v;
+  }
+  bool boolean(const Node& n, const std::string& field) const {
+    bool v = false;
+    if (!n.IsScalar() || n.Tag() == "!" || !YAML::convert<bool>::decode(n, v)) {
+      fail(n, field, fmt::format("expected true or false, got {}", describe(n)));
+    }
+    return v;
+  }
+  std::string text(const Node& n, const std::string& field) const {
+    if (!n.IsScalar() || n.Scalar().empty()) fail(n, field, fmt::format("expected a string, got {}", describe(n)));
+    return n.Scalar();
+  }
+  Vec3 vec3(const Node& n, const std::string& field) const {
+    if (!n.IsSequence() || n.size() != 3) {
+      fail(n, field, fmt::format("expected a list of 3 numbers [x, y, z], got {}",
+                                 n.IsSequence() ? fmt::format("a list of {}", n.size()) : describe(n)));
+    }
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = number(n[i], fmt::format("{}[{}]", field, i));
+    return v;
+  }
+  /// A positive range: a single number r (meaning [r, r]) or [min, max] with 0 < min <= max.
+  std::pair<double, double> positive_range(const Node& n, const std::string& field) const {
+    if (n.IsScalar()) {
+      const double v = positive(n, field);
+      return {v, v};
+    }
+    if (!n.IsSequence() || n.size() != 2) {
+      fail(n, field, fmt::format("expected a number or a list [min, max], got {}", describe(n)));
+    }
+    const double lo = positive(n[0], field + "[0]");
+    const double hi = positive(n[1], field + "[1]");
+    if (hi < lo) fail(n, field, fmt::format("min {} is larger than max {}", lo, hi));
+    return {lo, hi};
+  }
+  const Node& sequence(const Node& n, const std::string& field) const {
+    if (!n.IsSequence()) fail(n, field, fmt::format("expected a list, got {}", describe(n)));
+    return n;
+  }
+
+  void read_arena(const Node& n, MapSpec& spec);
+  void read_occupancy(const Node* n, MapSpec& spec);
+  AgentStart read_agent(const Node& n, const std::string& field);
+  Scenario read_scenario(const Node& n, const std::string& field, std::string name);
+  void read_obstacle(const Node& n, const std::string& field, MapSpec& spec);
+  void read_terrain(const Node& n, const std::string& field, MapSpec& spec);
+  void read_generator(const Node& n, const std::string& field, MapSpec& spec);
+  void check_starts(const MapSpec& spec) const;
+  void require_in_arena(const Node& n, const std::string& field, const Vec3& p, const MapSpec& spec) const;
+
+  std::filesystem::path file_;
+  std::vector<StartRef> starts_;
+  std::vector<int> sphere_lines_, cylinder_lines_;  // lines of the explicit obstacles
+  std::vector<TriangleMesh> meshes_;                // imported terrain, for the start checks
+};
+
+void Loader::require_in_arena(const Node& n, const std::string& field, const Vec3& p, const MapSpec& spec) const {
+  if (!spec.bounds.contains(p)) {
+    fail(n, field, fmt::format("{} lies outside the arena [{} .. {}]", format_vec(p), format_vec(spec.bounds.lo),
+                               format_vec(spec.bounds.hi)));
+  }
+}
+
+void Loader::read_arena(const Node& n, MapSpec& spec) {
+  const Fields f(*this, n, "arena");
+  f.allow({"min", "size", "faces_are_obstacles"});
+  const Vec3 lo = f.find("min") ? vec3(*f.find("min"), f.field("min")) : Vec3::Zero();
+  const Node& size_node = f.need("size");
+  const Vec3 size = vec3(size_node, f.field("size"));
+  for (int i = 0; i < 3; ++i) {
+    if (!(size[i] > 0.0)) fail(size_node[i], fmt::format("arena.size[{}]", i), fmt::format("must be > 0, got {}", size[i]));
+  }
+  spec.bounds = Box{lo, lo + size};
+  if (const Node* faces = f.find("faces_are_obstacles")) {
+    const Fields ff(*this, *faces, f.field("faces_are_obstacles"));
+    ff.allow({"floor", "ceiling", "walls"});
+    if (const Node* v = ff.find("floor")) spec.floor_is_obstacle = boolean(*v, ff.field("floor"));
+    if (const Node* v = ff.find("ceiling")) spec.ceiling_is_obstacle = boolean(*v, ff.field("ceiling"));
+    if (const Node* v = ff.find("walls")) spec.walls_is_obstacle = boolean(*v, ff.field("walls"));
+  }
+}
+
+void Loader::read_occupancy(const Node* n, MapSpec& spec) {
+  int line = 1;
+  if (n != nullptr) {
+    const Fields f(*this, *n, "occupancy");
+    f.allow({"resolution", "max_distance"});
+    line = line_of(*n);
+    if (const Node* v = f.find("resolution")) spec.resolution = positive(*v, f.field("resolution")), line = line_of(*v);
+    if (const Node* v = f.find("max_distance")) spec.max_distance = positive(*v, f.field("max_distance"));
+    if (spec.max_distance < spec.resolution) {
+      fail(f.find("max_distance") ? line_of(*f.find("max_distance")) : line, "occupancy.max_distance",
+           fmt::format("must be >= occupancy.resolution ({} m), got {}", spec.resolution, spec.max_distance));
+    }
+  }
+  const Vec3 size = spec.bounds.size();
+  if (size.minCoeff() < spec.resolution) {
+    fail(line, "occupancy.resolution",
+         fmt::format("{} m is coarser than the arena's smallest side ({} m)", spec.resolution, size.minCoeff()));
+  }
+  // OctoMap keys are 16-bit: coordinates must stay within +-32767 voxels of the origin (with a margin).
+  const double extent = std::max(spec.bounds.lo.cwiseAbs().maxCoeff(), spec.bounds.hi.cwiseAbs().maxCoeff());
+  if (extent / spec.resolution > 32000.0) {
+    fail(line, "occupancy.resolution",
+         fmt::format("{} m is too fine for an arena reaching {} m from the origin (OctoMap allows 32000 voxels)",
+                     spec.resolution, extent));
+  }
+}
+
+AgentStart Loader::read_agent(const Node& n, const std::string& field) {
+  const Fields f(*this, n, field);
+  f.allow({"position", "heading"});
+  AgentStart a;
+  const Node& pos = f.need("position");
+  a.position = vec3(pos, f.field("position"));
+  starts_.push_back({a.position, f.field("position"), line_of(pos)});
+  if (const Node* h = f.find("heading")) {
+    const Fields hf(*this, *h, f.field("heading"));
+    hf.allow({"alpha_deg", "theta_deg"});
+    const double alpha = number(hf.need("alpha_deg"), hf.field("alpha_deg"));
+    const Node& theta_node = hf.need("theta_deg");
+    const double theta = number(theta_node, hf.field("theta_deg"));
+    if (theta < 0.0 || theta > 180.0) fail(theta_node, hf.field("theta_deg"), fmt::format("must lie in [0, 180], got {}", theta));
+    a.heading = Heading{wrap_angle(alpha * kPi / 180.0), theta * kPi / 180.0};
+  }
+  return a;
+}
+
+Scenario Loader::read_scenario(const Node& n, const std::string& field, std::string name) {
+  const Fields f(*this, n, field);
+  if (name.empty()) {
+    f.allow({"name", "pursuer", "evader"});
+    name = text(f.need("name"), f.field("name"));
+  } else {
+    f.allow({"pursuer", "evader"});
+  }
+  Scenario s;
+  s.name = std::move(name);
+  s.pursuer = read_agent(f.need("pursuer"), f.field("pursuer"));
+  s.evader = read_agent(f.need("evader"), f.field("evader"));
+  return s;
+}
+
+void Loader::read_obstacle(const Node& n, const std::string& field, MapSpec& spec) {
+  const Fields f(*this, n, field);
+  const Node& kind_node = f.need("kind");
+  const std::string kind = text(kind_node, f.field("kind"));
+  if (kind == "sphere") {
+    f.allow({"kind", "center", "radius"});
+    const Node& c = f.need("center");
+    SphereObstacle s{vec3(c, f.field("center")), positive(f.need("radius"), f.field("radius"))};
+    require_in_arena(c, f.field("center"), s.center, spec);
+    spec.spheres.push_back(s);
+    sphere_lines_.push_back(line_of(n));
+  } else if (kind == "cylinder") {
+    f.allow({"kind", "base", "radius", "height"});
+    const Node& b = f.need("base");
+    CylinderObstacle c{vec3(b, f.field("base")), positive(f.need("radius"), f.field("radius")),
+                       positive(f.need("height"), f.field("height"))};
+    require_in_arena(b, f.field("base"), c.base, spec);
+    spec.cylinders.push_back(c);
+    cylinder_lines_.push_back(line_of(n));
+  } else {
+    fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", kind));
+  }
+}
+
+void Loader::read_terrain(const Node& n, const std::string& field, MapSpec& spec) {
+  const Fields f(*this, n, field);
+  f.allow({"file", "scale", "rotation_deg", "translation", "solid_below"});
+  TerrainMesh t;
+  t.line = line_of(n);
+  const Node& file_node = f.need("file");
+  const std::filesystem::path rel = text(file_node, f.field("file"));
+  t.file = std::filesystem::absolute((file_.parent_path() / rel).lexically_normal());
+  if (const Node* v = f.find("scale")) t.scale = positive(*v, f.field("scale"));
+  if (const Node* v = f.find("rotation_deg")) t.rotation_deg = vec3(*v, f.field("rotation_deg"));
+  if (const Node* v = f.find("translation")) t.translation = vec3(*v, f.field("translation"));
+  if (const Node* v = f.find("solid_below")) t.solid_below = boolean(*v, f.field("solid_below"));
+  TriangleMesh mesh;
+  try {
+    mesh = load_terrain_mesh(t);
+  } catch (const MeshError& e) {
+    fail(file_node, f.field("file"), e.what());
+  }
+  const Box b = mesh.bounds();
+  const bool apart = (b.hi.array() < spec.bounds.lo.array()).any() || (b.lo.array() > spec.bounds.hi.array()).any();
+  if (apart) {
+    fail(n, field, fmt::format("mesh '{}' lies entirely outside the arena (placed bounds {} .. {})", rel.string(),
+                               format_vec(b.lo), format_vec(b.hi)));
+  }
+  spec.meshes.push_back(t);
+  meshes_.push_back(std::move(mesh));
+}
+
+void Loader::read_generator(const Node& n, const std::string& field, MapSpec& spec) {
+  const Fields f(*this, n, field);
+  const Node& kind_node = f.need("kind");
+  const std::string kind = text(kind_node, f.field("kind"));
+  RandomObstacleSpec g;
+  if (kind == "sphere") {
+    g.kind = RandomObstacleSpec::Kind::kSphere;
+    f.allow({"kind", "count", "radius", "seed", "clearance_from_starts", "clearance_between", "region", "max_attempts"});
+  } else if (kind == "cylinder") {
+    g.kind = RandomObstacleSpec::Kind::kCylinder;
+    f.allow({"kind", "count", "radius", "height", "seed", "clearance_from_starts", "clearance_between", "region",
+             "max_attempts"});
+    std::tie(g.height_min, g.height_max) = positive_range(f.need("height"), f.field("height"));
+  } else {
+    fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", kind));
+  }
+  const Node& count_node = f.need("count");
+  const long long count = integer(count_node, f.field("count"));
+  if (count < 0 || count > 1000000) fail(count_node, f.field("count"), fmt::format("must lie in [0, 1000000], got {}", count));
+  g.count = static_cast<int>(count);
+  const Node& radius_node = f.need("radius");
+  std::tie(g.radius_min, g.radius_max) = positive_range(radius_node, f.field("radius"));
+  g.seed = unsigned_integer(f.need("seed"), f.field("seed"));
+  if (const Node* v = f.find("clearance_from_starts")) g.clearance_from_starts = non_negative(*v, f.field("clearance_from_starts"));
+  if (const Node* v = f.find("clearance_between")) g.clearance_between = non_negative(*v, f.field("clearance_between"));
+  if (const Node* v = f.find("max_attempts")) {
+    const long long a = integer(*v, f.field("max_attempts"));
+    if (a < 1 || a > 100000000) fail(*v, f.field("max_attempts"), fmt::format("must lie in [1, 100000000], got {}", a));
+    g.max_attempts = static_cast<int>(a);
+  }
+  g.region = spec.bounds;
+  if (const Node* r = f.find("region")) {
+    const Fields rf(*this, *r, f.field("region"));
+    rf.allow({"min", "max"});
+    const Node& lo = rf.need("min");
+    const Node& hi = rf.need("max");
+    g.region = Box{vec3(lo, rf.field("min")), vec3(hi, rf.field("max"))};
+    require_in_arena(lo, rf.field("min"), g.region.lo, spec);
+    require_in_arena(hi, rf.field("max"), g.region.hi, spec);
+    if (!(g.region.lo.array() < g.region.hi.array()).all()) fail(*r, rf.path(), "min must be below max on every axis");
+  }
+  const Vec3 room = g.region.size();
+  const bool fits = g.kind == RandomObstacleSpec::Kind::kSphere ? room.minCoeff() >= 2.0 * g.radius_max
+                                                                : room.head<2>().minCoeff() >= 2.0 * g.radius_max;
+  if (!fits) {
+    fail(radius_node, f.field("radius"),
+         fmt::format("an obstacle of radius {} m does not fit in the placement region {} .. {}", g.radius_max,
+                     format_vec(g.region.lo), format_vec(g.region.hi)));
+  }
+  std::vector<Vec3> starts;
+  for (const StartRef& s : starts_) starts.push_back(s.position);
+  const RandomObstacles placed = place_random_obstacles(g, starts, spec.spheres, spec.cylinders);
+  if (placed.placed() < g.count) {
+    fail(count_node, f.field("count"),
+         fmt::format("placed only {} of {} obstacles ({} draws each); lower the count or the clearances, or enlarge "
+                     "the region",
+                     placed.placed(), g.count, g.max_attempts));
+  }
+  spec.spheres.insert(spec.spheres.end(), placed.spheres.begin(), placed.spheres.end());
+  spec.cylinders.insert(spec.cylinders.end(), placed.cylinders.begin(), placed.cylinders.end());
+}
+
+void Loader::check_starts(const MapSpec& spec) const {
+  for (const StartRef& s : starts_) {
+    const Box& b = spec.bounds;
+    if (!((s.position.array() > b.lo.array()).all() && (s.position.array() < b.hi.array()).all())) {
+      fail(s.line, s.field, fmt::format("start {} lies outside the arena [{} .. {}]", format_vec(s.position),
+                                        format_vec(b.lo), format_vec(b.hi)));
+    }
+    for (std::size_t i = 0; i < sphere_lines_.size(); ++i) {
+      if (signed_distance(s.position, spec.spheres[i]) <= 0.0) {
+        fail(s.line, s.field, fmt::format("start {} is inside an obstacle (the sphere at line {})",
+                                          format_vec(s.position), sphere_lines_[i]));
+      }
+    }
+    for (std::size_t i = 0; i < cylinder_lines_.size(); ++i) {
+      if (signed_distance(s.position, spec.cylinders[i]) <= 0.0) {
+        fail(s.line, s.field, fmt::format("start {} is inside an obstacle (the cylinder at line {})",
+                                          format_vec(s.position), cylinder_lines_[i]));
+      }
+    }
+    for (std::size_t i = 0; i < meshes_.size(); ++i) {
+      if (spec.meshes[i].solid_below && is_below_surface(meshes_[i], s.position)) {
+        fail(s.line, s.field, fmt::format("start {} is inside an obstacle (under the terrain at line {})",
+                                          format_vec(s.position), spec.meshes[i].line));
+      }
+    }
+  }
+}
+
+MapSpec Loader::load() {
+  std::ifstream in(file_, std::ios::binary);
+  if (!in) fail(0, "", "cannot open map file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  Node root;
+  try {
+    root = YAML::Load(buffer.str());
+  } catch (const YAML::ParserException& e) {
+    fail(e.mark.line >= 0 ? e.mark.line + 1 : 0, "", fmt::format("YAML syntax error: {}", e.msg));
+  }
+  if (!root.IsDefined() || root.IsNull()) fail(1, "", "the map file is empty");
+
+  MapSpec spec;
+  spec.source = file_;
+  const Fields top(*this, root, "");
+  top.allow({"version", "name", "arena", "occupancy", "obstacles", "terrain", "random_obstacles", "start", "scenarios"});
+  if (const Node* v = top.find("version")) {
+    const long long version = integer(*v, "version");
+    if (version != kFormatVersion) fail(*v, "version", fmt::format("unsupported map format version {} (this build reads {})", version, kFormatVersion));
+  }
+  if (const Node* v = top.find("name")) spec.name = text(*v, "name");
+  read_arena(top.need("arena"), spec);
+  read_occupancy(top.find("occupancy"), spec);
+
+  const Node* start = top.find("start");
+  const Node* scenarios = top.find("scenarios");
+  if (start != nullptr && scenarios != nullptr) fail(*scenarios, "scenarios", "give either 'start' or 'scenarios', not both");
+  if (start == nullptr && scenarios == nullptr) fail(root, "scenarios", "missing: give 'start' or 'scenarios'");
+  if (start != nullptr) {
+    spec.scenarios.push_back(read_scenario(*start, "start", "default"));
+  } else {
+    const Node& list = sequence(*scenarios, "scenarios");
+    if (list.size() == 0) fail(list, "scenarios", "needs at least one scenario");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string field = fmt::format("scenarios[{}]", i);
+      Scenario s = read_scenario(list[i], field, "");
+      if (spec.find_scenario(s.name) != nullptr) fail(list[i], field + ".name", fmt::format("duplicate scenario name '{}'", s.name));
+      spec.scenarios.push_back(std::move(s));
+    }
+  }
+
+  if (const Node* list = top.find("obstacles")) {
+    sequence(*list, "obstacles");
+    for (std::size_t i = 0; i < list->size(); ++i) read_obstacle((*list)[i], fmt::format("obstacles[{}]", i), spec);
+  }
+  if (const Node* list = top.find("terrain")) {
+    sequence(*list, "terrain");
+    for (std::size_t i = 0; i < list->size(); ++i) read_terrain((*list)[i], fmt::format("terrain[{}]", i), spec);
+  }
+  check_starts(spec);
+  if (const Node* list = top.find("random_obstacles")) {
+    sequence(*list, "random_obstacles");
+    for (std::size_t i = 0; i < list->size(); ++i) read_generator((*list)[i], fmt::format("random_obstacles[{}]", i), spec);
+  }
+  return spec;
+}
+
+}  // namespace
+
+MapSpec load_map(const std::filesystem::path& file) { return Loader(file).load(); }
+
+}  // namespace peg3d::world
