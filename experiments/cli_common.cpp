@@ -26,6 +26,9 @@ void add_sweep_options(CLI::App& app, SweepOptions& o) {
 }
 
 int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("error: ") + e.what() + "\nRun with --help for more information.\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -80,23 +80,30 @@ AgentView Game::view(Role role, const EpisodeState& s) const {
   return v;
 }
 
+namespace {
+constexpr double kGuardCommitAngle = 0.35;  // rad, 20 degrees
+}  // namespace
+
 Heading Game::next_heading(Role role, const EpisodeState& s, const AgentView& v, const Steering& u) const {
   const AgentConfig& c = config_.agent(role);
   const KinematicState& self = role == Role::kPursuer ? s.pursuer : s.evader;
   const double bound = c.steering.step_bound(config_.dt);
   const double margin = c.steering.polar_margin;
-  Vec3 d = direction(steer(self.heading, u, bound, margin));
+  const Heading requested = steer(self.heading, u, bound, margin);
+  Vec3 d = direction(requested);
   bool changed = false;
+  const auto constrain = [&](const Cone& cone, double commit_angle) {
+    if (cone.contains(d)) return;
+    d = project_within_band(cone, d, margin, direction(self.heading), commit_angle);
+    changed = true;
+  };
   const Vec3 pe = s.evader.position - s.pursuer.position;
   if (c.motion_space && pe.squaredNorm() > 0.0) {
     // Paper section 3.1: the pursuer keeps alpha2 <= asin(vE/vP) about P->E, the evader alpha1 >= pi/2.
-    const Cone cone = role == Role::kPursuer ? pursuer_motion_cone(s.pursuer.position, s.evader.position,
-                                                                   config_.pursuer.speed, config_.evader.speed)
-                                             : evader_motion_cone(s.pursuer.position, s.evader.position);
-    if (!cone.contains(d)) {
-      d = cone.project(d);
-      changed = true;
-    }
+    constrain(role == Role::kPursuer ? pursuer_motion_cone(s.pursuer.position, s.evader.position,
+                                                           config_.pursuer.speed, config_.evader.speed)
+                                     : evader_motion_cone(s.pursuer.position, s.evader.position),
+              0.0);
   }
   // The guard comes last: staying clear of obstacles outranks the motion space.
   const Vec3 away = self.position - v.field.point;
@@ -104,13 +111,11 @@ Heading Game::next_heading(Role role, const EpisodeState& s, const AgentView& v,
     const double excluded = 0.5 * kPi *
                             std::min(1.0, (c.guard.warn_distance - v.field.distance) /
                                               (c.guard.warn_distance - c.guard.stop_distance));
-    const Cone allowed{away.normalized(), kPi - excluded};
-    if (!allowed.contains(d)) {
-      d = allowed.project(d);
-      changed = true;
-    }
+    // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already
+    // leans to; deciding it from the request would flip sides every step.
+    constrain(Cone{away.normalized(), kPi - excluded}, kGuardCommitAngle);
   }
-  if (!changed) return steer(self.heading, u, bound, margin);
+  if (!changed) return requested;
   // Turn towards the constrained direction within the same steering bound.
   const AngleErrors e = angle_errors(self.heading, d);
   return steer(self.heading, {e.azimuth, e.elevation}, bound, margin);

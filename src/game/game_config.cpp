@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/validation.hpp"
+#include "geometry/angles.hpp"
 
 namespace peg3d::game {
 namespace {
@@ -115,7 +116,11 @@ void GameConfig::validate() const {
 AgentConfig agent_preset(const std::string& name, Role role) {
   AgentConfig a;
   a.speed = role == Role::kPursuer ? 1.1 : 1.0;
-  if (name == "peg3d") return a;
+  if (name == "peg3d") {
+    a.steering.polar_margin = kPi / 3;  // climb and dive limited to 30 degrees (docs/paper-notes.md)
+    a.motion_space = role == Role::kPursuer;  // alpha1 >= pi/2 drives the evader into the walls
+    return a;
+  }
   if (name == "paper") {
     a.guard.enabled = false;
     a.observation.angles = AngleInputs::kAzimuth;
@@ -126,6 +131,7 @@ AgentConfig agent_preset(const std::string& name, Role role) {
     return a;
   }
   if (name == "baseline") {
+    a.steering.polar_margin = kPi / 3;
     a.motion_space = false;
     a.reward.kind = RewardKind::kDistanceOnly;
     return a;

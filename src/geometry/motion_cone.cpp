@@ -10,10 +10,16 @@ namespace peg3d {
 
 bool Cone::contains(const Vec3& d, double tolerance) const { return angle_between(d, axis) <= half_angle + tolerance; }
 
-Vec3 Cone::project(const Vec3& d) const {
+Vec3 Cone::project(const Vec3& d) const { return project(d, Vec3::Zero(), 0.0); }
+
+Vec3 Cone::project(const Vec3& d, const Vec3& hint, double commit_angle) const {
   const Vec3 u = d.normalized();
   if (angle_between(u, axis) <= half_angle) return u;
-  Vec3 w = u - u.dot(axis) * axis;  // component perpendicular to the axis
+  const auto perpendicular = [&](const Vec3& v) { return Vec3(v - v.dot(axis) * axis); };
+  Vec3 w = perpendicular(u);
+  if (commit_angle > 0.0 && angle_between(u, -axis) < commit_angle && perpendicular(hint).norm() > 1e-6) {
+    w = perpendicular(hint);
+  }
   const double wn = w.norm();
   w = wn > 1e-12 ? Vec3(w / wn) : any_perpendicular(axis);
   return std::cos(half_angle) * axis + std::sin(half_angle) * w;
@@ -24,6 +30,28 @@ Vec3 any_perpendicular(const Vec3& v) {
   const Vec3 a = v.cwiseAbs();
   const Vec3 e = (a.x() <= a.y() && a.x() <= a.z()) ? Vec3::UnitX() : (a.y() <= a.z() ? Vec3::UnitY() : Vec3::UnitZ());
   return v.cross(e).normalized();
+}
+
+Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, const Vec3& hint,
+                         double commit_angle) {
+  const Vec3 c = cone.project(d, hint, commit_angle);
+  const Heading hc = heading_of(c);
+  if (hc.theta >= polar_margin && hc.theta <= kPi - polar_margin) return c;
+  // Search the band's edge circle between c's azimuth and the axis's azimuth (the edge point nearest to
+  // the axis) for the first direction inside the cone.
+  const double edge = hc.theta < polar_margin ? polar_margin : kPi - polar_margin;
+  const Heading ha = heading_of(cone.axis);
+  const bool axis_vertical = cone.axis.x() == 0.0 && cone.axis.y() == 0.0;
+  const double a0 = hc.alpha, a1 = axis_vertical ? hc.alpha : a0 + wrap_angle(ha.alpha - a0);
+  const auto on_edge = [&](double alpha) { return direction(Heading{alpha, edge}); };
+  if (cone.contains(on_edge(a0))) return on_edge(a0);
+  if (!cone.contains(on_edge(a1))) return on_edge(a1);  // no direction satisfies both: stay near the axis
+  double lo = 0.0, hi = 1.0;  // on_edge(a0 + lo (a1 - a0)) is outside, at hi inside
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cone.contains(on_edge(a0 + mid * (a1 - a0))) ? hi : lo) = mid;
+  }
+  return on_edge(a0 + hi * (a1 - a0));
 }
 
 double pursuer_cone_half_angle(double pursuer_speed, double evader_speed) {

@@ -18,7 +18,18 @@ struct Cone {
   /// rotated towards the axis in the plane of d and axis onto the cone's surface. A d opposite to the
   /// axis picks a fixed perpendicular plane so the result is deterministic.
   Vec3 project(const Vec3& d) const;
+  /// Like project(d), but when d lies within `commit_angle` (rad) of the direction opposite the axis, the
+  /// side to rotate towards is taken from `hint` instead of from d. Near that direction the projection's
+  /// side flips with tiny changes of d; a hint such as the current heading makes the choice stick.
+  Vec3 project(const Vec3& d, const Vec3& hint, double commit_angle) const;
 };
+
+/// The unit direction nearest to d that lies in the cone and whose polar angle lies in [polar_margin,
+/// pi - polar_margin] (a climb/dive limit). When the cone and that band do not meet (a narrow cone about a
+/// steep axis), the band's direction nearest to the cone's axis. polar_margin = 0 is plain projection.
+/// `hint` and `commit_angle` are passed to Cone::project.
+Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, const Vec3& hint = Vec3::Zero(),
+                         double commit_angle = 0.0);
 
 /// alpha2* = asin(vE / vP) (eq. 6), rad. For vE >= vP the cone opens to a half-space (pi/2).
 /// Throws InvalidParameter on a non-positive pursuer speed, a negative evader speed or non-finite ones.

@@ -63,3 +63,36 @@ TEST(MotionCone, RejectsInvalidSpeeds) {
 
 }  // namespace
 }  // namespace peg3d
+
+namespace peg3d {
+namespace {
+
+TEST(MotionCone, ProjectionWithinBandSatisfiesConeAndBand) {
+  Rng rng(29);
+  const double margin = kPi / 3;
+  for (int trial = 0; trial < 2000; ++trial) {
+    // A cone reaches the band when its half-angle exceeds the axis's angular distance to the band.
+    const Vec3 axis = testing::random_unit(rng);
+    const double theta = heading_of(axis).theta;
+    const double gap = std::max({0.0, margin - theta, theta - (kPi - margin)});
+    const Cone cone{axis, std::uniform_real_distribution<double>(gap + 0.01, kPi / 2 + 0.01)(rng)};
+    const Vec3 q = project_within_band(cone, testing::random_unit(rng), margin);
+    EXPECT_NEAR(q.norm(), 1.0, 1e-12);
+    EXPECT_TRUE(cone.contains(q, 1e-9));
+    EXPECT_GE(heading_of(q).theta, margin - 1e-9);
+    EXPECT_LE(heading_of(q).theta, kPi - margin + 1e-9);
+  }
+}
+
+TEST(MotionCone, ProjectionWithinBandPrefersTheBandEdgeNearestTheRequest) {
+  // Obstacle straight ahead (+x): the half-space away from it contains no direction pointing +x; a heading
+  // straight at it must end level-ish and sideways, never diving towards the obstacle.
+  const Cone away{-Vec3::UnitX(), kPi / 2};
+  const Vec3 q = project_within_band(away, Vec3::UnitX(), kPi / 3);
+  EXPECT_LE(q.x(), 1e-9);
+  EXPECT_GE(heading_of(q).theta, kPi / 3 - 1e-9);
+  EXPECT_LE(heading_of(q).theta, 2 * kPi / 3 + 1e-9);
+}
+
+}  // namespace
+}  // namespace peg3d

@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""End-to-end check of peg-paper: run it with a tiny budget and verify that every documented output file
+exists with its documented columns (docs/results.md), that two runs with the same seed give identical
+result files, and that bad input exits with status 2 and writes nothing.
+
+usage: check_paper_outputs.py PEG_PAPER_BINARY SOURCE_DIR WORK_DIR
+"""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+RUNS = ["scenario", "algorithm", "repeat", "seed", "outcome", "captured", "capture_time_s", "episode_time_s",
+        "final_distance_m", "pursuer_path_m", "evader_path_m", "collisions", "train_captures",
+        "evader_pinned_fraction", "pursuer_pinned_fraction", "pursuer_return", "evader_return"]
+CURVES = ["scenario", "algorithm", "repeat", "episode", "outcome", "captured", "episode_time_s", "final_distance_m",
+          "pursuer_path_m", "collisions", "evader_pinned_fraction", "pursuer_return", "evader_return"]
+TRAJ = ["t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "evader_z", "pursuer_alpha",
+        "pursuer_theta", "evader_alpha", "evader_theta", "distance"] + [
+            f"{a}_{c}" for a in ("pursuer", "evader") for c in (
+                "d_target", "target_az", "target_el", "d_obstacle", "obstacle_az", "obstacle_el", "d_alpha",
+                "d_theta", "reward", "pinned")]
+FIGURES = ["trajectories.png", "comparison.png", "learning.png", "apollonius.png"]
+DETERMINISTIC = ["runs.csv", "learning_curves.csv", "summary.json", "config.json"]
+
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def header(path):
+    with open(path, newline="") as f:
+        return next(csv.reader(f))
+
+
+def run(binary, out, *extra):
+    cmd = [binary, "--out", out, "--repeats", "2", "--episodes", "3", "--plain-progress", "--no-cache", *extra]
+    if "--map" not in extra:
+        cmd += ["--map", "maps/paper.yaml"]
+    return subprocess.run(cmd, capture_output=True, text=True)
+
+
+def main():
+    binary, source, work = sys.argv[1:4]
+    os.chdir(source)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    a, b = os.path.join(work, "a"), os.path.join(work, "b")
+
+    r = run(binary, a)
+    check(r.returncode == 0, f"peg-paper exit status {r.returncode}: {r.stderr[-2000:]}")
+    check("scenario" in r.stdout and "paired comparisons" in r.stdout, "summary table on stdout")
+    check(header(os.path.join(a, "runs.csv")) == RUNS, "runs.csv columns")
+    check(header(os.path.join(a, "learning_curves.csv")) == CURVES, "learning_curves.csv columns")
+    with open(os.path.join(a, "runs.csv")) as f:
+        rows = list(csv.DictReader(f))
+    check(len(rows) == 4 * 3 * 2, f"runs.csv has {len(rows)} rows, expected 24")
+    with open(os.path.join(a, "learning_curves.csv")) as f:
+        check(sum(1 for _ in f) == 1 + 24 * 3, "learning_curves.csv has one row per training episode")
+    for s in ("S1", "S2", "S3", "S4"):
+        for alg in ("peg3d", "baseline", "paper"):
+            t = os.path.join(a, "trajectories", f"{s}_{alg}.csv")
+            check(os.path.exists(t) and header(t) == TRAJ, f"trajectory {s}_{alg} columns")
+            for role in ("pursuer", "evader"):
+                p = os.path.join(a, "policies", f"{s}_{alg}_{role}.json")
+                check(os.path.exists(p) and json.load(open(p))["format"] == "peg3d-policy", f"policy {s}_{alg}_{role}")
+    summary = json.load(open(os.path.join(a, "summary.json")))
+    for s in ("S1", "S2", "S3", "S4"):
+        algs = summary["scenarios"][s]["algorithms"]
+        for alg in ("peg3d", "baseline", "paper"):
+            for key in ("capture_rate", "capture_time_s", "pursuer_path_m", "evader_pinned_fraction"):
+                check(key in algs[alg], f"summary {s} {alg} {key}")
+        check(len(summary["scenarios"][s]["comparisons"]) == 6, f"summary {s} comparisons")
+    for name in ("config.json", "map.json", "apollonius.json", "timing.json"):
+        check(os.path.exists(os.path.join(a, name)), name)
+    for fig in FIGURES:
+        path = os.path.join(a, fig)
+        check(os.path.exists(path) and os.path.getsize(path) > 10000, f"figure {fig}")
+    docs = open(os.path.join(source, "docs", "results.md")).read()
+    for col in RUNS + CURVES:
+        check(f"`{col}`" in docs or col in docs, f"column {col} documented in docs/results.md")
+
+    r = run(binary, b, "--no-plots", "--threads", "1")
+    check(r.returncode == 0, "second run")
+    for name in DETERMINISTIC:
+        same = open(os.path.join(a, name), "rb").read() == open(os.path.join(b, name), "rb").read()
+        check(same, f"{name} identical for the same seed with 2 threads and 1 thread")
+
+    bad = os.path.join(work, "bad")
+    for args in (["--set", "pursuer.speed=-1"], ["--set", "pursuer.nosuchfield=1"], ["--repeats", "0"],
+                 ["--algorithms", "peg3d,unknown"], ["--map", "tests/data/does-not-exist.yaml"]):
+        r = run(binary, bad, *args)
+        check(r.returncode == 2, f"{args}: exit status {r.returncode}, expected 2")
+        check(r.stderr.startswith("error:"), f"{args}: 'error: ...' on stderr, got {r.stderr[:200]!r}")
+        check(not os.path.exists(bad) or not os.listdir(bad), f"{args}: no output written")
+
+    print("ok" if not failures else f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
