@@ -1,0 +1,107 @@
+// peg-bench-game: cost of the learning loop's parts and of whole training steps on maps/paper.yaml.
+//   BM_FireSparse / BM_FireDense     firing the paper's 625-rule base (16 rules visited vs all 625)
+//   BM_FaclActLearn/<structure>      one agent's act + TD update (0: paper joint 4-input, 1: peg3d per-angle)
+//   BM_TrainingSteps/<preset>        full co-learning steps of both agents (items/s = game steps per second
+//                                    on one core): 0 peg3d, 1 paper, 2 baseline
+// Run: build/bin/peg-bench-game [--benchmark_filter=...]
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "core/random.hpp"
+#include "fuzzy/rule_base.hpp"
+#include "game/episode.hpp"
+#include "game/facl_policy.hpp"
+#include "world/arena.hpp"
+#include "world/map_spec.hpp"
+
+namespace {
+
+using namespace peg3d;
+
+fuzzy::RuleBase paper_rule_base() {
+  return fuzzy::RuleBase({fuzzy::TriangularPartition(0, 35, 5), fuzzy::TriangularPartition(-kPi, kPi, 5),
+                          fuzzy::TriangularPartition(0, 35, 5), fuzzy::TriangularPartition(-kPi, kPi, 5)});
+}
+
+std::vector<std::array<double, 4>> random_inputs(std::size_t n) {
+  Rng rng(1);
+  std::uniform_real_distribution<double> d(0, 35), a(-kPi, kPi);
+  std::vector<std::array<double, 4>> x(n);
+  for (auto& v : x) v = {d(rng), a(rng), d(rng), a(rng)};
+  return x;
+}
+
+void BM_FireSparse(benchmark::State& state) {
+  const fuzzy::RuleBase rb = paper_rule_base();
+  const auto xs = random_inputs(1024);
+  fuzzy::FiredRules f;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    rb.fire(xs[i++ & 1023], f);
+    benchmark::DoNotOptimize(f.strength[0]);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FireSparse);
+
+void BM_FireDense(benchmark::State& state) {
+  const fuzzy::RuleBase rb = paper_rule_base();
+  const auto xs = random_inputs(1024);
+  std::vector<double> phi(rb.rules());
+  std::size_t i = 0;
+  for (auto _ : state) {
+    rb.fire_dense(xs[i++ & 1023], phi);
+    benchmark::DoNotOptimize(phi[0]);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FireDense);
+
+void BM_FaclActLearn(benchmark::State& state) {
+  game::AgentConfig c = game::agent_preset(state.range(0) == 0 ? "paper" : "peg3d", game::Role::kPursuer);
+  game::FaclPolicy p(c, game::Role::kPursuer, 1);
+  Rng rng(2);
+  std::uniform_real_distribution<double> d(0, 35), a(-kPi, kPi);
+  std::vector<game::AgentView> views(1024);
+  for (auto& v : views) {
+    v.percept.target_distance = d(rng);
+    v.percept.target = {a(rng), a(rng)};
+    v.percept.obstacle = {d(rng) / 7, Vec3::Zero(), true};
+    v.percept.to_obstacle = {a(rng), a(rng)};
+  }
+  p.begin_episode(views[0], true);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(p.act(views[i & 1023]));
+    p.learn(0.5, views[(i + 1) & 1023], false);
+    ++i;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FaclActLearn)->Arg(0)->Arg(1);
+
+void BM_TrainingSteps(benchmark::State& state) {
+  static const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/paper.yaml"));
+  const char* names[] = {"peg3d", "paper", "baseline"};
+  const game::GameConfig config = game::preset(names[state.range(0)]);
+  game::Game g(arena, config);
+  auto p = game::make_policy(config.pursuer, game::Role::kPursuer, 1);
+  auto e = game::make_policy(config.evader, game::Role::kEvader, 2);
+  long long steps = 0;
+  std::uint64_t episode = 0;
+  for (auto _ : state) {
+    const auto& scenario = arena->map().scenarios[episode % arena->map().scenarios.size()];
+    steps += g.play(scenario, *p, *e, true, derive_seed(3, {episode++})).steps;
+  }
+  state.SetItemsProcessed(steps);
+  state.counters["steps_per_episode"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_TrainingSteps)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
