@@ -42,7 +42,7 @@ std::filesystem::path default_cache_dir() {
 namespace {
 
 // Bump when voxelization, the field or the file layout change: old cache files then simply miss.
-constexpr std::uint32_t kCacheFormat = 1;
+constexpr std::uint32_t kCacheFormat = 2;
 constexpr char kCacheMagic[8] = {'P', 'E', 'G', '3', 'D', 'W', 'L', 'D'};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -173,7 +173,7 @@ std::optional<CachedWorld> read_cache(const std::filesystem::path& file, std::ui
   std::ifstream in(file, std::ios::binary);
   CacheHeader h{};
   if (!in.read(reinterpret_cast<char*>(&h), sizeof(h))) {
-    why = "unreadable cache file, rebuilt";
+    why = "unreadable cache file";
     return std::nullopt;
   }
   const CacheHeader want = make_header(key, grid, max_distance, 0, 0);
@@ -183,7 +183,7 @@ std::optional<CachedWorld> read_cache(const std::filesystem::path& file, std::ui
                     std::memcmp(h.size, want.size, sizeof(h.size)) == 0 && h.cell_count == want.cell_count;
   const std::uintmax_t expected = sizeof(h) + h.octree_bytes + h.cell_count * sizeof(DistanceField::Cell);
   if (!same || std::filesystem::file_size(file, ec) != expected) {
-    why = "stale or truncated cache file, rebuilt";
+    why = "stale or truncated cache file";
     return std::nullopt;
   }
   CachedWorld w;
@@ -193,13 +193,13 @@ std::optional<CachedWorld> read_cache(const std::filesystem::path& file, std::ui
   in.read(w.octree_bt.data(), static_cast<std::streamsize>(w.octree_bt.size()));
   in.read(reinterpret_cast<char*>(cells.data()), static_cast<std::streamsize>(cells.size() * sizeof(cells[0])));
   if (!in) {
-    why = "unreadable cache file, rebuilt";
+    why = "unreadable cache file";
     return std::nullopt;
   }
   for (const auto& c : cells) {
     const bool valid = c.x == DistanceField::kNone || (c.x < grid.size[0] && c.y < grid.size[1] && c.z < grid.size[2]);
     if (!valid) {
-      why = "corrupt cache file, rebuilt";
+      why = "corrupt cache file";
       return std::nullopt;
     }
   }
@@ -287,7 +287,7 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
     if (options.cache_dir) {
       try {
         write_cache(st.cache_file, st.cache_key, arena->field_, arena->octree_bt_, st.occupied_voxels);
-        st.cache_status = "stored";
+        st.cache_status = st.cache_status == "miss" ? "stored" : st.cache_status + "; stored";
       } catch (const std::exception& e) {
         st.cache_status = fmt::format("not stored ({})", e.what());  // a read-only cache must not stop a run
       }

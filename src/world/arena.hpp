@@ -45,7 +45,7 @@ struct ArenaStats {
   bool loaded_from_cache = false;
   std::uint64_t cache_key = 0;        ///< content hash keying the cache file
   std::filesystem::path cache_file;   ///< empty when caching is off
-  std::string cache_status;           ///< "off", "hit", "stored", or why the cache was not used
+  std::string cache_status;           ///< "off", "hit", "stored", "<why the file was unusable>; stored", "not stored (<error>)"
 };
 
 /// How to build an arena.

@@ -1,5 +1,6 @@
 #include "world/collision_world.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <vector>
 
@@ -10,14 +11,19 @@
 namespace peg3d::world {
 namespace {
 
-// Agents get their own filter group: obstacles (StaticFilter) accept it, agents do not accept each other.
-// Bullet's defaults would put kinematic agents and static obstacles in groups that never pair.
+// Agents are kinematic objects that stay out of the broadphase: every agent query is an explicit contactTest
+// or convexSweepTest against the static obstacles. (Bullet's default filters would never pair a kinematic
+// body with a static one; and keeping agents' broadphase proxies current would only fill the pair cache,
+// which these queries do not read, allocating as agents roam.) The queries carry their own filter: they
+// accept obstacles (StaticFilter) and reject agents.
 constexpr int kAgentGroup = 1 << 6;
 constexpr int kObstacleGroup = btBroadphaseProxy::StaticFilter;
 
 // After a hit the agent is set back this far along its path, so it ends outside the obstacle even when
 // Bullet's conservative advancement (which stops within 1 mm of contact) overshoots on a curved surface.
 constexpr double kBackoff = 1e-3;  // m
+
+constexpr double kCylinderMargin = 0.005;  // m
 
 btVector3 bt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 Vec3 vec(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
@@ -76,7 +82,7 @@ struct CollisionWorld::Impl {
     std::unique_ptr<btCollisionObject> body;
     Vec3 position = Vec3::Zero();
     double radius = 0.0;
-    bool synced = false;  // body transform and broadphase AABB match position
+    bool synced = false;  // the body's transform matches position
   };
 
   std::shared_ptr<const Arena> arena;
@@ -102,6 +108,9 @@ struct CollisionWorld::Impl {
     for (std::size_t i = 0; i < spec.cylinders.size(); ++i) {
       const CylinderObstacle& c = spec.cylinders[i];
       auto shape = std::make_unique<btCylinderShapeZ>(btVector3(c.radius, c.radius, 0.5 * c.height));
+      // Bullet rounds a cylinder's edges by its margin (0.04 m by default), and a margin above half the height
+      // breaks a thin disc: keep it to a few millimetres and well inside the shape.
+      shape->setMargin(std::min(kCylinderMargin, 0.25 * std::min(c.radius, 0.5 * c.height)));
       add_obstacle(std::move(shape), c.base + Vec3(0, 0, 0.5 * c.height), ObstacleKind::kCylinder, int(i));
     }
     for (std::size_t i = 0; i < arena->meshes().size(); ++i) {
@@ -118,7 +127,6 @@ struct CollisionWorld::Impl {
 
   ~Impl() {
     // btCollisionWorld's destructor touches its objects' proxies: take them out while they still exist.
-    for (auto& a : agents) world.removeCollisionObject(a.body.get());
     for (auto& o : obstacles) world.removeCollisionObject(o.get());
   }
 
@@ -137,7 +145,6 @@ struct CollisionWorld::Impl {
   void sync(Agent& a) {
     if (a.synced) return;
     a.body->setWorldTransform(btTransform(btQuaternion::getIdentity(), bt(a.position)));
-    world.updateSingleAabb(a.body.get());
     a.synced = true;
   }
 
@@ -217,7 +224,6 @@ int CollisionWorld::add_agent(double radius) {
   const int id = static_cast<int>(impl_->agents.size());
   a.body->setUserIndex(-1);
   a.body->setUserIndex2(id);
-  impl_->world.addCollisionObject(a.body.get(), kAgentGroup, kObstacleGroup);
   a.synced = true;
   impl_->agents.push_back(std::move(a));
   return id;

@@ -1,8 +1,9 @@
 #pragma once
 // Collision detection for agents moving through an Arena, with Bullet (double precision). Obstacles are
-// static Bullet shapes (btSphereShape, btCylinderShapeZ, btBvhTriangleMeshShape over the Arena's triangles),
-// agents kinematic spheres. Every move is a swept-sphere test from the old to the new position, so no step is
-// long enough to tunnel through a thin obstacle.
+// static Bullet shapes (btSphereShape, btCylinderShapeZ, btBvhTriangleMeshShape over the Arena's triangles) in
+// the broadphase; agents are kinematic spheres tested with explicit queries (convexSweepTest, contactTest)
+// whose filters accept every obstacle and no agent. Every move is a swept-sphere test from the old to the new
+// position, so no step is long enough to tunnel through a thin obstacle.
 //
 // A CollisionWorld is mutable scratch for one thread (Bullet's broadphase keeps a shared ray-test stack); build
 // one per thread or per run from the shared, const Arena. Bullet types stay in the .cpp.

@@ -38,46 +38,51 @@ class DistanceField {
   /// voxel diagonal of the exact distance to the occupied voxels.
   NearestObstacle nearest(const Vec3& p) const {
     assert(p.allFinite());
-    const Cell c = cells_[cell_index(p)];
+    const Cell c = cells_[grid_.index(cell_of(p, 0), cell_of(p, 1), cell_of(p, 2))];
     if (c.x == kNone) return {max_distance_, p, false};
-    const Vec3 lo = Vec3(grid_.first[0] + c.x, grid_.first[1] + c.y, grid_.first[2] + c.z) * grid_.resolution;
+    const Vec3 lo = grid_.cell_lo(c.x, c.y, c.z);
     const Vec3 q = p.cwiseMax(lo).cwiseMin(lo + Vec3::Constant(grid_.resolution));
     const double d = (p - q).norm();
     if (d >= max_distance_) return {max_distance_, p, false};
     return {d, q, true};
   }
 
-  /// A distance (m) that no obstacle point inside the grid, nor anything outside it, is nearer to p than:
-  /// the field's answer minus its worst-case error, and at most p's distance to the grid's faces.
-  /// Valid because voxelization is conservative (every obstacle point lies in an occupied voxel).
+  /// A distance (m) that no obstacle point inside the grid, nor anything outside it, is nearer to p than.
+  /// Valid because voxelization is conservative (every obstacle point lies in an occupied voxel): with c the
+  /// centre of p's cell and D the EDT's centre-to-centre distance from c, every occupied voxel is at least
+  /// D - |p - c| - h from p (h the half diagonal), less the EDT's own error (under one cell).
   double clearance_lower_bound(const Vec3& p) const {
-    const double to_edge = outer_.inner_distance(p);
-    return std::min(nearest(p).distance - error_margin_, to_edge);
+    assert(p.allFinite());
+    const int i = cell_of(p, 0), j = cell_of(p, 1), k = cell_of(p, 2);
+    const Cell cell = cells_[grid_.index(i, j, k)];
+    const Vec3 centre = grid_.cell_center(i, j, k);
+    const double centre_distance =
+        cell.x == kNone ? max_distance_ : (grid_.cell_center(cell.x, cell.y, cell.z) - centre).norm();
+    const double bound = centre_distance - (p - centre).norm() - half_diagonal_ - grid_.resolution;
+    return std::min(bound, outer_.inner_distance(p));
   }
 
   const VoxelGrid& grid() const { return grid_; }
   double max_distance() const { return max_distance_; }
   const std::vector<Cell>& cells() const { return cells_; }
   std::size_t bytes() const { return cells_.size() * sizeof(Cell); }
-  /// The answer's worst-case underestimate of the distance to the nearest obstacle point, m.
-  double error_margin() const { return error_margin_; }
+  /// How much nearest() can exceed the exact distance to the occupied voxels, m: three half diagonals
+  /// (cell-centre quantization twice, point-to-box once) plus one cell for the EDT's own approximation.
+  double error_margin() const { return 3.0 * half_diagonal_ + grid_.resolution; }
 
  private:
-  std::size_t cell_index(const Vec3& p) const {
-    int idx[3];
-    for (int a = 0; a < 3; ++a) {
-      // Clamp in floating point first: no overflow in the conversion, and NaN lands on cell 0.
-      const double n = std::floor(p[a] * inv_resolution_) - grid_.first[a];
-      idx[a] = n >= 0.0 ? (n < grid_.size[a] - 1 ? static_cast<int>(n) : grid_.size[a] - 1) : 0;
-    }
-    return grid_.index(idx[0], idx[1], idx[2]);
+  /// Index on `axis` of the cell holding p, clamped to the grid. Clamping in floating point first means no
+  /// overflow in the conversion, and NaN lands on cell 0.
+  int cell_of(const Vec3& p, int axis) const {
+    const double n = std::floor(p[axis] * inv_resolution_) - grid_.first[axis];
+    return n >= 0.0 ? (n < grid_.size[axis] - 1 ? static_cast<int>(n) : grid_.size[axis] - 1) : 0;
   }
 
   VoxelGrid grid_;
   Box outer_;
   double inv_resolution_ = 5.0;
   double max_distance_ = 0.0;
-  double error_margin_ = 0.0;
+  double half_diagonal_ = 0.0;
   std::vector<Cell> cells_;
 };
 

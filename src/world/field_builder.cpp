@@ -28,10 +28,7 @@ DistanceField::DistanceField(const VoxelGrid& grid, double max_distance, std::ve
       outer_(grid.box()),
       inv_resolution_(1.0 / grid.resolution),
       max_distance_(max_distance),
-      // Reported distance d vs. the exact distance t to the occupied voxels: d <= t + 3h with h the half
-      // diagonal (cell-centre quantization twice, point-to-box once), plus one cell for the EDT's own
-      // approximation.
-      error_margin_((1.5 * std::sqrt(3.0) + 1.0) * grid.resolution),
+      half_diagonal_(0.5 * std::sqrt(3.0) * grid.resolution),
       cells_(std::move(cells)) {
   if (cells_.size() != grid.cell_count()) throw std::invalid_argument("DistanceField: cell count does not match grid");
 }

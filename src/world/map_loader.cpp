@@ -294,16 +294,15 @@ void Loader::read_arena(const Node& n, MapSpec& spec) {
 }
 
 void Loader::read_occupancy(const Node* n, MapSpec& spec) {
-  int line = 1;
+  int line = 1, max_line = 1;
   if (n != nullptr) {
     const Fields f(*this, *n, "occupancy");
     f.allow({"resolution", "max_distance"});
-    line = line_of(*n);
+    line = max_line = line_of(*n);
     if (const Node* v = f.find("resolution")) spec.resolution = positive(*v, f.field("resolution")), line = line_of(*v);
-    if (const Node* v = f.find("max_distance")) spec.max_distance = positive(*v, f.field("max_distance"));
-    if (spec.max_distance < spec.resolution) {
-      fail(f.find("max_distance") ? line_of(*f.find("max_distance")) : line, "occupancy.max_distance",
-           fmt::format("must be >= occupancy.resolution ({} m), got {}", spec.resolution, spec.max_distance));
+    if (const Node* v = f.find("max_distance")) {
+      spec.max_distance = positive(*v, f.field("max_distance"));
+      max_line = line_of(*v);
     }
   }
   const Vec3 size = spec.bounds.size();
@@ -317,6 +316,10 @@ void Loader::read_occupancy(const Node* n, MapSpec& spec) {
     fail(line, "occupancy.resolution",
          fmt::format("{} m is too fine for an arena reaching {} m from the origin (OctoMap allows 32000 voxels)",
                      spec.resolution, extent));
+  }
+  if (spec.max_distance < spec.resolution) {
+    fail(max_line, "occupancy.max_distance",
+         fmt::format("must be >= occupancy.resolution ({} m), got {}", spec.resolution, spec.max_distance));
   }
 }
 
