@@ -1,5 +1,6 @@
 // peg-bench-world: cost of the world's hot paths on maps/paper.yaml.
-//   BM_NearestObstacle/<cm>         one distance-field query, resolution <cm> centimetres
+//   BM_NearestObstacle/<cm>         one distance-field query at a uniformly random point, resolution <cm> cm
+//   BM_NearestObstacleAlongPath/<cm>  one query per step of a random walk (0.11 m steps), as an agent makes them
 //   BM_MoveTwoAgents/<early_out>    one game step's collision work: move_agent for two agents (radius 0.25 m,
 //                                   0.11 and 0.10 m per step as in the paper), with or without the
 //                                   distance-field early-out
@@ -52,6 +53,28 @@ void BM_NearestObstacle(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_NearestObstacle)->Arg(10)->Arg(20)->Arg(25);
+
+// Queries along a random walk of 0.11 m steps, as an agent makes them: neighbouring cells, warm caches.
+void BM_NearestObstacleAlongPath(benchmark::State& state) {
+  const auto arena = paper_arena(state.range(0) / 100.0);
+  const Box inside = arena->bounds().shrunk(0.25);
+  Rng rng(3);
+  std::normal_distribution<double> n;
+  std::vector<Vec3> path(1 << 16);
+  Vec3 p = arena->map().scenarios.front().pursuer.position, dir = Vec3::UnitX();
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (i % 20 == 0) dir = Vec3(n(rng), n(rng), n(rng)).normalized();
+    p = inside.clamp(p + 0.11 * dir);
+    path[i] = p;
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(arena->nearest_obstacle(path[i]));
+    i = (i + 1) & (path.size() - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_NearestObstacleAlongPath)->Arg(10)->Arg(20)->Arg(25);
 
 void BM_MoveTwoAgents(benchmark::State& state) {
   const auto arena = paper_arena(0.2);

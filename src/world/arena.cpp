@@ -42,7 +42,7 @@ std::filesystem::path default_cache_dir() {
 namespace {
 
 // Bump when voxelization, the field or the file layout change: old cache files then simply miss.
-constexpr std::uint32_t kCacheFormat = 2;
+constexpr std::uint32_t kCacheFormat = 3;
 constexpr char kCacheMagic[8] = {'P', 'E', 'G', '3', 'D', 'W', 'L', 'D'};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -164,7 +164,7 @@ struct CachedWorld {
   std::size_t occupied_voxels = 0;
 };
 std::optional<CachedWorld> read_cache(const std::filesystem::path& file, std::uint64_t key, const VoxelGrid& grid,
-                                      double max_distance, std::string& why) {
+                                      double max_distance, const Box& arena, ArenaFaces faces, std::string& why) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) {
     why = "miss";
@@ -203,7 +203,7 @@ std::optional<CachedWorld> read_cache(const std::filesystem::path& file, std::ui
       return std::nullopt;
     }
   }
-  w.field = DistanceField(grid, max_distance, std::move(cells));
+  w.field = DistanceField(grid, max_distance, std::move(cells), arena, faces);
   return w;
 }
 
@@ -252,12 +252,13 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
                                options.max_field_bytes / 1048576.0));
   }
 
+  const ArenaFaces faces{spec.floor_is_obstacle, spec.ceiling_is_obstacle, spec.walls_is_obstacle};
   st.cache_key = content_key(spec, arena->meshes_);
   st.cache_status = "off";
   if (options.cache_dir) {
     st.cache_file = *options.cache_dir / fmt::format("{:016x}.pegworld", st.cache_key);
     std::string why;
-    if (auto cached = read_cache(st.cache_file, st.cache_key, grid, spec.max_distance, why)) {
+    if (auto cached = read_cache(st.cache_file, st.cache_key, grid, spec.max_distance, spec.bounds, faces, why)) {
       arena->field_ = std::move(cached->field);
       arena->octree_bt_ = std::move(cached->octree_bt);
       st.occupied_voxels = cached->occupied_voxels;
@@ -275,10 +276,9 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
     for (const auto& s : spec.spheres) occupancy.add_sphere(s);
     for (const auto& c : spec.cylinders) occupancy.add_cylinder(c);
     for (std::size_t i = 0; i < arena->meshes_.size(); ++i) occupancy.add_mesh(arena->meshes_[i], spec.meshes[i].solid_below);
-    occupancy.add_boundary(spec.floor_is_obstacle, spec.ceiling_is_obstacle, spec.walls_is_obstacle);
     st.voxelize_seconds = seconds_since(tv);
 
-    FieldBuild built = build_distance_field(occupancy, spec.max_distance);
+    FieldBuild built = build_distance_field(occupancy, spec.max_distance, spec.bounds, faces);
     arena->field_ = std::move(built.field);
     arena->octree_bt_ = std::move(built.octree_bt);
     st.occupied_voxels = built.occupied_voxels;

@@ -19,7 +19,8 @@
 
 namespace peg3d::world {
 
-/// What an obstacle is; kBoundary is a face of the arena box (distance field only, never a collision).
+/// What an obstacle is; kBoundary is a face of the arena box (octree and distance field only, never a
+/// collision: the game keeps agents inside the box).
 enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary };
 
 /// Name of a kind: "sphere", "cylinder", "mesh", "boundary".
@@ -71,11 +72,17 @@ class Arena {
   const std::vector<TriangleMesh>& meshes() const { return meshes_; }
   const DistanceField& distance_field() const { return field_; }
 
-  /// Distance (m, capped at max_distance) from p to the nearest occupied voxel, and that voxel's point nearest
-  /// to p. Thread-safe, no allocation, no locking.
+  /// Distance (m, capped at max_distance) from p to the nearest obstacle and the obstacle's point nearest to p:
+  /// for spheres, cylinders and meshes the nearest occupied voxel (within a voxel diagonal of exact), for the
+  /// arena faces that count as obstacles the face itself (exact). Thread-safe, no allocation, no locking.
   NearestObstacle nearest_obstacle(const Vec3& p) const { return field_.nearest(p); }
 
-  /// A distance no obstacle point (of any kind, in or outside the arena) is nearer to p than (m, may be < 0).
+  /// nearest_obstacle() ignoring the arena faces, whatever the map says: spheres, cylinders and meshes only
+  /// (for callers that handle the box themselves). Same guarantees.
+  NearestObstacle nearest_shape(const Vec3& p) const { return field_.nearest_shape(p); }
+
+  /// A distance (m, may be < 0) that no point of a sphere, cylinder or mesh is nearer to p than, wherever it
+  /// lies; arena faces are left out (they are not collisions). The collision early-out rests on it.
   double clearance_lower_bound(const Vec3& p) const { return field_.clearance_lower_bound(p); }
 
   /// Writes the octree as an OctoMap .bt file (view it with octovis). Written to a temporary file then

@@ -23,9 +23,13 @@ constexpr int kKeyOffset = 32768;
 
 }  // namespace
 
-DistanceField::DistanceField(const VoxelGrid& grid, double max_distance, std::vector<Cell> cells)
+DistanceField::DistanceField(const VoxelGrid& grid, double max_distance, std::vector<Cell> cells, const Box& arena,
+                             ArenaFaces faces)
     : grid_(grid),
       outer_(grid.box()),
+      arena_(arena),
+      faces_(faces),
+      any_face_(faces.floor || faces.ceiling || faces.walls),
       inv_resolution_(1.0 / grid.resolution),
       max_distance_(max_distance),
       half_diagonal_(0.5 * std::sqrt(3.0) * grid.resolution),
@@ -41,21 +45,24 @@ std::size_t estimate_build_bytes(const VoxelGrid& grid) {
   return edt + cells * (1 + sizeof(DistanceField::Cell));
 }
 
-FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance) {
+FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance, const Box& arena, ArenaFaces faces) {
   const VoxelGrid& g = occupancy.grid();
   FieldBuild out;
   auto t0 = std::chrono::steady_clock::now();
 
   octomap::OcTree tree(g.resolution);
   const float occupied = tree.getClampingThresMaxLog();
+  auto set_occupied = [&](int i, int j, int k) {
+    const octomap::OcTreeKey key(static_cast<octomap::key_type>(g.first[0] + i + kKeyOffset),
+                                 static_cast<octomap::key_type>(g.first[1] + j + kKeyOffset),
+                                 static_cast<octomap::key_type>(g.first[2] + k + kKeyOffset));
+    tree.setNodeValue(key, occupied, /*lazy_eval=*/true);
+  };
   for (int i = 0; i < g.size[0]; ++i) {
     for (int j = 0; j < g.size[1]; ++j) {
       for (int k = 0; k < g.size[2]; ++k) {
         if (!occupancy.occupied(i, j, k)) continue;
-        const octomap::OcTreeKey key(static_cast<octomap::key_type>(g.first[0] + i + kKeyOffset),
-                                     static_cast<octomap::key_type>(g.first[1] + j + kKeyOffset),
-                                     static_cast<octomap::key_type>(g.first[2] + k + kKeyOffset));
-        tree.setNodeValue(key, occupied, /*lazy_eval=*/true);
+        set_occupied(i, j, k);
         ++out.occupied_voxels;
       }
     }
@@ -104,11 +111,22 @@ FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance)
       }
     }
   }
-  out.field = DistanceField(g, max_distance, std::move(cells));
+  out.field = DistanceField(g, max_distance, std::move(cells), arena, faces);
   out.edt_seconds = seconds_since(t0);
+
+  // The faces join the tree only now: the EDT does not need them (the field treats them as exact planes).
+  t0 = std::chrono::steady_clock::now();
+  tree.enableChangeDetection(false);  // the EDT switched it on; it would record every key set below
+  tree.resetChangeDetection();
+  for_each_boundary_cell(g, faces.floor, faces.ceiling, faces.walls, [&](int i, int j, int k) {
+    if (occupancy.occupied(i, j, k)) return;
+    set_occupied(i, j, k);
+    ++out.occupied_voxels;
+  });
 
   // OctoMap's .bt layout: a text header, then the tree's data. Written here rather than with writeBinary(),
   // whose Debian build prints " done." on stderr for every tree.
+  tree.updateInnerOccupancy();
   tree.toMaxLikelihood();
   tree.prune();
   std::ostringstream bt;
@@ -117,6 +135,7 @@ FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance)
   tree.writeBinaryData(bt);
   if (!bt) throw std::runtime_error("cannot serialize the octree");
   out.octree_bt = std::move(bt).str();
+  out.octree_seconds += seconds_since(t0);
   return out;
 }
 

@@ -22,9 +22,12 @@ struct FieldBuild {
 /// the occupancy bitmap and the compact field.
 std::size_t estimate_build_bytes(const VoxelGrid& grid);
 
-/// The tree holds exactly the occupied cells (as fully occupied leaves, pruned); the field is computed by
-/// DynamicEDTOctomap over the whole grid with unknown space as free, capped at max_distance plus two voxel
-/// diagonals so answers are exact up to max_distance, then copied into the compact DistanceField.
-FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance);
+/// The field is computed by DynamicEDTOctomap over the whole grid from the occupied cells (unknown space is
+/// free), capped at max_distance plus a voxel diagonal so answers are right up to max_distance, and copied
+/// into the compact DistanceField, which adds the chosen arena faces as exact planes. The tree then also gets
+/// the faces' padding layers, so the exported octree shows every obstacle (all as fully occupied leaves,
+/// pruned).
+FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance, const Box& arena = {},
+                                ArenaFaces faces = {});
 
 }  // namespace peg3d::world

@@ -160,17 +160,7 @@ void Occupancy::add_mesh(const TriangleMesh& mesh, bool solid_below) {
 }
 
 void Occupancy::add_boundary(bool floor, bool ceiling, bool walls) {
-  const auto [nx, ny, nz] = grid_.size;
-  for (int i = 0; i < nx; ++i) {
-    for (int j = 0; j < ny; ++j) {
-      for (int k = 0; k < nz; ++k) {
-        const bool on_floor = floor && k == 0;
-        const bool on_ceiling = ceiling && k == nz - 1;
-        const bool on_wall = walls && (i == 0 || i == nx - 1 || j == 0 || j == ny - 1);
-        if (on_floor || on_ceiling || on_wall) set(i, j, k);
-      }
-    }
-  }
+  for_each_boundary_cell(grid_, floor, ceiling, walls, [this](int i, int j, int k) { set(i, j, k); });
 }
 
 std::size_t Occupancy::occupied_count() const {

@@ -53,7 +53,7 @@ class Occupancy {
   /// The mesh's triangles; with solid_below also every cell under the mesh's highest surface cell of each
   /// column, down to the grid's bottom.
   void add_mesh(const TriangleMesh& mesh, bool solid_below);
-  /// The padding layer outside the chosen faces of the arena.
+  /// The padding layer outside the chosen faces of the arena (see for_each_boundary_cell).
   void add_boundary(bool floor, bool ceiling, bool walls);
 
   bool occupied(int i, int j, int k) const { return occupied_[grid_.index(i, j, k)] != 0; }
@@ -69,6 +69,21 @@ class Occupancy {
   VoxelGrid grid_;
   std::vector<std::uint8_t> occupied_;
 };
+
+/// Calls f(i, j, k) for each cell of the padding layers outside the chosen faces of the arena: the voxels that
+/// stand for the floor (k = 0), the ceiling (k = last) and the walls (i or j first or last).
+template <class F>
+void for_each_boundary_cell(const VoxelGrid& grid, bool floor, bool ceiling, bool walls, F&& f) {
+  const auto [nx, ny, nz] = grid.size;
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < ny; ++j) {
+      const bool wall_column = walls && (i == 0 || i == nx - 1 || j == 0 || j == ny - 1);
+      for (int k = 0; k < nz; ++k) {
+        if (wall_column || (floor && k == 0) || (ceiling && k == nz - 1)) f(i, j, k);
+      }
+    }
+  }
+}
 
 /// Separating-axis test of a triangle against an axis-aligned box (centre, half extents); touching counts.
 bool triangle_overlaps_box(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& box_center,

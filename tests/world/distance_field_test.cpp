@@ -58,14 +58,17 @@ std::vector<Vec3> random_points(const Box& box, int n, std::uint64_t seed) {
 
 /// Checks answers against an exact signed distance: within one voxel diagonal, pointing at the obstacle,
 /// and the early-out bound never above the exact distance.
+/// With faces_only the exact distance is to arena faces, which the early-out bound leaves out.
 template <class ExactDistance>
-void check_against(const Arena& arena, ExactDistance exact, int samples) {
+void check_against(const Arena& arena, ExactDistance exact, int samples, bool faces_only = false) {
   const double diag = std::sqrt(3.0) * arena.resolution();
   int compared = 0;
   for (const Vec3& p : random_points(arena.bounds(), samples, 42)) {
     const double t = exact(p);
     const NearestObstacle n = arena.nearest_obstacle(p);
-    EXPECT_LE(arena.clearance_lower_bound(p), std::max(t, 0.0) + 1e-12) << p.transpose();
+    if (!faces_only) {
+      EXPECT_LE(arena.clearance_lower_bound(p), std::max(t, 0.0) + 1e-12) << p.transpose();
+    }
     if (t <= 0.0) {
       EXPECT_TRUE(n.found);
       EXPECT_EQ(n.distance, 0.0) << p.transpose();
@@ -107,7 +110,7 @@ TEST(WorldDistanceField, FloorPlaneIsExact) {
   MapSpec spec = empty_spec(Vec3(8, 8, 8), 0.2, 3.0);
   spec.floor_is_obstacle = true;
   const auto arena = testing::build(spec);
-  check_against(*arena, [](const Vec3& p) { return p.z(); }, 2000);
+  check_against(*arena, [](const Vec3& p) { return p.z(); }, 2000, true);
   // A point above the floor's lattice-aligned face: the distance is its height exactly, straight down.
   const NearestObstacle n = arena->nearest_obstacle(Vec3(3.33, 4.21, 1.37));
   EXPECT_NEAR(n.distance, 1.37, 1e-12);
@@ -119,7 +122,8 @@ TEST(WorldDistanceField, WallsAndCeilingCountWhenConfigured) {
   spec.walls_is_obstacle = true;
   spec.ceiling_is_obstacle = true;
   const auto arena = testing::build(spec);
-  check_against(*arena, [](const Vec3& p) { return std::min({p.x(), p.y(), 6 - p.x(), 6 - p.y(), 6 - p.z()}); }, 2000);
+  check_against(*arena, [](const Vec3& p) { return std::min({p.x(), p.y(), 6 - p.x(), 6 - p.y(), 6 - p.z()}); }, 2000,
+                true);
 }
 
 TEST(WorldDistanceField, TriangleMeshWithinOneVoxelDiagonal) {
@@ -129,6 +133,33 @@ TEST(WorldDistanceField, TriangleMeshWithinOneVoxelDiagonal) {
   const TriangleMesh& m = arena->meshes()[0];
   auto exact = [&](const Vec3& p) { return mesh_distance(m, p); };
   check_against(*arena, exact, 1500);
+}
+
+TEST(WorldDistanceField, FacesAreExactPlanesAndCombineWithShapes) {
+  MapSpec spec = empty_spec(Vec3(10, 10, 5), 0.3, 3.0);  // 5 m is not a multiple of 0.3 m: still exact
+  spec.floor_is_obstacle = spec.ceiling_is_obstacle = true;
+  spec.spheres.push_back({Vec3(5, 5, 2.5), 1.0});
+  const auto arena = testing::build(spec);
+  NearestObstacle n = arena->nearest_obstacle(Vec3(2, 2, 4.2));
+  EXPECT_NEAR(n.distance, 0.8, 1e-12);
+  EXPECT_TRUE(n.point.isApprox(Vec3(2, 2, 5), 1e-12));
+  // Next to the sphere, the sphere wins over the floor 2 m below.
+  n = arena->nearest_obstacle(Vec3(3.6, 5, 2.0));
+  EXPECT_NEAR(n.distance, (Vec3(3.6, 5, 2.0) - Vec3(5, 5, 2.5)).norm() - 1.0, std::sqrt(3.0) * 0.3);
+  EXPECT_LT(n.point.x(), 4.5);
+  // Below the floor is inside the obstacle; walls are not obstacles here.
+  n = arena->nearest_obstacle(Vec3(2, 2, -0.5));
+  EXPECT_TRUE(n.found);
+  EXPECT_EQ(n.distance, 0.0);
+  EXPECT_NEAR(arena->nearest_obstacle(Vec3(0.1, 7.5, 2.5)).distance, 2.5, 1e-12);  // not the wall 0.1 m away
+  // nearest_shape() leaves the faces out.
+  EXPECT_FALSE(arena->nearest_shape(Vec3(0.1, 7.5, 2.5)).found);
+  const Vec3 under_ceiling(3.6, 5, 4.5);
+  EXPECT_NEAR(arena->nearest_obstacle(under_ceiling).distance, 0.5, 1e-12);
+  EXPECT_NEAR(arena->nearest_shape(under_ceiling).distance, (under_ceiling - Vec3(5, 5, 2.5)).norm() - 1.0,
+              std::sqrt(3.0) * 0.3);
+  // The faces still enter the octree: the exported tree has the floor and ceiling layers.
+  EXPECT_GT(arena->stats().occupied_voxels, 2u * 36u * 36u);
 }
 
 TEST(WorldDistanceField, CapAndInside) {
