@@ -238,6 +238,7 @@ void CollisionWorld::place_agent(int agent, const Vec3& p) {
 
 std::optional<Contact> CollisionWorld::move_agent(int agent, const Vec3& to) {
   assert(agent >= 0 && agent < agent_count());
+  assert(to.allFinite());
   return impl_->move(agent, to);
 }
 

@@ -49,9 +49,10 @@ class CollisionWorld {
   /// Teleports an agent without any check (use overlap() to test the new place).
   void place_agent(int agent, const Vec3& p);
   /// Sweeps the agent's sphere from its position to `to`. On a hit the agent stops at the time of impact, a
-  /// hair (at most 1 mm) before touching, and the contact is returned; otherwise it ends at `to`. An agent
-  /// already overlapping an obstacle is stopped (fraction 0, with the penetration) unless it moves out of it.
-  /// Agents never collide with each other. No allocation.
+  /// hair before touching (Bullet stops within 1 mm of contact; the agent is set back 1 mm more along its
+  /// path), and the contact is returned; otherwise it ends at `to`. An agent already overlapping an obstacle
+  /// is stopped (fraction 0, with the penetration) unless it moves out of it. Agents never collide with each
+  /// other; a zero-length move reports nothing. No allocation.
   std::optional<Contact> move_agent(int agent, const Vec3& to);
   /// The deepest overlap of the agent's sphere with an obstacle at its current position, if any.
   std::optional<Contact> overlap(int agent) const;

@@ -124,6 +124,8 @@ class Loader {
             loader.fail(key, field(name), fmt::format("duplicate key (first given at line {})", line_of(e.key)));
           }
         }
+        // An empty value ("radius:") carries the mark of the next token: report it at its key instead.
+        if (it->second.IsNull()) loader.fail(key, field(name), "has no value");
         entries_.push_back({name, key, it->second});
       }
     }
@@ -559,6 +561,13 @@ MapSpec Loader::load() {
 
 }  // namespace
 
-MapSpec load_map(const std::filesystem::path& file) { return Loader(file).load(); }
+MapSpec load_map(const std::filesystem::path& file) {
+  try {
+    return Loader(file).load();
+  } catch (const YAML::Exception& e) {
+    // Every check above fails with a MapError; this is a backstop for yaml-cpp's own surprises.
+    throw MapError(file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", e.msg);
+  }
+}
 
 }  // namespace peg3d::world
