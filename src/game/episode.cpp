@@ -74,7 +74,8 @@ AgentView Game::view(Role role, const EpisodeState& s) const {
   v.other_speed = config_.agent(p ? Role::kEvader : Role::kPursuer).speed;
   v.dt = config_.dt;
   v.arena = arena_->bounds();
-  const world::NearestObstacle n = arena_->nearest_obstacle(v.self.position);
+  // The map's shapes only: whether the arena's faces count is the agent's observation setting, not the map's.
+  const world::NearestObstacle n = arena_->nearest_shape(v.self.position);
   v.field = {n.distance, n.point, n.found};
   v.percept = perceive(role, self, v.self, v.other, v.field, v.arena, arena_->max_distance());
   return v;
