@@ -112,9 +112,25 @@ Heading Game::next_heading(Role role, const EpisodeState& s, const AgentView& v,
     const double excluded = 0.5 * kPi *
                             std::min(1.0, (c.guard.warn_distance - v.field.distance) /
                                               (c.guard.warn_distance - c.guard.stop_distance));
+    const Cone allowed{away.normalized(), kPi - excluded};
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already
     // leans to; deciding it from the request would flip sides every step.
-    constrain(Cone{away.normalized(), kPi - excluded}, kGuardCommitAngle);
+    constrain(allowed, kGuardCommitAngle);
+    // Against an arena face the clamp removes the motion into the face, and what remains may still approach
+    // the obstacle. Then the guard holds for the motion along the face: turn it, within the face, towards
+    // the obstacle-free side (the face-plane part of `allowed`'s axis, always allowed as the cone is at
+    // least a half-space).
+    const Box box = arena_->bounds().shrunk(c.radius);
+    Vec3 along = d, axis_along = allowed.axis;
+    for (int a = 0; a < 3; ++a) {
+      const bool at_lo = self.position[a] <= box.lo[a] + 1e-9, at_hi = self.position[a] >= box.hi[a] - 1e-9;
+      if ((at_lo && along[a] < 0.0) || (at_hi && along[a] > 0.0)) along[a] = 0.0;
+      if (at_lo || at_hi) axis_along[a] = 0.0;
+    }
+    if (along.squaredNorm() > 1e-12 && axis_along.squaredNorm() > 1e-12 && !allowed.contains(along.normalized())) {
+      d = first_inside_on_arc(allowed, along.normalized(), axis_along.normalized());
+      changed = true;
+    }
   }
   if (!changed) return requested;
   // Turn towards the constrained direction within the same steering bound.

@@ -54,6 +54,21 @@ Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, c
   return on_edge(a0 + hi * (a1 - a0));
 }
 
+Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to) {
+  if (cone.contains(from)) return from;
+  const double omega = angle_between(from, to);
+  if (omega < 1e-12) return to;
+  // Spherical interpolation; sin(omega) ~ 0 only for opposite directions, where any great circle will do.
+  const Vec3 side = omega > kPi - 1e-9 ? any_perpendicular(from) : Vec3((to - std::cos(omega) * from).normalized());
+  const auto at = [&](double t) { return Vec3(std::cos(t * omega) * from + std::sin(t * omega) * side); };
+  double lo = 0.0, hi = 1.0;  // at(lo) outside, at(hi) inside
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cone.contains(at(mid)) ? hi : lo) = mid;
+  }
+  return at(hi).normalized();
+}
+
 double pursuer_cone_half_angle(double pursuer_speed, double evader_speed) {
   require_positive("pursuer_speed", pursuer_speed);
   require_non_negative("evader_speed", evader_speed);

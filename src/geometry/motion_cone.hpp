@@ -31,6 +31,10 @@ struct Cone {
 Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, const Vec3& hint = Vec3::Zero(),
                          double commit_angle = 0.0);
 
+/// Walks the great-circle arc from the unit direction `from` to the unit direction `to` and returns the first
+/// direction inside the cone (to within 1e-9 of the arc). `to` must lie inside; if `from` does it is returned.
+Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to);
+
 /// alpha2* = asin(vE / vP) (eq. 6), rad. For vE >= vP the cone opens to a half-space (pi/2).
 /// Throws InvalidParameter on a non-positive pursuer speed, a negative evader speed or non-finite ones.
 double pursuer_cone_half_angle(double pursuer_speed, double evader_speed);

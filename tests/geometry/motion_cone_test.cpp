@@ -96,3 +96,24 @@ TEST(MotionCone, ProjectionWithinBandPrefersTheBandEdgeNearestTheRequest) {
 
 }  // namespace
 }  // namespace peg3d
+
+namespace peg3d {
+namespace {
+
+TEST(MotionCone, FirstInsideOnArcLandsOnTheConeBoundary) {
+  Rng rng(31);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Cone cone{testing::random_unit(rng), std::uniform_real_distribution<double>(0.2, 2.5)(rng)};
+    const Vec3 from = testing::random_unit(rng);
+    const Vec3 q = first_inside_on_arc(cone, from, cone.axis);
+    EXPECT_TRUE(cone.contains(q, 1e-9));
+    if (!cone.contains(from)) {
+      EXPECT_NEAR(angle_between(q, cone.axis), cone.half_angle, 1e-8);
+    }
+    // q lies on the arc from `from` to the axis.
+    EXPECT_NEAR(angle_between(from, q) + angle_between(q, cone.axis), angle_between(from, cone.axis), 1e-8);
+  }
+}
+
+}  // namespace
+}  // namespace peg3d
