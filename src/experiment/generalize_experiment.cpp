@@ -10,6 +10,7 @@
 #include "experiment/paper_experiment.hpp"
 #include "experiment/parallel_runner.hpp"
 #include "experiment/progress_reporter.hpp"
+#include "experiment/result_files.hpp"
 #include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
 
@@ -53,24 +54,12 @@ std::vector<GeneralizeRecord> run_generalization(std::shared_ptr<const world::Ar
 
 void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), {"train_scenario", "repeat", "eval_map", "eval_scenario", "outcome", "captured",
-                               "capture_time_s", "final_distance_m", "pursuer_path_m", "collisions",
-                               "evader_pinned_fraction"});
+  CsvWriter csv(out.stream(), with_episode_columns({"train_scenario", "repeat", "eval_map", "eval_scenario"}));
   for (const GeneralizeRecord& r : records) {
-    const game::EpisodeResult& e = r.result;
-    csv.row()
-        .add(r.train_scenario)
-        .add(r.repeat)
-        .add(r.eval_map)
-        .add(r.eval_scenario)
-        .add(game::to_string(e.outcome))
-        .add(static_cast<int>(e.captured()))
-        .add(e.captured() ? e.duration : std::numeric_limits<double>::quiet_NaN())
-        .add(e.final_distance)
-        .add(e.pursuer_path)
-        .add(e.collisions)
-        .add(e.pinned_fraction(game::Role::kEvader))
-        .end();
+    auto row = csv.row();
+    row.add(r.train_scenario).add(r.repeat).add(r.eval_map).add(r.eval_scenario);
+    add_episode_cells(row, r.result);
+    row.end();
   }
   out.commit();
 }

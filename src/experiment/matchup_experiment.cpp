@@ -82,26 +82,12 @@ std::vector<MatchupRecord> run_matchups(std::shared_ptr<const world::Arena> aren
 
 void write_matchups_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), {"scenario", "repeat", "pursuer", "evader", "outcome", "captured", "capture_time_s",
-                               "final_distance_m", "pursuer_path_m", "evader_path_m", "collisions",
-                               "evader_pinned_fraction", "pursuer_pinned_fraction"});
+  CsvWriter csv(out.stream(), with_episode_columns({"scenario", "repeat", "pursuer", "evader"}));
   for (const MatchupRecord& r : records) {
-    const game::EpisodeResult& e = r.result;
-    csv.row()
-        .add(r.scenario)
-        .add(r.repeat)
-        .add(r.pursuer)
-        .add(r.evader)
-        .add(game::to_string(e.outcome))
-        .add(static_cast<int>(e.captured()))
-        .add(e.captured() ? e.duration : std::numeric_limits<double>::quiet_NaN())
-        .add(e.final_distance)
-        .add(e.pursuer_path)
-        .add(e.evader_path)
-        .add(e.collisions)
-        .add(e.pinned_fraction(game::Role::kEvader))
-        .add(e.pinned_fraction(game::Role::kPursuer))
-        .end();
+    auto row = csv.row();
+    row.add(r.scenario).add(r.repeat).add(r.pursuer).add(r.evader);
+    add_episode_cells(row, r.result);
+    row.end();
   }
   out.commit();
 }

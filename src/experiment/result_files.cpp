@@ -17,33 +17,38 @@ nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
 
+std::vector<std::string> with_episode_columns(std::vector<std::string> leading) {
+  for (const char* c : {"outcome", "captured", "capture_time_s", "episode_time_s", "final_distance_m", "pursuer_path_m",
+                        "evader_path_m", "collisions", "evader_pinned_fraction", "pursuer_pinned_fraction",
+                        "pursuer_return", "evader_return"}) {
+    leading.emplace_back(c);
+  }
+  return leading;
+}
+
+void add_episode_cells(CsvWriter::Row& row, const game::EpisodeResult& e) {
+  row.add(game::to_string(e.outcome))
+      .add(static_cast<int>(e.captured()))
+      .add(e.captured() ? e.duration : std::numeric_limits<double>::quiet_NaN())
+      .add(e.duration)
+      .add(e.final_distance)
+      .add(e.pursuer_path)
+      .add(e.evader_path)
+      .add(e.collisions)
+      .add(e.pinned_fraction(game::Role::kEvader))
+      .add(e.pinned_fraction(game::Role::kPursuer))
+      .add(e.pursuer_return)
+      .add(e.evader_return);
+}
+
 void write_runs_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), {"scenario", "algorithm", "repeat", "seed", "outcome", "captured", "capture_time_s",
-                               "episode_time_s", "final_distance_m", "pursuer_path_m", "evader_path_m", "collisions",
-                               "train_captures", "evader_pinned_fraction", "pursuer_pinned_fraction",
-                               "pursuer_return", "evader_return"});
+  CsvWriter csv(out.stream(), with_episode_columns({"scenario", "algorithm", "repeat", "seed", "train_captures"}));
   for (const RunRecord& r : runs) {
-    const game::EpisodeResult& e = r.evaluation;
-    csv.row()
-        .add(r.scenario)
-        .add(r.algorithm)
-        .add(r.repeat)
-        .add(r.seed)
-        .add(game::to_string(e.outcome))
-        .add(static_cast<int>(e.captured()))
-        .add(e.captured() ? e.duration : std::numeric_limits<double>::quiet_NaN())
-        .add(e.duration)
-        .add(e.final_distance)
-        .add(e.pursuer_path)
-        .add(e.evader_path)
-        .add(e.collisions)
-        .add(r.train_captures)
-        .add(e.pinned_fraction(game::Role::kEvader))
-        .add(e.pinned_fraction(game::Role::kPursuer))
-        .add(e.pursuer_return)
-        .add(e.evader_return)
-        .end();
+    auto row = csv.row();
+    row.add(r.scenario).add(r.algorithm).add(r.repeat).add(r.seed).add(r.train_captures);
+    add_episode_cells(row, r.evaluation);
+    row.end();
   }
   out.commit();
 }
@@ -51,27 +56,13 @@ void write_runs_csv(const std::filesystem::path& file, const std::vector<RunReco
 void write_learning_curves_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs,
                                const std::vector<std::vector<game::EpisodeResult>>& curves) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), {"scenario", "algorithm", "repeat", "episode", "outcome", "captured", "episode_time_s",
-                               "final_distance_m", "pursuer_path_m", "collisions", "evader_pinned_fraction",
-                               "pursuer_return", "evader_return"});
+  CsvWriter csv(out.stream(), with_episode_columns({"scenario", "algorithm", "repeat", "episode"}));
   for (std::size_t i = 0; i < runs.size(); ++i) {
     for (std::size_t k = 0; k < curves[i].size(); ++k) {
-      const game::EpisodeResult& e = curves[i][k];
-      csv.row()
-          .add(runs[i].scenario)
-          .add(runs[i].algorithm)
-          .add(runs[i].repeat)
-          .add(k)
-          .add(game::to_string(e.outcome))
-          .add(static_cast<int>(e.captured()))
-          .add(e.duration)
-          .add(e.final_distance)
-          .add(e.pursuer_path)
-          .add(e.collisions)
-          .add(e.pinned_fraction(game::Role::kEvader))
-          .add(e.pursuer_return)
-          .add(e.evader_return)
-          .end();
+      auto row = csv.row();
+      row.add(runs[i].scenario).add(runs[i].algorithm).add(runs[i].repeat).add(k);
+      add_episode_cells(row, curves[i][k]);
+      row.end();
     }
   }
   out.commit();

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/csv_writer.hpp"
 #include "game/episode.hpp"
 #include "game/policy.hpp"
 #include "world/arena.hpp"
@@ -24,6 +25,14 @@ struct RunRecord {
   game::EpisodeResult evaluation;
   int train_captures = 0;
 };
+
+/// The columns every per-episode CSV ends with (docs/results.md): outcome, captured, capture_time_s,
+/// episode_time_s, final_distance_m, pursuer_path_m, evader_path_m, collisions, evader_pinned_fraction,
+/// pursuer_pinned_fraction, pursuer_return, evader_return.
+std::vector<std::string> with_episode_columns(std::vector<std::string> leading);
+
+/// Appends one episode's cells, in the order of with_episode_columns().
+void add_episode_cells(CsvWriter::Row& row, const game::EpisodeResult& e);
 
 /// runs.csv: one row per record, in the given order.
 void write_runs_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs);

@@ -12,11 +12,11 @@ import shutil
 import subprocess
 import sys
 
-RUNS = ["scenario", "algorithm", "repeat", "seed", "outcome", "captured", "capture_time_s", "episode_time_s",
-        "final_distance_m", "pursuer_path_m", "evader_path_m", "collisions", "train_captures",
-        "evader_pinned_fraction", "pursuer_pinned_fraction", "pursuer_return", "evader_return"]
-CURVES = ["scenario", "algorithm", "repeat", "episode", "outcome", "captured", "episode_time_s", "final_distance_m",
-          "pursuer_path_m", "collisions", "evader_pinned_fraction", "pursuer_return", "evader_return"]
+EPISODE = ["outcome", "captured", "capture_time_s", "episode_time_s", "final_distance_m", "pursuer_path_m",
+           "evader_path_m", "collisions", "evader_pinned_fraction", "pursuer_pinned_fraction", "pursuer_return",
+           "evader_return"]
+RUNS = ["scenario", "algorithm", "repeat", "seed", "train_captures"] + EPISODE
+CURVES = ["scenario", "algorithm", "repeat", "episode"] + EPISODE
 TRAJ = ["t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "evader_z", "pursuer_alpha",
         "pursuer_theta", "evader_alpha", "evader_theta", "distance"] + [
             f"{a}_{c}" for a in ("pursuer", "evader") for c in (
