@@ -35,7 +35,6 @@ int main(int argc, char** argv) {
 
   return cli::guarded_main(app, argc, argv, [&] {
     const game::GameConfig config = experiment::apply_game_overrides(game::preset(config_name), o.sets);
-    for (const auto& p : s.pursuers) experiment::scripted_agent(config.pursuer, p);
     game::GameConfig check = config;
     for (const auto& p : s.pursuers) {
       check.pursuer.policy = p;

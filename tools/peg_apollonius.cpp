@@ -40,8 +40,8 @@ int main(int argc, char** argv) {
     ratios.insert(ratios.begin(), ve / vp);
 
     const nlohmann::json out = experiment::apollonius_to_json(p, e, vp, ve, ratios);
-    const Cone pc = pursuer_motion_cone(p, e, vp, ve);
-    const Cone ec = evader_motion_cone(p, e);
+    const double pursuer_half_angle = out["pursuer_cone"]["half_angle_rad"].get<double>();
+    const double evader_half_angle = out["evader_cone"]["half_angle_rad"].get<double>();
     if (json) {
       std::puts(out.dump(2).c_str());
       return 0;
@@ -58,9 +58,9 @@ int main(int argc, char** argv) {
                                       item["encloses"].get<std::string>())
                         : item["normal"].dump());
     }
-    fmt::print("pursuer cone: half-angle alpha2* = asin(vE/vP) = {:.6f} rad ({:.3f} deg) about P->E\n", pc.half_angle,
-               pc.half_angle * 180 / kPi);
-    fmt::print("evader space: alpha1 >= pi/2, a half-space about P->E (half-angle {:.6f} rad)\n", ec.half_angle);
+    fmt::print("pursuer cone: half-angle alpha2* = asin(vE/vP) = {:.6f} rad ({:.3f} deg) about P->E\n", pursuer_half_angle,
+               pursuer_half_angle * 180 / kPi);
+    fmt::print("evader space: alpha1 >= pi/2, a half-space about P->E (half-angle {:.6f} rad)\n", evader_half_angle);
     if (out.contains("interception_fleeing")) {
       const auto& x = out["interception_fleeing"];
       fmt::print("evader fleeing along P->E is intercepted at ({:.4f}, {:.4f}, {:.4f})\n", x[0].get<double>(),
