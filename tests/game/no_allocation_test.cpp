@@ -2,30 +2,12 @@
 // reward, learn) run without a single operator new once the game and its policies exist. This test program
 // replaces the global operator new with a counting one, so it is a target of its own.
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 #include <gtest/gtest.h>
 
+#include "../support/counting_new.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
 #include "world/map_spec.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-// The replacement new takes memory from malloc, so free() is the matching release.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace peg3d::game {
 namespace {
@@ -41,7 +23,7 @@ TEST(GameNoAllocation, TrainingAndEvaluationEpisodes) {
     game.play(scenarios[0], *p, *e, true, 0);  // warm-up: anything lazily created is created now
     std::vector<StepRecord> trace;
     trace.reserve(c.max_steps() + 1);
-    const long before = g_allocations.load();
+    const long before = testing::g_allocations.load();
     long steps = 0;
     for (std::uint64_t k = 0; k < 8; ++k) {
       steps += game.play(scenarios[k % scenarios.size()], *p, *e, true, derive_seed(3, {k})).steps;
@@ -49,7 +31,7 @@ TEST(GameNoAllocation, TrainingAndEvaluationEpisodes) {
     steps += game.play(scenarios[1], *p, *e, false, 4).steps;
     trace.clear();
     steps += game.play(scenarios[2], *p, *e, false, 5, &trace).steps;
-    EXPECT_EQ(g_allocations.load() - before, 0) << name << ": allocations over " << steps << " steps";
+    EXPECT_EQ(testing::g_allocations.load() - before, 0) << name << ": allocations over " << steps << " steps";
     EXPECT_GT(steps, 1000) << name;
   }
 }

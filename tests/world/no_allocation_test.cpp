@@ -10,11 +10,12 @@
 #include <LinearMath/btAlignedAllocator.h>
 #include <gtest/gtest.h>
 
+#include "../support/counting_new.hpp"
 #include "world/collision_world.hpp"
 #include "world_test_support.hpp"
 
 namespace {
-std::atomic<long> g_allocations{0};
+using peg3d::testing::g_allocations;
 
 void* counting_bullet_alloc(std::size_t n) {
   ++g_allocations;
@@ -22,18 +23,6 @@ void* counting_bullet_alloc(std::size_t n) {
 }
 void bullet_free(void* p) { std::free(p); }
 }  // namespace
-
-// The replacement new takes memory from malloc, so free() is the matching release; GCC cannot see that
-// once both are inlined into a std::allocator.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace peg3d::world {
 namespace {
