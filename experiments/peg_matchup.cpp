@@ -1,8 +1,12 @@
-// peg-matchup: every pursuer policy against every evader policy on a map, N seeds per scenario. The FACL
-// pair is trained per scenario and seed (or loaded with --pursuer-policy / --evader-policy).
+// peg-matchup: every pursuer policy against every evader policy on a map, N seeds per scenario, every agent of
+// a role playing the same policy (teams too: maps/pack.yaml). The FACL agents are trained per scenario and
+// seed (or loaded with --pursuer-policy / --evader-policy).
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "cli_common.hpp"
+#include "core/config_json.hpp"
 #include "experiment/matchup_experiment.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/progress_reporter.hpp"
@@ -16,57 +20,55 @@ int main(int argc, char** argv) {
   o.map = "maps/paper.yaml";
   o.out = "results/matchup";
   o.repeats = 10;
-  experiment::MatchupSettings s;
-  std::string config_name = "peg3d";
+  std::vector<std::string> pursuers{"facl", "pure-pursuit", "pn", "apollonius"};
+  std::vector<std::string> evaders{"facl", "flee", "flee-apollonius", "random"};
+  std::string config_source = "peg3d";
   std::filesystem::path pursuer_policy, evader_policy;
+  bool list_config = false;
   cli::add_sweep_options(app, o);
-  app.add_option("--config", config_name, "named configuration the agents start from (peg3d, paper, baseline)")
+  app.add_option("--config", config_source,
+                 "configuration the agents start from: a preset (peg3d, paper, baseline) or a JSON file")
       ->capture_default_str();
-  app.add_option("--pursuers", s.pursuers, "pursuer policies: facl, pure-pursuit, pn, apollonius, random")
+  app.add_option("--pursuers", pursuers, "pursuer policies: facl, pure-pursuit, pn, apollonius, random")
       ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--evaders", s.evaders, "evader policies: facl, flee, flee-apollonius, random")
+  app.add_option("--evaders", evaders, "evader policies: facl, flee, flee-apollonius, random")
       ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--pursuer-policy", pursuer_policy, "use this saved FACL pursuer instead of training one")
-      ->check(CLI::ExistingFile);
-  app.add_option("--evader-policy", evader_policy, "use this saved FACL evader instead of training one")
-      ->check(CLI::ExistingFile);
+  app.add_option("--pursuer-policy", pursuer_policy, "use this saved FACL pursuer instead of training one");
+  app.add_option("--evader-policy", evader_policy, "use this saved FACL evader instead of training one");
+  app.add_flag("--list-config", list_config, "print every configuration field and exit");
 
   return cli::guarded_main(app, argc, argv, [&] {
-    const game::GameConfig config = experiment::apply_game_overrides(game::preset(config_name), o.sets);
-    game::GameConfig check = config;
-    for (const auto& p : s.pursuers) {
-      check.pursuer.policy = p;
-      check.validate();
+    const game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), o.sets);
+    if (list_config) {
+      std::fputs(config::format_field_list(config::list_fields(config)).c_str(), stdout);
+      return 0;
     }
-    for (const auto& e : s.evaders) {
-      check.evader.policy = e;
-      check.validate();
-    }
-    if (!pursuer_policy.empty()) {
-      experiment::load_policy(pursuer_policy);  // fail early on a bad file
-      s.pursuer_policy = pursuer_policy;
-    }
-    if (!evader_policy.empty()) {
-      experiment::load_policy(evader_policy);
-      s.evader_policy = evader_policy;
-    }
+    experiment::MatchupSettings s;
+    s.pursuers.clear();
+    s.evaders.clear();
+    for (const auto& p : pursuers) s.pursuers.push_back(game::policy_named(p, game::Role::kPursuer, "--pursuers"));
+    for (const auto& e : evaders) s.evaders.push_back(game::policy_named(e, game::Role::kEvader, "--evaders"));
+    if (!pursuer_policy.empty()) s.pursuer_policy = experiment::load_policy(pursuer_policy, game::Role::kPursuer);
+    if (!evader_policy.empty()) s.evader_policy = experiment::load_policy(evader_policy, game::Role::kEvader);
     s.seed = o.seed;
     s.episodes = o.episodes;
     s.repeats = o.repeats;
     s.threads = o.threads;
     const auto arena = cli::load_arena(o.map, !o.no_cache);
-    for (const auto& sc : arena->map().scenarios) game::Game(arena, config).start(sc, 0);
+    // Every pairing's Sim checks the map's starts against its agents before any run.
+    const std::vector<game::Sim> sims = experiment::make_matchup_sims(arena, config, s);
     cli::prepare_output_dir(o.out);
 
     const std::size_t jobs = arena->map().scenarios.size() * o.repeats;
     experiment::ProgressReporter progress(jobs, jobs * (o.episodes + 1 + s.pursuers.size() * s.evaders.size()), stderr,
                                           o.plain_progress);
-    const auto records = experiment::run_matchups(arena, config, s, &progress);
+    const auto records = experiment::run_matchups(sims, s, &progress);
     progress.finish();
     const auto summary = experiment::summarize_matchups(records, s);
     experiment::write_matchups_csv(o.out / "matchups.csv", records);
+    experiment::write_matchup_agents_csv(o.out / "agents.csv", records);
     experiment::write_json(o.out / "summary.json", summary);
     std::fputs(experiment::matchup_table(summary).c_str(), stdout);
     std::printf("\nresults in %s\n", o.out.string().c_str());

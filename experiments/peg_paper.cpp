@@ -7,10 +7,10 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "core/config_json.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
-#include "game/episode.hpp"
 
 using namespace peg3d;
 
@@ -20,21 +20,25 @@ int main(int argc, char** argv) {
   o.map = "maps/paper.yaml";
   o.out = "results/paper";
   std::vector<std::string> algorithms{"peg3d", "baseline", "paper"};
-  bool plots = true;
+  bool plots = true, list_config = false;
   cli::add_sweep_options(app, o);
   app.add_option("--algorithms", algorithms, "algorithms to compare (peg3d, baseline, paper)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_flag("!--no-plots", plots, "skip the figures");
+  app.add_flag("--list-config", list_config, "print every configuration field of each algorithm and exit");
 
   return cli::guarded_main(app, argc, argv, [&] {
     const auto wall_start = std::chrono::steady_clock::now();
     const std::vector<experiment::Algorithm> algs = experiment::make_algorithms(algorithms, o.sets);
+    if (list_config) {
+      for (const auto& a : algs) fmt::print("# {}\n{}\n", a.name, config::format_field_list(config::list_fields(a.config)));
+      return 0;
+    }
     const auto arena = cli::load_arena(o.map, !o.no_cache);
     const auto& scenarios = arena->map().scenarios;
-    // Reject impossible starts (an agent inside an obstacle) before any work.
-    for (const auto& a : algs)
-      for (const auto& s : scenarios) game::Game(arena, a.config).start(s, 0);
+    // One Sim per algorithm; each checks every start against its agents' radii before any run.
+    const std::vector<game::Sim> sims = experiment::make_sims(arena, algs);
     cli::prepare_output_dir(o.out);
     const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -42,7 +46,7 @@ int main(int argc, char** argv) {
     const std::size_t runs = scenarios.size() * algs.size() * o.repeats;
     experiment::ProgressReporter progress(runs, runs * (o.episodes + 1), stderr, o.plain_progress);
     const auto run_start = std::chrono::steady_clock::now();
-    experiment::PaperResults results = experiment::run_paper_experiment(arena, algs, settings, &progress);
+    experiment::PaperResults results = experiment::run_paper_experiment(algs, sims, settings, &progress);
     progress.finish();
     const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
 
@@ -50,10 +54,10 @@ int main(int argc, char** argv) {
     std::vector<std::string> scenario_names, algorithm_names;
     for (const auto& s : scenarios) scenario_names.push_back(s.name);
     nlohmann::ordered_json config{{"map", cli::resolve_input(o.map).string()}, {"seed", o.seed}, {"episodes", o.episodes},
-                          {"repeats", o.repeats}, {"algorithms", nlohmann::ordered_json::object()}};
+                                  {"repeats", o.repeats}, {"algorithms", nlohmann::ordered_json::object()}};
     for (const auto& a : algs) {
       algorithm_names.push_back(a.name);
-      config["algorithms"][a.name] = nlohmann::ordered_json::parse(nlohmann::json(a.config).dump());
+      config["algorithms"][a.name] = nlohmann::ordered_json::parse(config::to_json(a.config).dump());
     }
     const double time_limit = algs.front().config.time_limit;
     const nlohmann::ordered_json summary = experiment::summarize(results.runs, scenario_names, algorithm_names, time_limit);
@@ -64,21 +68,21 @@ int main(int argc, char** argv) {
     experiment::write_learning_curves_csv(o.out / "learning_curves.csv", results.runs, results.curves);
     experiment::write_json(o.out / "summary.json", summary);
     for (const auto& [key, trace] : results.traces) {
-      experiment::write_trajectory_csv(o.out / "trajectories" / (key + ".csv"), trace);
+      experiment::write_trajectory_csv(experiment::output_file(o.out / "trajectories", key, ".csv"), trace);
     }
-    for (const auto& [key, policy] : results.policies) {
-      if (policy) experiment::save_policy(o.out / "policies" / (key + ".json"), *policy);
+    for (const auto& [key, model] : results.policies) {
+      experiment::save_policy(experiment::output_file(o.out / "policies", key, ".json"), *model);
     }
     experiment::write_json(o.out / "map.json", experiment::map_to_json(*arena));
     experiment::write_json(o.out / "apollonius.json",
                            experiment::apollonius_to_json({10, 10, 10}, {-10, -10, 10}, 1.1, 1.0, {0.5, 1.0, 2.0}));
     experiment::write_json(o.out / "timing.json", nlohmann::ordered_json{{"world_build_s", build_seconds},
-                                                   {"runs_s", run_seconds},
-                                                   {"runs", runs},
-                                                   {"steps", results.steps},
-                                                   {"steps_per_second", results.steps / run_seconds},
-                                                   {"threads", o.threads},
-                                                   {"world_cache", arena->stats().cache_status}});
+                                                                         {"runs_s", run_seconds},
+                                                                         {"runs", runs},
+                                                                         {"steps", results.steps},
+                                                                         {"steps_per_second", results.steps / run_seconds},
+                                                                         {"threads", o.threads},
+                                                                         {"world_cache", arena->stats().cache_status}});
     if (plots) cli::run_plot_script("plot_paper.py", o.out);
 
     std::fputs(experiment::summary_table(summary).c_str(), stdout);

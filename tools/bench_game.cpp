@@ -3,6 +3,7 @@
 //   BM_FaclActLearn/<structure>      one agent's act + TD update (0: paper joint 4-input, 1: peg3d per-angle)
 //   BM_TrainingSteps/<preset>        full co-learning steps of both agents (items/s = game steps per second
 //                                    on one core): 0 peg3d, 1 paper, 2 baseline
+//   BM_TeamTrainingSteps             the same for the 3 v 2 scenario of maps/pack.yaml (peg3d preset)
 // Run: build/bin/peg-bench-game [--benchmark_filter=...]
 
 #include <memory>
@@ -11,10 +12,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include "cli_common.hpp"
 #include "core/random.hpp"
 #include "fuzzy/rule_base.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
+#include "game/lineup.hpp"
 #include "world/arena.hpp"
 #include "world/map_spec.hpp"
 
@@ -62,7 +65,7 @@ void BM_FireDense(benchmark::State& state) {
 BENCHMARK(BM_FireDense);
 
 void BM_FaclActLearn(benchmark::State& state) {
-  game::AgentConfig c = game::agent_preset(state.range(0) == 0 ? "paper" : "peg3d", game::Role::kPursuer);
+  const game::AgentConfig c = game::agent_preset(state.range(0) == 0 ? "paper" : "peg3d", game::Role::kPursuer);
   game::FaclPolicy p(c, game::Role::kPursuer, 1);
   Rng rng(2);
   std::uniform_real_distribution<double> d(0, 35), a(-kPi, kPi);
@@ -84,23 +87,39 @@ void BM_FaclActLearn(benchmark::State& state) {
 }
 BENCHMARK(BM_FaclActLearn)->Arg(0)->Arg(1);
 
-void BM_TrainingSteps(benchmark::State& state) {
-  static const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/paper.yaml"));
-  const char* names[] = {"peg3d", "paper", "baseline"};
-  const game::GameConfig config = game::preset(names[state.range(0)]);
-  game::Game g(arena, config);
-  auto p = game::make_policy(config.pursuer, game::Role::kPursuer, 1);
-  auto e = game::make_policy(config.evader, game::Role::kEvader, 2);
-  long long steps = 0;
+// Training episodes of the scenarios of `map` in turn, as a trial plays them; items are game steps.
+void training_steps(benchmark::State& state, const char* map, const char* preset, int only_scenario) {
+  const auto arena = world::Arena::build(world::load_map(cli::data_dir() / map));
+  const game::GameConfig config = game::preset(preset);
+  const game::Sim sim(arena, config);
+  game::SimState st(sim);
+  const auto& scenarios = arena->map().scenarios;
+  long long steps = 0, agent_steps = 0;
   std::uint64_t episode = 0;
+  // One set of learners plays every scenario in turn (they all have the first scenario's team sizes).
+  const world::Scenario& first = scenarios[std::size_t(std::max(only_scenario, 0))];
+  game::Lineup lineup;
+  game::add_configured(lineup, config, game::Role::kPursuer, int(first.pursuers.size()), 1);
+  game::add_configured(lineup, config, game::Role::kEvader, int(first.evaders.size()), 2);
   for (auto _ : state) {
-    const auto& scenario = arena->map().scenarios[episode % arena->map().scenarios.size()];
-    steps += g.play(scenario, *p, *e, true, derive_seed(3, {episode++})).steps;
+    const std::size_t k = only_scenario >= 0 ? std::size_t(only_scenario) : episode % scenarios.size();
+    const long long before = steps;
+    steps += game::play(sim, st, scenarios[k], lineup.policies(), true, derive_seed(3, {episode++})).steps;
+    agent_steps += (steps - before) * scenarios[k].agents();
   }
   state.SetItemsProcessed(steps);
   state.counters["steps_per_episode"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
+  state.counters["agent_steps_per_s"] = benchmark::Counter(static_cast<double>(agent_steps), benchmark::Counter::kIsRate);
+}
+
+void BM_TrainingSteps(benchmark::State& state) {
+  const char* names[] = {"peg3d", "paper", "baseline"};
+  training_steps(state, "maps/paper.yaml", names[state.range(0)], -1);
 }
 BENCHMARK(BM_TrainingSteps)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+void BM_TeamTrainingSteps(benchmark::State& state) { training_steps(state, "maps/pack.yaml", "peg3d", 0); }
+BENCHMARK(BM_TeamTrainingSteps)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "cli_common.hpp"
 #include "core/random.hpp"
 #include "world/arena.hpp"
 #include "world/collision_world.hpp"
@@ -29,7 +30,7 @@ std::shared_ptr<const Arena> paper_arena(double resolution) {
   if (!a) {
     BuildOptions options;
     options.resolution_override = resolution;
-    a = Arena::build(load_map(PEG3D_SOURCE_DIR "/maps/paper.yaml"), options);
+    a = Arena::build(load_map(peg3d::cli::data_dir() / "maps/paper.yaml"), options);
   }
   return a;
 }
@@ -61,7 +62,7 @@ void BM_NearestObstacleAlongPath(benchmark::State& state) {
   Rng rng(3);
   std::normal_distribution<double> n;
   std::vector<Vec3> path(1 << 16);
-  Vec3 p = arena->map().scenarios.front().pursuer.position, dir = Vec3::UnitX();
+  Vec3 p = arena->map().scenarios.front().pursuers.front().position, dir = Vec3::UnitX();
   for (std::size_t i = 0; i < path.size(); ++i) {
     if (i % 20 == 0) dir = Vec3(n(rng), n(rng), n(rng)).normalized();
     p = inside.clamp(p + 0.11 * dir);
@@ -84,8 +85,8 @@ void BM_MoveTwoAgents(benchmark::State& state) {
   const Box inside = arena->bounds().shrunk(radius);
   const Scenario& s = arena->map().scenarios.front();
   const int agent[2] = {world.add_agent(radius), world.add_agent(radius)};
-  world.place_agent(agent[0], s.pursuer.position);
-  world.place_agent(agent[1], s.evader.position);
+  world.place_agent(agent[0], s.pursuers.front().position);
+  world.place_agent(agent[1], s.evaders.front().position);
   // Random walk: each agent keeps a direction for 20 steps, then takes the next from a table.
   Rng rng(7);
   std::normal_distribution<double> n;

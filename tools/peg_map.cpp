@@ -1,5 +1,6 @@
 // peg-map: inspect a map. Loads it, builds the world (octree, distance field; cached on disk) and reports.
-//   peg-map check MAP.yaml                       what the map holds, build time and memory
+//   peg-map check MAP.yaml                       what the map holds, build time and memory; checks every start
+//                                                against the agents of the default game configuration
 //   peg-map distance MAP.yaml X Y Z              distance to the nearest obstacle and its position
 //   peg-map export MAP.yaml --octree OUT.bt      the octree as an OctoMap .bt file (view with octovis)
 // Bad input prints "error: FILE:LINE: message" on stderr and exits with status 2, writing nothing.
@@ -16,6 +17,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "cli_common.hpp"
+#include "game/sim.hpp"
 #include "world/arena.hpp"
 #include "world/map_spec.hpp"
 
@@ -47,7 +50,7 @@ void add_common(CLI::App& cmd, Common& c) {
 }
 
 std::shared_ptr<const Arena> build(const Common& c) {
-  const peg3d::world::MapSpec spec = peg3d::world::load_map(c.map);
+  const peg3d::world::MapSpec spec = peg3d::world::load_map(peg3d::cli::resolve_input(c.map));
   BuildOptions options;
   options.resolution_override = c.resolution;
   if (!c.no_cache) options.cache_dir = c.cache_dir.empty() ? peg3d::world::default_cache_dir() : std::filesystem::path(c.cache_dir);
@@ -136,6 +139,10 @@ int main(int argc, char** argv) {
     const auto arena = build(common);
     if (check->parsed()) {
       print_check(*arena);
+      // Starts are points in a map; whether the agents' spheres fit there is the game's check (StartError).
+      const peg3d::game::Sim sim(arena, peg3d::game::preset("peg3d"));
+      fmt::print("starts     every agent of every scenario fits (radii {:g} m and {:g} m)\n",
+                 sim.config().pursuer.radius, sim.config().evader.radius);
     } else if (distance->parsed()) {
       const peg3d::Vec3 p(x, y, z);
       const auto n = arena->nearest_obstacle(p);
@@ -152,7 +159,7 @@ int main(int argc, char** argv) {
       fmt::print("wrote {} ({}, resolution {:g} m, {} occupied voxels)\n", octree_out,
                  mib(double(arena->stats().octree_bytes)), arena->resolution(), arena->stats().occupied_voxels);
     }
-  } catch (const MapError& e) {
+  } catch (const peg3d::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kBadInput;
   } catch (const std::exception& e) {

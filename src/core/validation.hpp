@@ -2,14 +2,16 @@
 // Parameter validation at the boundary. Every check throws InvalidParameter whose message names the
 // parameter and the offending value; inside hot loops use assertions instead.
 
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "core/error.hpp"
+
 namespace peg3d {
 
-/// Thrown when a configuration value is out of its valid range. what() names the parameter and value.
-class InvalidParameter : public std::invalid_argument {
+/// Thrown when a configuration value is out of its valid range. what() names the parameter and value; field()
+/// and parameter() are the parameter's dotted name.
+class InvalidParameter : public InputError {
  public:
   InvalidParameter(std::string_view name, std::string_view value, std::string_view requirement);
   const std::string& parameter() const noexcept { return name_; }

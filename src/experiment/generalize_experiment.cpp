@@ -1,11 +1,12 @@
 #include "experiment/generalize_experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "core/random.hpp"
-#include "experiment/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 #include "experiment/csv_writer.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/parallel_runner.hpp"
@@ -16,35 +17,55 @@
 
 namespace peg3d::experiment {
 
-std::vector<GeneralizeRecord> run_generalization(std::shared_ptr<const world::Arena> train,
-                                                 const std::vector<std::shared_ptr<const world::Arena>>& evals,
-                                                 const game::GameConfig& config, const GeneralizeSettings& s,
-                                                 ProgressReporter* progress,
-                                                 std::vector<std::pair<std::string, std::unique_ptr<game::Policy>>>* keep) {
-  const auto& scenarios = train->map().scenarios;
+std::vector<std::string> eval_map_names(const std::vector<std::shared_ptr<const world::Arena>>& arenas) {
+  std::vector<std::string> names;
+  for (const auto& a : arenas) {
+    std::string name = a->map().name.empty() ? a->map().source.stem().string() : a->map().name;
+    if (name.empty()) name = "map";
+    std::string unique = name;
+    for (int k = 2; std::find(names.begin(), names.end(), unique) != names.end(); ++k) unique = fmt::format("{}-{}", name, k);
+    names.push_back(unique);
+  }
+  return names;
+}
+
+std::vector<GeneralizeRecord> run_generalization(
+    const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s, ProgressReporter* progress,
+    std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep) {
+  const auto& scenarios = train.arena().map().scenarios;
   const std::size_t jobs = scenarios.size() * static_cast<std::size_t>(s.repeats);
   std::vector<std::vector<GeneralizeRecord>> per_job(jobs);
   std::vector<TrialResult> kept(scenarios.size());
   run_indexed(jobs, s.threads, [&](std::size_t i) {
     const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
     const std::uint64_t seed = run_seed(s.seed, sc, rep);
-    TrialResult t = run_trial(train, {&scenarios[sc], config, seed, s.episodes, false}, progress);
+    TrialResult t = run_trial(train, {&scenarios[std::size_t(sc)], seed, s.episodes, false}, progress);
     for (std::size_t m = 0; m < evals.size(); ++m) {
-      const auto& eval_scenarios = evals[m]->map().scenarios;
+      const game::Sim& sim = evals[m].sim;
+      game::SimState state(sim);
+      const auto& eval_scenarios = sim.arena().map().scenarios;
       for (std::size_t k = 0; k < eval_scenarios.size(); ++k) {
-        per_job[i].push_back({scenarios[sc].name, rep, evals[m]->map().name, eval_scenarios[k].name,
-                              evaluate(evals[m], config, eval_scenarios[k], *t.pursuer, *t.evader,
-                                       derive_seed(seed, {20, m, k}))});
+        const world::Scenario& es = eval_scenarios[k];
+        game::Lineup lineup;
+        game::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
+        game::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
+        per_job[i].push_back({scenarios[std::size_t(sc)].name, rep, evals[m].name, es.name,
+                              evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}))});
         if (progress) progress->episode_done();
       }
     }
-    if (rep == 0) kept[sc] = std::move(t);
+    if (rep == 0) kept[std::size_t(sc)] = std::move(t);
     if (progress) progress->run_done();
   });
   if (keep) {
     for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
-      keep->emplace_back(scenarios[sc].name + "_pursuer", std::move(kept[sc].pursuer));
-      keep->emplace_back(scenarios[sc].name + "_evader", std::move(kept[sc].evader));
+      for (const auto& [role, models] :
+           {std::pair{"pursuer", &kept[sc].pursuer_models}, std::pair{"evader", &kept[sc].evader_models}}) {
+        for (std::size_t m = 0; m < models->models.size(); ++m) {
+          keep->emplace_back(scenarios[sc].name + "_" + role + (m == 0 ? std::string() : std::to_string(m)),
+                             models->models[m]);
+        }
+      }
     }
   }
   std::vector<GeneralizeRecord> out;

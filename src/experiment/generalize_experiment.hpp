@@ -12,6 +12,8 @@
 
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
+#include "game/lineup.hpp"
+#include "game/sim.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
@@ -33,13 +35,23 @@ struct GeneralizeRecord {
   game::EpisodeResult result;
 };
 
-/// Trains per training scenario and repeat, evaluates on every scenario of every evaluation arena. The
-/// trained policies of repeat 0 are returned through `keep` as "<train_scenario>_{pursuer,evader}" when
-/// not null.
+/// An evaluation map: its Sim and the name results give it.
+struct EvalMap {
+  std::string name;  ///< the map's `name`, else its file's stem; unique among the evaluation maps
+  game::Sim sim;
+};
+
+/// The display names of evaluation maps: each map's `name`, else its file's stem, made unique by appending
+/// "-2", "-3", ... to repeats.
+std::vector<std::string> eval_map_names(const std::vector<std::shared_ptr<const world::Arena>>& arenas);
+
+/// Trains per training scenario and repeat on `train`, evaluates the frozen models greedily on every scenario
+/// of every evaluation map. The trained models of repeat 0 are returned through `keep` as
+/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...) when not null.
 std::vector<GeneralizeRecord> run_generalization(
-    std::shared_ptr<const world::Arena> train, const std::vector<std::shared_ptr<const world::Arena>>& evals,
-    const game::GameConfig& config, const GeneralizeSettings& settings, ProgressReporter* progress = nullptr,
-    std::vector<std::pair<std::string, std::unique_ptr<game::Policy>>>* keep = nullptr);
+    const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& settings,
+    ProgressReporter* progress = nullptr,
+    std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep = nullptr);
 
 void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records);
 

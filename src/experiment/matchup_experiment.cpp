@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.hpp"
 #include "core/random.hpp"
-#include "experiment/atomic_file.hpp"
 #include "experiment/csv_writer.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/parallel_runner.hpp"
@@ -13,63 +13,97 @@
 #include "experiment/result_files.hpp"
 #include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
-#include "game/facl_policy.hpp"
+#include "game/lineup.hpp"
 
 namespace peg3d::experiment {
 
-game::AgentConfig scripted_agent(const game::AgentConfig& base, const std::string& policy) {
+game::AgentConfig scripted_agent(const game::AgentConfig& base, game::PolicyKind policy) {
   game::AgentConfig a = base;
   a.policy = policy;
   a.motion_space = false;
   return a;
 }
 
-std::vector<MatchupRecord> run_matchups(std::shared_ptr<const world::Arena> arena, const game::GameConfig& config,
-                                        const MatchupSettings& s, ProgressReporter* progress) {
-  const auto& scenarios = arena->map().scenarios;
+game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,
+                                const MatchupSettings& s) {
+  game::GameConfig c = base;
+  const auto side = [](game::AgentConfig& role, std::vector<game::AgentConfig>& agents, game::PolicyKind kind,
+                       const std::shared_ptr<game::FaclModel>& loaded) {
+    if (kind != game::PolicyKind::kFacl) {
+      role = scripted_agent(role, kind);
+      for (auto& a : agents) a = scripted_agent(a, kind);
+    } else if (loaded) {
+      role = loaded->config();
+      agents.clear();
+    }
+  };
+  side(c.pursuer, c.pursuers, pursuer, s.pursuer_policy);
+  side(c.evader, c.evaders, evader, s.evader_policy);
+  return c;
+}
+
+std::vector<game::Sim> make_matchup_sims(const std::shared_ptr<const world::Arena>& arena, const game::GameConfig& base,
+                                         const MatchupSettings& s) {
+  std::vector<game::Sim> sims;
+  sims.reserve(1 + s.pursuers.size() * s.evaders.size());
+  sims.emplace_back(arena, base);
+  for (const auto p : s.pursuers)
+    for (const auto e : s.evaders) sims.emplace_back(arena, pairing_config(base, p, e, s));
+  return sims;
+}
+
+std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& s,
+                                        ProgressReporter* progress) {
+  const game::Sim& training = sims.front();
+  const auto& scenarios = training.arena().map().scenarios;
   const std::size_t n_p = s.pursuers.size(), n_e = s.evaders.size();
   const std::size_t jobs = scenarios.size() * static_cast<std::size_t>(s.repeats);
   std::vector<std::vector<MatchupRecord>> per_job(jobs);
   const bool need_facl = [&] {
-    for (const auto& p : s.pursuers) if (p == "facl" && !s.pursuer_policy) return true;
-    for (const auto& e : s.evaders) if (e == "facl" && !s.evader_policy) return true;
+    for (const auto p : s.pursuers)
+      if (p == game::PolicyKind::kFacl && !s.pursuer_policy) return true;
+    for (const auto e : s.evaders)
+      if (e == game::PolicyKind::kFacl && !s.evader_policy) return true;
     return false;
   }();
+  const auto loaded = [](const std::shared_ptr<game::FaclModel>& m) {
+    game::RoleModels r;
+    if (m) r.models = {m}, r.of_agent = {0};
+    return r;
+  };
   run_indexed(jobs, s.threads, [&](std::size_t i) {
     const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
+    const world::Scenario& scenario = scenarios[std::size_t(sc)];
     const std::uint64_t seed = run_seed(s.seed, sc, rep);
-    std::unique_ptr<game::Policy> facl_pursuer, facl_evader;
+    game::RoleModels facl_pursuers, facl_evaders;
     if (need_facl) {
-      TrialSpec spec{&scenarios[sc], config, seed, s.episodes, false};
-      TrialResult t = run_trial(arena, spec, progress);
-      facl_pursuer = std::move(t.pursuer);
-      facl_evader = std::move(t.evader);
+      TrialResult t = run_trial(training, {&scenario, seed, s.episodes, false}, progress);
+      facl_pursuers = std::move(t.pursuer_models);
+      facl_evaders = std::move(t.evader_models);
     }
-    if (s.pursuer_policy) facl_pursuer = load_policy(*s.pursuer_policy);
-    if (s.evader_policy) facl_evader = load_policy(*s.evader_policy);
+    if (s.pursuer_policy) facl_pursuers = loaded(s.pursuer_policy);
+    if (s.evader_policy) facl_evaders = loaded(s.evader_policy);
+    game::SimState state(training);
+    const int pursuers = static_cast<int>(scenario.pursuers.size()), evaders = static_cast<int>(scenario.evaders.size());
     for (std::size_t p = 0; p < n_p; ++p) {
       for (std::size_t e = 0; e < n_e; ++e) {
-        game::GameConfig c = config;
+        const game::Sim& sim = sims[1 + p * n_e + e];
         const std::uint64_t pseed = derive_seed(seed, {10, p, e});
-        std::unique_ptr<game::Policy> pursuer, evader;
-        game::Policy* pp = facl_pursuer.get();
-        game::Policy* ep = facl_evader.get();
-        if (s.pursuers[p] != "facl") {
-          c.pursuer = scripted_agent(config.pursuer, s.pursuers[p]);
-          pursuer = game::make_policy(c.pursuer, game::Role::kPursuer, pseed);
-          pp = pursuer.get();
-        } else if (s.pursuer_policy) {
-          c.pursuer = static_cast<const game::FaclPolicy*>(pp)->config();
+        game::Lineup lineup;
+        if (s.pursuers[p] == game::PolicyKind::kFacl) {
+          game::add_frozen(lineup, facl_pursuers, pursuers);
+        } else {
+          game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
         }
-        if (s.evaders[e] != "facl") {
-          c.evader = scripted_agent(config.evader, s.evaders[e]);
-          evader = game::make_policy(c.evader, game::Role::kEvader, derive_seed(pseed, {1}));
-          ep = evader.get();
-        } else if (s.evader_policy) {
-          c.evader = static_cast<const game::FaclPolicy*>(ep)->config();
+        if (s.evaders[e] == game::PolicyKind::kFacl) {
+          game::add_frozen(lineup, facl_evaders, evaders);
+        } else {
+          game::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
         }
-        per_job[i].push_back({scenarios[sc].name, rep, s.pursuers[p], s.evaders[e],
-                              evaluate(arena, c, scenarios[sc], *pp, *ep, derive_seed(pseed, {2}))});
+        MatchupRecord record{scenario.name, rep, game::to_string(s.pursuers[p]), game::to_string(s.evaders[e]), {}, {}};
+        record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}));
+        record.agents = game::agent_summaries(state);
+        per_job[i].push_back(std::move(record));
         if (progress) progress->episode_done();
       }
     }
@@ -92,30 +126,69 @@ void write_matchups_csv(const std::filesystem::path& file, const std::vector<Mat
   out.commit();
 }
 
+void write_matchup_agents_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records) {
+  AtomicFile out(file);
+  CsvWriter csv(out.stream(), {"scenario", "repeat", "pursuer", "evader", "role", "rank", "path_m", "return",
+                               "pinned_fraction", "collisions", "captures", "captured", "capture_time_s"});
+  for (const MatchupRecord& r : records) {
+    for (const game::AgentSummary& a : r.agents) {
+      const bool captured = a.captured_at >= 0.0;
+      csv.row()
+          .add(r.scenario)
+          .add(r.repeat)
+          .add(r.pursuer)
+          .add(r.evader)
+          .add(game::to_string(a.role))
+          .add(a.rank)
+          .add(a.path)
+          .add(a.total_reward)
+          .add(a.pinned_fraction)
+          .add(a.collisions)
+          .add(a.captures)
+          .add(static_cast<int>(captured))
+          .add(captured ? a.captured_at : std::numeric_limits<double>::quiet_NaN())
+          .end();
+    }
+  }
+  out.commit();
+}
+
 nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& records, const MatchupSettings& s) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   const auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
-  for (const auto& p : s.pursuers) {
-    for (const auto& e : s.evaders) {
-      std::size_t runs = 0, caps = 0, coll = 0;
-      std::vector<double> time, path, pinned;
+  const auto rate_json = [&](const ProportionInterval& r) {
+    return nlohmann::ordered_json{{"rate", num(r.rate)}, {"lo", r.lo}, {"hi", r.hi}};
+  };
+  for (const auto p : s.pursuers) {
+    for (const auto e : s.evaders) {
+      std::size_t runs = 0, caps = 0, coll = 0, evaders = 0, evaders_captured = 0;
+      std::vector<double> time, each, path, epath, pinned;
       for (const auto& r : records) {
-        if (r.pursuer != p || r.evader != e) continue;
+        if (r.pursuer != game::to_string(p) || r.evader != game::to_string(e)) continue;
         ++runs;
         caps += r.result.captured();
         coll += r.result.collisions > 0;
+        evaders += static_cast<std::size_t>(r.result.evaders);
+        evaders_captured += static_cast<std::size_t>(r.result.captures);
         if (r.result.captured()) time.push_back(r.result.duration);
+        for (const auto& a : r.agents)
+          if (a.captured_at >= 0.0) each.push_back(a.captured_at);
         path.push_back(r.result.pursuer_path);
+        epath.push_back(r.result.evader_path);
         pinned.push_back(r.result.pinned_fraction(game::Role::kEvader));
       }
-      const ProportionInterval rate = wilson_interval(caps, runs);
-      out.push_back({{"pursuer", p},
-                     {"evader", e},
+      out.push_back({{"pursuer", game::to_string(p)},
+                     {"evader", game::to_string(e)},
                      {"runs", runs},
                      {"captures", caps},
-                     {"capture_rate", {{"rate", num(rate.rate)}, {"lo", rate.lo}, {"hi", rate.hi}}},
+                     {"capture_rate", rate_json(wilson_interval(caps, runs))},
                      {"capture_time_s", num(mean_interval(time).mean)},
+                     {"evaders", evaders},
+                     {"evaders_captured", evaders_captured},
+                     {"evader_capture_rate", rate_json(wilson_interval(evaders_captured, evaders))},
+                     {"time_to_each_capture_s", num(mean_interval(each).mean)},
                      {"pursuer_path_m", num(mean_interval(path).mean)},
+                     {"evader_path_m", num(mean_interval(epath).mean)},
                      {"collision_runs", coll},
                      {"evader_pinned_fraction", num(mean_interval(pinned).mean)}});
     }
@@ -125,13 +198,16 @@ nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& reco
 
 std::string matchup_table(const nlohmann::ordered_json& summary) {
   const auto num = [](const nlohmann::ordered_json& j) { return j.is_number() ? j.get<double>() : std::nan(""); };
-  std::string s = fmt::format("{:<14} {:<16} {:>9} {:>20} {:>15} {:>16} {:>6} {:>14}\n", "pursuer", "evader",
-                              "captures", "rate [95% CI]", "capture t (s)", "pursuer path (m)", "coll.", "evader pinned");
+  std::string s = fmt::format("{:<14} {:<16} {:>9} {:>20} {:>13} {:>11} {:>12} {:>12} {:>6} {:>8}\n", "pursuer",
+                              "evader", "all caught", "rate [95% CI]", "evaders", "each t (s)", "last t (s)",
+                              "P path (m)", "coll.", "E pinned");
   for (const auto& r : summary) {
-    s += fmt::format("{:<14} {:<16} {:>4}/{:<4} {:>20} {:>15.1f} {:>16.1f} {:>6} {:>14.3f}\n", r["pursuer"].get<std::string>(),
-                     r["evader"].get<std::string>(), r["captures"].get<int>(), r["runs"].get<int>(),
+    s += fmt::format("{:<14} {:<16} {:>4}/{:<4} {:>20} {:>6}/{:<6} {:>11.1f} {:>12.1f} {:>12.1f} {:>6} {:>8.3f}\n",
+                     r["pursuer"].get<std::string>(), r["evader"].get<std::string>(), r["captures"].get<int>(),
+                     r["runs"].get<int>(),
                      fmt::format("{:.2f} [{:.2f}, {:.2f}]", num(r["capture_rate"]["rate"]), num(r["capture_rate"]["lo"]),
                                  num(r["capture_rate"]["hi"])),
+                     r["evaders_captured"].get<int>(), r["evaders"].get<int>(), num(r["time_to_each_capture_s"]),
                      num(r["capture_time_s"]), num(r["pursuer_path_m"]), r["collision_runs"].get<int>(),
                      num(r["evader_pinned_fraction"]));
   }

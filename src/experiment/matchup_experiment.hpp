@@ -1,19 +1,21 @@
 #pragma once
-// Matchups: every pursuer policy against every evader policy. The FACL agents are a co-trained pair (trained
-// per scenario and seed, or loaded from policy files); the scripted ones are the classic guidance laws and
-// evaders of game/scripted_policies.hpp. Each pairing plays one greedy episode per scenario and seed.
+// Matchups: every pursuer policy against every evader policy, with every agent of a role playing that
+// policy (teams of one policy each). The FACL agents are a co-trained set (trained per scenario and seed, or
+// loaded from policy files); the scripted ones are the classic guidance laws and evaders of
+// game/scripted_policies.hpp. Each pairing plays one greedy episode per scenario and seed.
 
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "game/episode.hpp"
+#include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
+#include "game/sim.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
@@ -21,34 +23,50 @@ namespace peg3d::experiment {
 class ProgressReporter;
 
 struct MatchupSettings {
-  std::vector<std::string> pursuers{"facl", "pure-pursuit", "pn", "apollonius"};
-  std::vector<std::string> evaders{"facl", "flee", "flee-apollonius", "random"};
+  std::vector<game::PolicyKind> pursuers{game::PolicyKind::kFacl, game::PolicyKind::kPurePursuit,
+                                         game::PolicyKind::kProportionalNavigation, game::PolicyKind::kApollonius};
+  std::vector<game::PolicyKind> evaders{game::PolicyKind::kFacl, game::PolicyKind::kFlee,
+                                        game::PolicyKind::kFleeApollonius, game::PolicyKind::kRandom};
   std::uint64_t seed = 1;
   int episodes = 200;  ///< FACL training episodes (ignored for a loaded policy)
   int repeats = 10;    ///< seeds per scenario
   int threads = 0;
-  std::optional<std::filesystem::path> pursuer_policy;  ///< a saved FACL pursuer instead of training
-  std::optional<std::filesystem::path> evader_policy;   ///< a saved FACL evader instead of training
+  std::shared_ptr<game::FaclModel> pursuer_policy;  ///< a saved FACL pursuer instead of training (every pursuer plays it)
+  std::shared_ptr<game::FaclModel> evader_policy;   ///< a saved FACL evader instead of training (every evader plays it)
 };
 
 struct MatchupRecord {
   std::string scenario;
   int repeat = 0;
-  std::string pursuer, evader;
+  std::string pursuer, evader;  ///< policy names
   game::EpisodeResult result;
+  std::vector<game::AgentSummary> agents;
 };
 
-/// The configuration a scripted policy plays with: the base agent's kinematics and guard, its own policy
-/// name, no motion space and no learning.
-game::AgentConfig scripted_agent(const game::AgentConfig& base, const std::string& policy);
+/// The configuration a scripted policy plays with: the base agent's kinematics and guard, its own policy,
+/// no motion space and no learning.
+game::AgentConfig scripted_agent(const game::AgentConfig& base, game::PolicyKind policy);
 
-std::vector<MatchupRecord> run_matchups(std::shared_ptr<const world::Arena> arena, const game::GameConfig& config,
-                                        const MatchupSettings& settings, ProgressReporter* progress = nullptr);
+/// The game configuration of one pairing: `base` with the pursuers' and evaders' policies replaced.
+game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,
+                                const MatchupSettings& settings);
 
+/// Every Sim the matchups need, built (and the map's scenarios checked) before any run: [0] trains, then
+/// one per pursuer x evader pairing, pursuer-major.
+std::vector<game::Sim> make_matchup_sims(const std::shared_ptr<const world::Arena>& arena, const game::GameConfig& base,
+                                         const MatchupSettings& settings);
+
+std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& settings,
+                                        ProgressReporter* progress = nullptr);
+
+/// matchups.csv: one row per game (scenario, repeat, pursuer, evader, then the episode columns).
 void write_matchups_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records);
+/// agents.csv: one row per agent per game (docs/results.md).
+void write_matchup_agents_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records);
 
-/// Per pursuer and evader: runs, captures with a Wilson interval, mean capture time (captured runs), mean
-/// pursuer path, collision runs, mean evader pinned fraction.
+/// Per pursuer and evader policy: games, games with every evader captured (Wilson interval), evaders captured
+/// (Wilson interval), mean time to each capture and to the last, mean paths, collision runs, evader pinned
+/// fraction.
 nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& records, const MatchupSettings& settings);
 std::string matchup_table(const nlohmann::ordered_json& summary);
 

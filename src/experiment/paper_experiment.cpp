@@ -1,12 +1,14 @@
 #include "experiment/paper_experiment.hpp"
 
 #include <cmath>
+#include <fstream>
 #include <set>
 
 #include <fmt/format.h>
 
+#include "core/config_json.hpp"
+#include "core/config_overrides.hpp"
 #include "core/random.hpp"
-#include "experiment/config_overrides.hpp"
 #include "experiment/parallel_runner.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/statistics.hpp"
@@ -25,50 +27,82 @@ double num_or_nan(const nlohmann::ordered_json& j) { return j.is_number() ? j.ge
 }  // namespace
 
 game::GameConfig apply_game_overrides(game::GameConfig config, const std::vector<std::string>& overrides) {
-  nlohmann::json j = config;
-  apply_overrides(j, overrides);
-  config = j.get<game::GameConfig>();
+  nlohmann::json j = config::to_json(config);
+  config::apply_overrides(j, overrides);
+  config::from_json(j, config);
   config.validate();
   return config;
+}
+
+game::GameConfig load_game_config(const std::string& source) {
+  for (const char* name : game::kPresetNames)
+    if (source == name) return game::preset(source);
+  const std::filesystem::path file(source);
+  if (file.extension() != ".json") {
+    throw InputError(fmt::format("--config {}: neither a preset (peg3d, paper, baseline) nor a .json file", source));
+  }
+  std::ifstream in(file);
+  if (!in) throw InputError(file, 0, "", "cannot open configuration file");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(file, 0, "", std::string("not JSON: ") + e.what());
+  }
+  game::GameConfig c = game::preset("peg3d");
+  config::from_json(j, c, {file, false});
+  try {
+    c.validate();
+  } catch (const InvalidParameter& e) {
+    throw InputError(InputError::Preformatted{}, format_input_error(file, 0, "", e.what()), file, 0, e.parameter());
+  }
+  return c;
 }
 
 std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, const std::vector<std::string>& overrides) {
   std::vector<Algorithm> out;
   std::set<std::string> seen;
   for (const std::string& n : names) {
-    if (!seen.insert(n).second) throw std::invalid_argument("algorithm '" + n + "' is listed twice");
+    if (!seen.insert(n).second) throw InputError("algorithm '" + n + "' is listed twice");
     out.push_back({n, game::preset(n)});
   }
   std::vector<nlohmann::json> configs;
-  for (const Algorithm& a : out) configs.emplace_back(a.config);
+  for (const Algorithm& a : out) configs.push_back(config::to_json(a.config));
   for (const std::string& o : overrides) {
     const std::size_t dot = o.find('.'), eq = o.find('=');
     const std::string head = o.substr(0, std::min(dot, eq));
     bool targeted = false;
     for (std::size_t i = 0; i < out.size(); ++i) {
       if (out[i].name == head && dot < eq) {
-        apply_override(configs[i], std::string_view(o).substr(dot + 1));
+        config::apply_override(configs[i], std::string_view(o).substr(dot + 1));
         targeted = true;
       }
     }
     if (!targeted) {
-      for (auto& c : configs) apply_override(c, o);
+      for (auto& c : configs) config::apply_override(c, o);
     }
   }
   for (std::size_t i = 0; i < out.size(); ++i) {
-    out[i].config = configs[i].get<game::GameConfig>();
+    config::from_json(configs[i], out[i].config);
     out[i].config.validate();
   }
   return out;
+}
+
+std::vector<game::Sim> make_sims(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms) {
+  std::vector<game::Sim> sims;
+  sims.reserve(algorithms.size());
+  for (const Algorithm& a : algorithms) sims.emplace_back(arena, a.config);
+  return sims;
 }
 
 std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat) {
   return derive_seed(root, {static_cast<std::uint64_t>(scenario), static_cast<std::uint64_t>(repeat)});
 }
 
-PaperResults run_paper_experiment(std::shared_ptr<const world::Arena> arena, const std::vector<Algorithm>& algorithms,
+PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
                                   const SweepSettings& s, ProgressReporter* progress) {
-  const auto& scenarios = arena->map().scenarios;
+  const auto& scenarios = sims.front().arena().map().scenarios;
   const std::size_t n_alg = algorithms.size(), n_rep = static_cast<std::size_t>(s.repeats);
   const std::size_t total = scenarios.size() * n_alg * n_rep;
   std::vector<TrialResult> trials(total);
@@ -76,14 +110,13 @@ PaperResults run_paper_experiment(std::shared_ptr<const world::Arena> arena, con
     const std::size_t sc = i / (n_alg * n_rep), alg = (i / n_rep) % n_alg, rep = i % n_rep;
     TrialSpec spec;
     spec.scenario = &scenarios[sc];
-    spec.config = algorithms[alg].config;
     spec.seed = run_seed(s.seed, static_cast<int>(sc), static_cast<int>(rep));
     spec.episodes = s.episodes;
     spec.keep_trace = static_cast<int>(rep) == s.trace_repeat;
-    trials[i] = run_trial(arena, spec, progress);
-    if (!spec.keep_trace) {  // only the traced repeat's policies are kept
-      trials[i].pursuer.reset();
-      trials[i].evader.reset();
+    trials[i] = run_trial(sims[alg], spec, progress);
+    if (!spec.keep_trace) {  // only the traced repeat's models are kept
+      trials[i].pursuer_models = {};
+      trials[i].evader_models = {};
     }
     if (progress) progress->run_done();
   });
@@ -101,8 +134,11 @@ PaperResults run_paper_experiment(std::shared_ptr<const world::Arena> arena, con
     if (static_cast<int>(rep) == s.trace_repeat) {
       const std::string key = rec.scenario + "_" + rec.algorithm;
       r.traces[key] = std::move(t.trace);
-      r.policies[key + "_pursuer"] = std::move(t.pursuer);
-      r.policies[key + "_evader"] = std::move(t.evader);
+      for (const auto& [role, models] : {std::pair{"pursuer", &t.pursuer_models}, std::pair{"evader", &t.evader_models}}) {
+        for (std::size_t m = 0; m < models->models.size(); ++m) {
+          r.policies[key + "_" + role + (m == 0 ? std::string() : std::to_string(m))] = models->models[m];
+        }
+      }
     }
     r.runs.push_back(std::move(rec));
     r.curves.push_back(std::move(t.training));

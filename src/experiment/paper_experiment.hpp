@@ -12,7 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/result_files.hpp"
+#include "game/episode.hpp"
+#include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
+#include "game/sim.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
@@ -31,8 +34,13 @@ struct Algorithm {
 /// key.
 std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, const std::vector<std::string>& overrides);
 
-/// Applies overrides to one configuration (no algorithm prefixes).
+/// Applies overrides to one configuration (no algorithm prefixes) and validates the result.
 game::GameConfig apply_game_overrides(game::GameConfig config, const std::vector<std::string>& overrides);
+
+/// The configuration named by `source`: a preset name (peg3d, paper, baseline) or a JSON file holding a
+/// GameConfig, read over the peg3d preset (fields it leaves out keep the preset's values; unknown keys and
+/// wrong types are errors naming the file and field).
+game::GameConfig load_game_config(const std::string& source);
 
 struct SweepSettings {
   std::uint64_t seed = 1;  ///< root seed
@@ -45,15 +53,20 @@ struct SweepSettings {
 struct PaperResults {
   std::vector<RunRecord> runs;                            ///< scenario-major, then algorithm, then repeat
   std::vector<std::vector<game::EpisodeResult>> curves;   ///< training episodes of each run
-  std::map<std::string, std::vector<game::StepRecord>> traces;       ///< "<scenario>_<algorithm>" -> steps
-  std::map<std::string, std::unique_ptr<game::Policy>> policies;     ///< "<scenario>_<algorithm>_<role>"
+  std::map<std::string, game::Trace> traces;              ///< "<scenario>_<algorithm>" -> steps
+  /// "<scenario>_<algorithm>_<role>" (a second model of a role: "<role>1", ...) -> trained model
+  std::map<std::string, std::shared_ptr<const game::FaclModel>> policies;
   long long steps = 0;                                     ///< simulated steps, training and evaluation
 };
 
 /// The seed of a scenario's repeat (shared by all algorithms).
 std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat);
 
-PaperResults run_paper_experiment(std::shared_ptr<const world::Arena> arena, const std::vector<Algorithm>& algorithms,
+/// One Sim per algorithm over `arena` (each checks the map's scenarios against its configuration).
+std::vector<game::Sim> make_sims(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms);
+
+/// Runs every scenario x algorithm x repeat; sims[k] plays algorithms[k].
+PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
                                   const SweepSettings& settings, ProgressReporter* progress = nullptr);
 
 /// summary.json (docs/results.md): per scenario and algorithm rates and means with 95% intervals, and paired

@@ -1,9 +1,13 @@
 #include "experiment/result_files.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
-#include "experiment/atomic_file.hpp"
+#include <fmt/format.h>
+
+#include "core/atomic_file.hpp"
 #include "experiment/csv_writer.hpp"
 #include "game/facl_policy.hpp"
 #include "game/policy_io.hpp"
@@ -68,41 +72,87 @@ void write_learning_curves_csv(const std::filesystem::path& file, const std::vec
   out.commit();
 }
 
-void write_trajectory_csv(const std::filesystem::path& file, const std::vector<game::StepRecord>& steps) {
-  std::vector<std::string> columns{"t",             "pursuer_x",     "pursuer_y",   "pursuer_z",   "evader_x",
-                                   "evader_y",      "evader_z",      "pursuer_alpha", "pursuer_theta", "evader_alpha",
-                                   "evader_theta",  "distance"};
-  for (const char* a : {"pursuer", "evader"}) {
+std::string agent_label(const game::Trace& trace, int i) {
+  const game::Role role = trace.roles[std::size_t(i)];
+  int rank = 0, count = 0;
+  for (int j = 0; j < trace.agents; ++j) {
+    if (trace.roles[std::size_t(j)] != role) continue;
+    if (j < i) ++rank;
+    ++count;
+  }
+  return count == 1 ? std::string(game::to_string(role)) : fmt::format("{}{}", game::to_string(role), rank);
+}
+
+void write_trajectory_csv(const std::filesystem::path& file, const game::Trace& trace) {
+  const int n = trace.agents;
+  std::vector<std::string> labels;
+  for (int i = 0; i < n; ++i) labels.push_back(agent_label(trace, i));
+  std::vector<std::string> columns{"t"};
+  for (const auto& l : labels)
+    for (const char* c : {"_x", "_y", "_z"}) columns.push_back(l + c);
+  for (const auto& l : labels)
+    for (const char* c : {"_alpha", "_theta"}) columns.push_back(l + c);
+  columns.emplace_back("distance");
+  for (const auto& l : labels) {
     for (const char* c : {"d_target", "target_az", "target_el", "d_obstacle", "obstacle_az", "obstacle_el", "d_alpha",
                           "d_theta", "reward", "pinned"}) {
-      columns.push_back(std::string(a) + "_" + c);
+      columns.push_back(l + "_" + c);
     }
   }
   AtomicFile out(file);
   CsvWriter csv(out.stream(), columns);
-  for (const game::StepRecord& s : steps) {
+  for (int k = 0; k < trace.frame_count(); ++k) {
     auto row = csv.row();
-    row.add(s.time);
-    for (const Vec3& p : {s.pursuer.position, s.evader.position}) row.add(p.x()).add(p.y()).add(p.z());
-    row.add(s.pursuer.heading.alpha).add(s.pursuer.heading.theta).add(s.evader.heading.alpha).add(s.evader.heading.theta);
-    row.add((s.pursuer.position - s.evader.position).norm());
-    const auto agent = [&](const game::Percept& q, const Steering& u, double reward) {
+    row.add(trace.times[std::size_t(k)]);
+    for (int i = 0; i < n; ++i) {
+      const Vec3& p = trace.at(k, i).state.position;
+      row.add(p.x()).add(p.y()).add(p.z());
+    }
+    for (int i = 0; i < n; ++i) row.add(trace.at(k, i).state.heading.alpha).add(trace.at(k, i).state.heading.theta);
+    // The smallest distance between a pursuer and an evader in the game.
+    double distance = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        if (trace.roles[std::size_t(i)] != game::Role::kPursuer || trace.roles[std::size_t(j)] != game::Role::kEvader ||
+            !trace.at(k, j).active) {
+          continue;
+        }
+        distance = std::min(distance, (trace.at(k, i).state.position - trace.at(k, j).state.position).norm());
+      }
+    }
+    row.add(std::isfinite(distance) ? distance : std::numeric_limits<double>::quiet_NaN());
+    for (int i = 0; i < n; ++i) {
+      const game::AgentFrame& f = trace.at(k, i);
+      const game::Percept& q = f.percept;
       row.add(q.target_distance)
           .add(q.target.azimuth)
           .add(q.target.elevation)
           .add(q.obstacle.distance)
           .add(q.to_obstacle.azimuth)
           .add(q.to_obstacle.elevation)
-          .add(u.d_alpha)
-          .add(u.d_theta)
-          .add(reward)
+          .add(f.command.d_alpha)
+          .add(f.command.d_theta)
+          .add(f.reward)
           .add(static_cast<int>(q.pinned));
-    };
-    agent(s.pursuer_percept, s.pursuer_steering, s.pursuer_reward);
-    agent(s.evader_percept, s.evader_steering, s.evader_reward);
+    }
     row.end();
   }
   out.commit();
+}
+
+std::filesystem::path output_file(const std::filesystem::path& folder, const std::string& name, const char* extension) {
+  // Scenario names are checked when the map is read (world::is_safe_name); this guards every other way a
+  // name can arrive (maps built in code), so no result is ever written outside `folder`.
+  bool ok = !name.empty() && name.size() <= 200 && name.front() != '.';
+  for (const char c : name) {
+    ok = ok && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.');
+  }
+  if (!ok) {
+    throw InputError(fmt::format("'{}' cannot name a result file in {}: names may use letters, digits, '-', '_' and "
+                                 "'.', not starting with '.'",
+                                 name, folder.string()));
+  }
+  return folder / (name + extension);
 }
 
 void write_json(const std::filesystem::path& file, const nlohmann::json& value) {
@@ -132,7 +182,13 @@ nlohmann::json map_to_json(const world::Arena& arena) {
   }
   j["scenarios"] = nlohmann::json::array();
   for (const auto& s : m.scenarios) {
-    j["scenarios"].push_back({{"name", s.name}, {"pursuer", vec(s.pursuer.position)}, {"evader", vec(s.evader.position)}});
+    nlohmann::json sc{{"name", s.name}, {"pursuers", nlohmann::json::array()}, {"evaders", nlohmann::json::array()}};
+    for (const auto& a : s.pursuers) sc["pursuers"].push_back(vec(a.position));
+    for (const auto& a : s.evaders) sc["evaders"].push_back(vec(a.position));
+    // The first of each role under the singular key, as plots of one-against-one games read it.
+    sc["pursuer"] = vec(s.pursuers.front().position);
+    sc["evader"] = vec(s.evaders.front().position);
+    j["scenarios"].push_back(std::move(sc));
   }
   return j;
 }
@@ -163,23 +219,20 @@ nlohmann::json apollonius_to_json(const Vec3& p, const Vec3& e, double vp, doubl
   return out;
 }
 
-bool save_policy(const std::filesystem::path& file, const game::Policy& policy) {
-  const auto* facl = dynamic_cast<const game::FaclPolicy*>(&policy);
-  if (facl == nullptr) return false;
-  write_json(file, game::policy_to_json(*facl));
-  return true;
+void save_policy(const std::filesystem::path& file, const game::FaclModel& model) {
+  write_json(file, game::policy_to_json(model));
 }
 
-std::unique_ptr<game::Policy> load_policy(const std::filesystem::path& file, std::uint64_t seed) {
+std::shared_ptr<game::FaclModel> load_policy(const std::filesystem::path& file, game::Role role) {
   std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot open policy file");
+  if (!in) throw game::PolicyFormatError(file, 0, "", "cannot open policy file");
+  nlohmann::json doc;
   try {
-    return game::policy_from_json(nlohmann::json::parse(in), seed);
+    doc = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(file.string() + ": not JSON: " + e.what());
-  } catch (const game::PolicyFormatError& e) {
-    throw std::runtime_error(file.string() + ": " + e.what());
+    throw game::PolicyFormatError(file, 0, "", std::string("not JSON: ") + e.what());
   }
+  return game::policy_from_json(doc, file, role);
 }
 
 }  // namespace peg3d::experiment

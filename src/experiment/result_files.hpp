@@ -11,7 +11,7 @@
 
 #include "experiment/csv_writer.hpp"
 #include "game/episode.hpp"
-#include "game/policy.hpp"
+#include "game/facl_policy.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
@@ -41,8 +41,16 @@ void write_runs_csv(const std::filesystem::path& file, const std::vector<RunReco
 void write_learning_curves_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs,
                                const std::vector<std::vector<game::EpisodeResult>>& curves);
 
-/// A trajectory file: every recorded step of one episode.
-void write_trajectory_csv(const std::filesystem::path& file, const std::vector<game::StepRecord>& steps);
+/// A trajectory file: every recorded instant of one episode. Agents are labelled by role ("pursuer",
+/// "evader") when their role has one agent, else by role and rank ("pursuer0", "pursuer1", ...).
+void write_trajectory_csv(const std::filesystem::path& file, const game::Trace& trace);
+
+/// The label of agent i of a trace in trajectory columns.
+std::string agent_label(const game::Trace& trace, int i);
+
+/// `folder / (name + extension)` for a name made of map-given parts (scenario names): throws InputError when
+/// the name could leave the folder or hide a file (see world::is_safe_name; '_' joins the parts).
+std::filesystem::path output_file(const std::filesystem::path& folder, const std::string& name, const char* extension);
 
 /// Pretty-printed JSON, atomically.
 void write_json(const std::filesystem::path& file, const nlohmann::json& value);
@@ -56,11 +64,11 @@ nlohmann::json map_to_json(const world::Arena& arena);
 nlohmann::json apollonius_to_json(const Vec3& pursuer, const Vec3& evader, double pursuer_speed, double evader_speed,
                                   const std::vector<double>& ratios);
 
-/// Saves a trained policy as a versioned JSON document; only FACL policies have something to save
-/// (returns false for the others).
-bool save_policy(const std::filesystem::path& file, const game::Policy& policy);
+/// Saves a trained FACL model as a versioned JSON document (game/policy_io.hpp).
+void save_policy(const std::filesystem::path& file, const game::FaclModel& model);
 
-/// Loads a policy document; errors name the file.
-std::unique_ptr<game::Policy> load_policy(const std::filesystem::path& file, std::uint64_t seed = 0);
+/// Loads a policy document for an agent of `role`. Throws game::PolicyFormatError (an InputError) naming the
+/// file when it cannot be read, is not JSON, does not fit, or was saved for the other role.
+std::shared_ptr<game::FaclModel> load_policy(const std::filesystem::path& file, game::Role role);
 
 }  // namespace peg3d::experiment

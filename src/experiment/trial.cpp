@@ -13,33 +13,38 @@ int TrialResult::train_captures() const {
   return n;
 }
 
-TrialResult run_trial(std::shared_ptr<const world::Arena> arena, const TrialSpec& spec, ProgressReporter* progress) {
+std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s) {
+  return derive_seed(trial_seed, {static_cast<std::uint64_t>(s)});
+}
+
+TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec, ProgressReporter* progress) {
   assert(spec.scenario != nullptr);
-  const auto stream = [&](TrialStream s) { return derive_seed(spec.seed, {static_cast<std::uint64_t>(s)}); };
+  const world::Scenario& scenario = *spec.scenario;
   TrialResult r;
-  r.pursuer = game::make_policy(spec.config.pursuer, game::Role::kPursuer, stream(TrialStream::kPursuer));
-  r.evader = game::make_policy(spec.config.evader, game::Role::kEvader, stream(TrialStream::kEvader));
-  game::Game game(arena, spec.config);
-  r.training.reserve(spec.episodes);
+  game::Lineup lineup;
+  game::add_configured(lineup, sim.config(), game::Role::kPursuer, static_cast<int>(scenario.pursuers.size()),
+                       stream_seed(spec.seed, TrialStream::kPursuer), &r.pursuer_models);
+  game::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(scenario.evaders.size()),
+                       stream_seed(spec.seed, TrialStream::kEvader), &r.evader_models);
+  game::SimState state(sim);
+  r.training.reserve(static_cast<std::size_t>(spec.episodes));
   for (int e = 0; e < spec.episodes; ++e) {
     const auto seed = derive_seed(spec.seed, {static_cast<std::uint64_t>(TrialStream::kTrainingEpisode),
                                               static_cast<std::uint64_t>(e)});
-    r.training.push_back(game.play(*spec.scenario, *r.pursuer, *r.evader, /*learning=*/true, seed));
+    r.training.push_back(game::play(sim, state, scenario, lineup.policies(), /*learning=*/true, seed));
     if (progress) progress->episode_done();
   }
-  if (spec.keep_trace) r.trace.reserve(spec.config.max_steps() + 1);
-  r.evaluation = game.play(*spec.scenario, *r.pursuer, *r.evader, /*learning=*/false, stream(TrialStream::kEvaluation),
-                           spec.keep_trace ? &r.trace : nullptr);
+  if (spec.keep_trace) r.trace.reserve(sim.max_steps(), scenario.agents());
+  r.evaluation = game::play(sim, state, scenario, lineup.policies(), /*learning=*/false,
+                            stream_seed(spec.seed, TrialStream::kEvaluation), spec.keep_trace ? &r.trace : nullptr);
   if (progress) progress->episode_done();
   return r;
 }
 
-game::EpisodeResult evaluate(std::shared_ptr<const world::Arena> arena, const game::GameConfig& config,
-                             const world::Scenario& scenario, game::Policy& pursuer, game::Policy& evader,
-                             std::uint64_t seed, std::vector<game::StepRecord>* trace) {
-  game::Game game(std::move(arena), config);
-  if (trace) trace->reserve(config.max_steps() + 1);
-  return game.play(scenario, pursuer, evader, /*learning=*/false, seed, trace);
+game::EpisodeResult evaluate(const game::Sim& sim, game::SimState& state, const world::Scenario& scenario,
+                             const game::Lineup& lineup, std::uint64_t seed, game::Trace* trace) {
+  if (trace) trace->reserve(sim.max_steps(), scenario.agents());
+  return game::play(sim, state, scenario, lineup.policies(), /*learning=*/false, seed, trace);
 }
 
 }  // namespace peg3d::experiment

@@ -7,14 +7,17 @@
 //   explore u'_j = u_j + N(0, sigma^2)
 //   actor   w_lj    += alpha_a delta ((u'_j - u_j) / sigma) Phi_l
 //   critic  zeta_l  += alpha_c delta Phi_l
-// The engine is explicit and owned: the same seed gives the same exploration noise.
+// FaclTables holds what is learned (shareable, const while acting); Exploration holds the noise engine of one
+// learning agent.
 
+#include <concepts>
 #include <cstdint>
 #include <random>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "core/config_fields.hpp"
 #include "core/random.hpp"
 #include "fuzzy/rule_base.hpp"
 
@@ -31,12 +34,30 @@ struct FaclConfig {
 
   /// Throws InvalidParameter naming the field, e.g. "facl.actor_rate" (prefix "facl").
   void validate(const std::string& prefix = "facl") const;
+  bool operator==(const FaclConfig&) const = default;
 };
 
-class FaclLearner {
+/// The fields of a FaclConfig (core/config_fields.hpp).
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, FaclConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.number("actor_rate", c.actor_rate, Range::open_closed(0, 1), "", "alpha_a, the actor's learning rate (paper 0.001)");
+  v.number("critic_rate", c.critic_rate, Range::open_closed(0, 1), "", "alpha_c, the critic's learning rate (paper 0.05)");
+  v.number("discount", c.discount, Range::closed_open(0, 1), "", "gamma, the TD discount (paper 0.95)");
+  v.number("exploration_variance", c.exploration_variance, Range::positive(), "rad^2",
+           "sigma^2 of the Gaussian exploration noise added to each output (paper 0.01)");
+  v.number("initial_actor", c.initial_actor, Range::any(), "rad", "initial consequent of every actor rule");
+  v.number("initial_critic", c.initial_critic, Range::any(), "", "initial consequent of every critic rule");
+}
+
+/// The learned part of FACL: the actor and critic consequents over one rule base. Acting and valuing are
+/// const and touch nothing else, so one trained set of tables can serve evaluations on any number of threads
+/// at once; update() is the only writer (training owns its tables alone).
+class FaclTables {
  public:
   /// actions >= 1 actor outputs. Throws InvalidParameter on a bad configuration.
-  FaclLearner(RuleBase rules, int actions, const FaclConfig& config, std::uint64_t seed);
+  FaclTables(RuleBase rules, int actions, const FaclConfig& config);
 
   const RuleBase& rules() const { return rules_; }
   const FaclConfig& config() const { return config_; }
@@ -47,8 +68,6 @@ class FaclLearner {
 
   /// Greedy action u = actor(x).
   void act(const FiredRules& fired, std::span<double> u) const;
-  /// Greedy action u and the explored action u' = u + N(0, sigma^2) per output.
-  void act_exploring(const FiredRules& fired, std::span<double> u, std::span<double> u_explored);
   /// Critic estimate V(x).
   double value(const FiredRules& fired) const { return ts_output(fired, critic_, 1, 0); }
 
@@ -64,9 +83,6 @@ class FaclLearner {
   std::span<double> critic_table() { return critic_; }
   std::span<const double> critic_table() const { return critic_; }
 
-  /// Restarts the exploration noise stream.
-  void reseed(std::uint64_t seed);
-
  private:
   RuleBase rules_;
   int actions_;
@@ -74,6 +90,21 @@ class FaclLearner {
   double sigma_;
   std::vector<double> actor_;
   std::vector<double> critic_;
+};
+
+/// Gaussian exploration noise N(0, sigma^2) from an owned, seeded engine: the same seed gives the same noise.
+/// It belongs to whoever explores (one per learning agent and output channel), never to the shared tables.
+class Exploration {
+ public:
+  Exploration(double variance, std::uint64_t seed);
+
+  /// Greedy action of `tables` and the explored action u' = u + N(0, sigma^2) per output.
+  void act(const FaclTables& tables, const FiredRules& fired, std::span<double> u, std::span<double> u_explored);
+  double sample() { return noise_(rng_); }
+  /// Restarts the noise stream.
+  void reseed(std::uint64_t seed);
+
+ private:
   Rng rng_;
   std::normal_distribution<double> noise_;
 };

@@ -1,105 +1,119 @@
 #pragma once
-// One pursuit-evasion episode in an Arena. The Arena is shared and read-only; everything an episode changes
-// lives in the Game (its CollisionWorld scratch) and the EpisodeState. Each step, at dt:
-//   both agents observe -> act -> steer (bounded) -> motion space -> move (clamped to the arena)
-//   -> swept collision check -> capture check -> observe again -> rewards -> learn.
+// Whole episodes played by policies: a thin loop over step() (game/sim.hpp). Every step each agent still in
+// the game acts on its view, step() moves the world, and, when learning, each agent's policy learns from its
+// reward and its next view. The episode's figures (EpisodeResult) and, on request, every step (Trace) are
+// read from the state and the step events; nothing here plays the game beside step().
 
 #include <cstdint>
-#include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
-#include "game/game_config.hpp"
-#include "game/percept.hpp"
 #include "game/policy.hpp"
-#include "world/arena.hpp"
-#include "world/collision_world.hpp"
+#include "game/sim.hpp"
 
 namespace peg3d::game {
 
-enum class Outcome {
-  kCapture,           ///< d_PE <= capture_distance at the end of a step
-  kTimeout,           ///< time_limit reached
-  kPursuerCollision,  ///< the pursuer hit an obstacle (CollisionMode::kTerminate)
-  kEvaderCollision,   ///< the evader hit an obstacle (CollisionMode::kTerminate)
-};
-const char* to_string(Outcome o);
-
-/// An agent touching an obstacle.
-struct CollisionEvent {
-  double time = 0.0;                      ///< s, time of impact within the episode
-  Role agent = Role::kPursuer;
-  world::ObstacleKind kind = world::ObstacleKind::kSphere;
-  int obstacle_id = -1;                   ///< index in the map's list of that kind
-  Vec3 point = Vec3::Zero();              ///< m, contact point
-  double fraction = 0.0;                  ///< time of impact as a fraction of the step, [0, 1]
-  double penetration = 0.0;               ///< m, overlap depth when already intersecting
-};
-
-/// The small changing state of an episode.
-struct EpisodeState {
-  KinematicState pursuer;
-  KinematicState evader;
-  double time = 0.0;  ///< s
-  int step = 0;
-};
-
+/// The figures of one episode. For several agents of a role, paths, returns and pinned fractions are means
+/// per agent of the role (with one of each they are that agent's), so results of different team sizes
+/// compare.
 struct EpisodeResult {
   Outcome outcome = Outcome::kTimeout;
   int steps = 0;
   double duration = 0.0;        ///< s
-  double final_distance = 0.0;  ///< m, d_PE at the end
-  double pursuer_path = 0.0;    ///< m travelled
-  double evader_path = 0.0;     ///< m travelled
-  int collisions = 0;           ///< collision events of both agents
+  double final_distance = 0.0;  ///< m, the smallest pursuer-evader distance at the end among evaders in the game during the last step
+  double pursuer_path = 0.0;    ///< m travelled, mean per pursuer
+  double evader_path = 0.0;     ///< m travelled, mean per evader
+  int collisions = 0;           ///< collision events of all agents
   std::optional<CollisionEvent> first_collision;
-  double pursuer_return = 0.0;  ///< undiscounted sum of rewards
-  double evader_return = 0.0;
-  int pursuer_pinned_steps = 0;  ///< steps ending with the centre within max(radius, 0.1 m) of a face
+  double pursuer_return = 0.0;  ///< undiscounted sum of rewards, mean per pursuer
+  double evader_return = 0.0;   ///< likewise per evader
+  int pursuer_pinned_steps = 0;  ///< agent-steps ending with a pursuer's centre within max(radius, 0.1 m) of a face
   int evader_pinned_steps = 0;
+  int pursuer_agent_steps = 0;   ///< agent-steps of pursuers in the game
+  int evader_agent_steps = 0;
+  int pursuers = 1;              ///< agents of each role
+  int evaders = 1;
+  int captures = 0;              ///< evaders captured
+  double capture_time_sum = 0.0;   ///< s, sum over captured evaders of their capture times
+  double last_capture_time = 0.0;  ///< s, time of the last capture (0 when none)
 
+  /// Every evader captured.
   bool captured() const { return outcome == Outcome::kCapture; }
+  /// Share of the role's agent-steps spent pinned against the arena's faces.
   double pinned_fraction(Role r) const {
-    return steps > 0 ? static_cast<double>(r == Role::kPursuer ? pursuer_pinned_steps : evader_pinned_steps) / steps : 0.0;
+    const int pinned = r == Role::kPursuer ? pursuer_pinned_steps : evader_pinned_steps;
+    const int steps = r == Role::kPursuer ? pursuer_agent_steps : evader_agent_steps;
+    return steps > 0 ? static_cast<double>(pinned) / steps : 0.0;
   }
+  /// Mean capture time over the captured evaders (s); NaN without capture.
+  double mean_capture_time() const;
 };
 
-/// One step as recorded for trajectory files (index 0 is the start, before any action).
-struct StepRecord {
-  double time = 0.0;
-  KinematicState pursuer, evader;
-  Percept pursuer_percept, evader_percept;
-  Steering pursuer_steering, evader_steering;  ///< what each policy requested for the step ending here
-  double pursuer_reward = 0.0, evader_reward = 0.0;
+/// The episode's figures, read from a state (normally a done one).
+EpisodeResult summarize(const SimState& state);
+
+/// One agent's figures over an episode.
+struct AgentSummary {
+  Role role = Role::kPursuer;
+  int rank = 0;                 ///< index among its role
+  double path = 0.0;            ///< m
+  double total_reward = 0.0;    ///< undiscounted return
+  int steps = 0;                ///< steps in the game
+  double pinned_fraction = 0.0; ///< share of its steps pinned against a face
+  int collisions = 0;
+  int captures = 0;             ///< evaders captured (pursuers)
+  double captured_at = -1.0;    ///< s, its capture time (evaders); < 0 when never captured
 };
 
-/// A pairing of two agents on an arena.
-class Game {
+/// Every agent's figures, in agent order.
+std::vector<AgentSummary> agent_summaries(const SimState& state);
+
+/// One agent at one instant of a recorded episode.
+struct AgentFrame {
+  KinematicState state;
+  Percept percept;
+  Steering command;     ///< what it was told to do in the step ending here (zero at the start)
+  double reward = 0.0;  ///< its reward for the step ending here
+  bool active = true;   ///< in the game at this instant
+};
+
+/// Every instant of one episode, for trajectory files, replays and viewers. Frame 0 is the start; frame k
+/// follows step k. reserve() makes recording allocation-free.
+struct Trace {
+  int agents = 0;
+  std::vector<Role> roles;                 ///< per agent
+  std::vector<double> times;               ///< s, per frame
+  std::vector<AgentFrame> frames;          ///< frame-major: frames[k * agents + i]
+  std::vector<CollisionEvent> collisions;  ///< every collision, in order
+  std::vector<CaptureEvent> captures;      ///< every capture, in order
+
+  void reserve(int max_steps, int agent_count);
+  void clear();
+  int frame_count() const { return static_cast<int>(times.size()); }
+  const AgentFrame& at(int frame, int agent) const { return frames[std::size_t(frame) * std::size_t(agents) + std::size_t(agent)]; }
+  /// Appends the state's current instant (after reset(): the start; after step(): with the step's events).
+  void record(const SimState& state, bool after_step);
+};
+
+/// Plays one episode of `scenario`. policies[i] drives agent i (pursuers first, then evaders, in the
+/// scenario's order); distinct agents need distinct policy objects (they may share a FACL model). With
+/// `learning`, policies explore and learn after every step. `trace`, when given, receives every instant
+/// (reserve it to keep the loop allocation-free).
+EpisodeResult play(const Sim& sim, SimState& state, const world::Scenario& scenario, std::span<Policy* const> policies,
+                   bool learning, std::uint64_t seed, Trace* trace = nullptr);
+
+/// A policy that replays fixed steering commands, one per step (then zero): a recorded trajectory or a
+/// scripted motion driving one agent through play() like any policy.
+class CommandScript final : public Policy {
  public:
-  /// Validates the configuration (throws InvalidParameter).
-  Game(std::shared_ptr<const world::Arena> arena, const GameConfig& config);
-
-  const GameConfig& config() const { return config_; }
-  const world::Arena& arena() const { return *arena_; }
-
-  /// The start of a scenario: its positions (kept radius inside the arena) and headings (the scenario's, or
-  /// the configured InitialHeading; kRandom draws from `seed`). Throws std::runtime_error when an agent
-  /// starts overlapping an obstacle.
-  EpisodeState start(const world::Scenario& scenario, std::uint64_t seed);
-
-  /// Plays one episode. With `learning`, policies explore and learn after every step. `trace`, when given,
-  /// receives every step (reserve max_steps() + 1 to keep the loop allocation-free).
-  EpisodeResult play(const world::Scenario& scenario, Policy& pursuer, Policy& evader, bool learning,
-                     std::uint64_t seed, std::vector<StepRecord>* trace = nullptr);
+  explicit CommandScript(std::vector<Steering> commands) : commands_(std::move(commands)) {}
+  void begin_episode(const AgentView&, bool) override { next_ = 0; }
+  Steering act(const AgentView&) override { return next_ < commands_.size() ? commands_[next_++] : Steering{}; }
 
  private:
-  AgentView view(Role role, const EpisodeState& s) const;
-  Heading next_heading(Role role, const EpisodeState& s, const AgentView& v, const Steering& u) const;
-
-  std::shared_ptr<const world::Arena> arena_;
-  GameConfig config_;
-  world::CollisionWorld collisions_;
-  int pursuer_body_ = -1, evader_body_ = -1;
+  std::vector<Steering> commands_;
+  std::size_t next_ = 0;
 };
 
 }  // namespace peg3d::game

@@ -1,6 +1,7 @@
 #include "game/facl_policy.hpp"
 
 #include <cassert>
+#include <stdexcept>
 
 #include "core/random.hpp"
 #include "geometry/angles.hpp"
@@ -29,7 +30,7 @@ Features features_of(const Percept& p) {
           p.obstacle.distance, p.to_obstacle.azimuth, p.to_obstacle.elevation};
 }
 
-FaclPolicy::FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed) : config_(config), role_(role) {
+FaclModel::FaclModel(const AgentConfig& config, Role role) : config_(config), role_(role) {
   struct Spec {
     std::vector<int> features;
     std::array<int, 2> outputs;
@@ -44,57 +45,81 @@ FaclPolicy::FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed)
     specs = {{{0, 1, 2, 3, 4, 5}, {0, 1}, 2}};
   }
   channels_.reserve(specs.size());
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    channels_.push_back(Channel{
-        fuzzy::FaclLearner(rule_base_of(specs[i].features, config.observation), specs[i].actions, config.facl,
-                           derive_seed(seed, {i})),
-        specs[i].features, specs[i].outputs, {}, 0, {}, {}});
+  for (const Spec& s : specs) {
+    channels_.push_back(
+        Channel{fuzzy::FaclTables(rule_base_of(s.features, config.observation), s.actions, config.facl), s.features,
+                s.outputs});
   }
 }
 
-void FaclPolicy::fire(Channel& c, const Features& f, fuzzy::FiredRules& out) const {
+void FaclModel::fire(int channel, const Features& f, fuzzy::FiredRules& out) const {
+  const Channel& c = channels_[std::size_t(channel)];
   std::array<double, kFeatureCount> x;
-  for (std::size_t i = 0; i < c.features.size(); ++i) x[i] = f[c.features[i]];
-  c.learner.fire({x.data(), c.features.size()}, out);
+  for (std::size_t i = 0; i < c.features.size(); ++i) x[i] = f[std::size_t(c.features[i])];
+  c.tables.fire({x.data(), c.features.size()}, out);
+}
+
+FaclPolicy::FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed)
+    : FaclPolicy(std::make_shared<FaclModel>(config, role), seed) {}
+
+FaclPolicy::FaclPolicy(std::shared_ptr<FaclModel> model, std::uint64_t seed) : model_(model), trainable_(model.get()) {
+  init_scratch(seed);
+}
+
+FaclPolicy::FaclPolicy(std::shared_ptr<const FaclModel> model) : model_(std::move(model)) { init_scratch(0); }
+
+void FaclPolicy::init_scratch(std::uint64_t seed) {
+  scratch_.resize(std::size_t(model_->channels()));
+  exploration_.reserve(std::size_t(model_->channels()));
+  for (int c = 0; c < model_->channels(); ++c) {
+    exploration_.emplace_back(model_->config().facl.exploration_variance, derive_seed(seed, {std::uint64_t(c)}));
+  }
 }
 
 void FaclPolicy::begin_episode(const AgentView&, bool learning) {
+  if (learning && trainable_ == nullptr) throw std::logic_error("a FaclPolicy over a frozen model cannot learn");
   learning_ = learning;
-  have_now_ = false;
+  have_fired_ = false;
 }
 
 Steering FaclPolicy::act(const AgentView& view) {
   double steering[2] = {0.0, 0.0};
-  const Features f = have_now_ ? Features{} : features_of(view.percept);
-  for (Channel& c : channels_) {
-    if (!have_now_) fire(c, f, c.now());
-    const int n = c.learner.actions();
+  const Features f = features_of(view.percept);
+  const bool reuse = have_fired_ && f == fired_features_;
+  for (int c = 0; c < model_->channels(); ++c) {
+    Scratch& s = scratch_[std::size_t(c)];
+    const fuzzy::FaclTables& tables = model_->tables(c);
+    if (!reuse) model_->fire(c, f, s.now());
+    const std::size_t n = std::size_t(tables.actions());
     if (learning_) {
-      c.learner.act_exploring(c.now(), {c.u.data(), std::size_t(n)}, {c.u_explored.data(), std::size_t(n)});
+      exploration_[std::size_t(c)].act(tables, s.now(), {s.u.data(), n}, {s.u_explored.data(), n});
     } else {
-      c.learner.act(c.now(), {c.u.data(), std::size_t(n)});
-      c.u_explored = c.u;
+      tables.act(s.now(), {s.u.data(), n});
+      s.u_explored = s.u;
     }
-    for (int j = 0; j < n; ++j) steering[c.outputs[j]] = c.u_explored[j];
+    for (std::size_t j = 0; j < n; ++j) steering[model_->outputs(c)[j]] = s.u_explored[j];
   }
-  have_now_ = false;
+  have_fired_ = false;
   return {steering[0], steering[1]};
 }
 
 void FaclPolicy::learn(double reward, const AgentView& next, bool terminal) {
-  assert(learning_);
+  assert(learning_ && trainable_ != nullptr);
   const Features f = features_of(next.percept);
-  for (Channel& c : channels_) {
-    const std::size_t n = c.learner.actions();
+  for (int c = 0; c < model_->channels(); ++c) {
+    Scratch& s = scratch_[std::size_t(c)];
+    fuzzy::FaclTables& tables = trainable_->tables(c);
+    const std::size_t n = std::size_t(tables.actions());
     if (terminal) {
-      c.learner.update(c.now(), {c.u.data(), n}, {c.u_explored.data(), n}, reward, nullptr);
+      tables.update(s.now(), {s.u.data(), n}, {s.u_explored.data(), n}, reward, nullptr);
     } else {
-      fire(c, f, c.next());
-      c.learner.update(c.now(), {c.u.data(), n}, {c.u_explored.data(), n}, reward, &c.next());
-      c.current = 1 - c.current;  // the successor's firing is the next act()'s current state
+      model_->fire(c, f, s.next());
+      tables.update(s.now(), {s.u.data(), n}, {s.u_explored.data(), n}, reward, &s.next());
+      s.current = 1 - s.current;  // the successor's firing is the next act()'s current state
     }
   }
-  have_now_ = !terminal;
+  fired_features_ = f;
+  have_fired_ = !terminal;
 }
 
 }  // namespace peg3d::game

@@ -1,6 +1,12 @@
 #pragma once
-// FACL as a policy: the agent's percept becomes fuzzy inputs, one or two FACL learners (fuzzy::FaclLearner)
-// produce the steering, and learn() applies the paper's TD updates.
+// FACL as a policy: the agent's percept becomes fuzzy inputs, one or two sets of FACL tables
+// (fuzzy::FaclTables) produce the steering, and learn() applies the paper's TD updates.
+//
+//   FaclModel    what an agent has learned: its configuration (which fixes the inputs and rule bases) and one
+//                set of tables per channel. Shareable: teammates that learn together share one model, and a
+//                trained model serves greedy evaluations on any number of threads at once.
+//   FaclPolicy   one agent driven by a model: its per-run scratch (the rules fired, the actions taken) and
+//                its exploration engines. act() depends only on its argument and the model's tables.
 //
 // Features (all clamped into their partitions):
 //   0 d_PE [0, target_range]   1 target azimuth error [-pi, pi]    2 target elevation error [-pi, pi]
@@ -11,6 +17,7 @@
 //   per-angle                  -> {0,1,3,4} -> d_alpha  and  {0,2,3,5} -> d_theta
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "fuzzy/facl_learner.hpp"
@@ -24,39 +31,72 @@ using Features = std::array<double, kFeatureCount>;
 /// The six features of a percept.
 Features features_of(const Percept& p);
 
+/// The learned part of a FACL agent. Acting reads it; only a learning FaclPolicy writes it.
+class FaclModel {
+ public:
+  /// Fresh tables (every consequent at its configured initial value) for `config`, which must select FACL.
+  /// Throws InvalidParameter on a configuration the rule bases cannot be built from.
+  FaclModel(const AgentConfig& config, Role role);
+
+  const AgentConfig& config() const { return config_; }
+  Role role() const { return role_; }
+  int channels() const { return static_cast<int>(channels_.size()); }
+  fuzzy::FaclTables& tables(int channel) { return channels_[std::size_t(channel)].tables; }
+  const fuzzy::FaclTables& tables(int channel) const { return channels_[std::size_t(channel)].tables; }
+  /// Which features feed a channel, and which steering component (0 d_alpha, 1 d_theta) each output drives.
+  const std::vector<int>& features(int channel) const { return channels_[std::size_t(channel)].features; }
+  const std::array<int, 2>& outputs(int channel) const { return channels_[std::size_t(channel)].outputs; }
+
+  /// Fires channel c's rule base at the features f.
+  void fire(int channel, const Features& f, fuzzy::FiredRules& out) const;
+
+ private:
+  struct Channel {
+    fuzzy::FaclTables tables;
+    std::vector<int> features;   ///< indices into Features
+    std::array<int, 2> outputs;  ///< steering component of each output: 0 d_alpha, 1 d_theta
+  };
+  AgentConfig config_;
+  Role role_;
+  std::vector<Channel> channels_;
+};
+
 class FaclPolicy final : public Policy {
  public:
+  /// A new model of its own for `config` (the one-agent-per-model case); `seed` seeds its exploration.
   FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed);
+  /// An agent driven by a shared model that it may train; `seed` seeds its own exploration.
+  FaclPolicy(std::shared_ptr<FaclModel> model, std::uint64_t seed);
+  /// An agent driven by a frozen model: greedy only (begin_episode with learning throws std::logic_error).
+  explicit FaclPolicy(std::shared_ptr<const FaclModel> model);
 
   void begin_episode(const AgentView& view, bool learning) override;
   Steering act(const AgentView& view) override;
   void learn(double reward, const AgentView& next, bool terminal) override;
 
-  const AgentConfig& config() const { return config_; }
-  Role role() const { return role_; }
-  int channels() const { return static_cast<int>(channels_.size()); }
-  fuzzy::FaclLearner& learner(int channel) { return channels_[channel].learner; }
-  const fuzzy::FaclLearner& learner(int channel) const { return channels_[channel].learner; }
+  const FaclModel& model() const { return *model_; }
+  /// The model, shareable with other agents or threads.
+  std::shared_ptr<const FaclModel> shared_model() const { return model_; }
 
  private:
-  struct Channel {
-    fuzzy::FaclLearner learner;
-    std::vector<int> features;   ///< indices into Features, fixed at construction
-    std::array<int, 2> outputs;  ///< steering component of each learner output: 0 d_alpha, 1 d_theta
+  struct Scratch {
     std::array<fuzzy::FiredRules, 2> fired;  ///< current and successor state; `current` says which is which
     int current = 0;
     std::array<double, 2> u{}, u_explored{};
-    fuzzy::FiredRules& now() { return fired[current]; }
-    fuzzy::FiredRules& next() { return fired[1 - current]; }
+    fuzzy::FiredRules& now() { return fired[std::size_t(current)]; }
+    fuzzy::FiredRules& next() { return fired[std::size_t(1 - current)]; }
   };
 
-  void fire(Channel& c, const Features& f, fuzzy::FiredRules& out) const;
+  void init_scratch(std::uint64_t seed);
 
-  AgentConfig config_;
-  Role role_;
-  std::vector<Channel> channels_;
+  std::shared_ptr<const FaclModel> model_;
+  FaclModel* trainable_ = nullptr;  ///< the same model when this policy may update it
+  std::vector<Scratch> scratch_;    ///< per channel
+  std::vector<fuzzy::Exploration> exploration_;  ///< per channel
   bool learning_ = false;
-  bool have_now_ = false;  ///< learn() already fired the current state into Channel::now
+  // learn() fires the successor state; act() on the same features reuses that firing instead of repeating it.
+  Features fired_features_{};
+  bool have_fired_ = false;
 };
 
 }  // namespace peg3d::game

@@ -1,61 +1,135 @@
 #pragma once
-// Configuration of one pursuit-evasion game: timing, termination, and per agent its kinematics, policy,
-// observation, reward and learner. Every field has a default, a unit and a valid range; validate() throws
-// InvalidParameter naming the dotted field. Named presets give the paper's configuration, peg3d's default
-// and the baseline (docs/paper-notes.md explains each difference).
+// Configuration of a pursuit-evasion game: timing, termination, teams, and per agent its kinematics, policy,
+// observation, reward and learner. Every struct lists its fields once, with unit, valid range and meaning,
+// in a visit_fields() table (core/config_fields.hpp) that drives validation, JSON in and out, `--set` and
+// `--list-config`. Named presets give the paper's configuration, peg3d's default and the baseline
+// (docs/paper-notes.md explains each difference).
 
+#include <concepts>
 #include <string>
+#include <type_traits>
+#include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
+#include "core/config_fields.hpp"
 #include "fuzzy/facl_learner.hpp"
 #include "geometry/kinematics.hpp"
 
 namespace peg3d::game {
 
 enum class Role { kPursuer, kEvader };
+const char* to_string(Role r);
+
+/// Who drives an agent when the game is played by policies (an external caller may instead pass its own
+/// steering commands to step()).
+enum class PolicyKind {
+  kFacl,                    ///< fuzzy actor-critic learning (both roles)
+  kPurePursuit,             ///< head straight at the opponent (pursuer)
+  kProportionalNavigation,  ///< 3D proportional navigation with gain pn_gain (pursuer)
+  kApollonius,              ///< aim at the Apollonius interception point (pursuer)
+  kFlee,                    ///< flee along the line of sight, repelled by walls and obstacles (evader)
+  kFleeApollonius,          ///< head for the far side of the evader's dominance region (evader)
+  kRandom,                  ///< random steering within the bound (both roles)
+};
+inline constexpr config::EnumNames<PolicyKind, 7> kPolicyNames{{{PolicyKind::kFacl, "facl"},
+                                                                {PolicyKind::kPurePursuit, "pure-pursuit"},
+                                                                {PolicyKind::kProportionalNavigation, "pn"},
+                                                                {PolicyKind::kApollonius, "apollonius"},
+                                                                {PolicyKind::kFlee, "flee"},
+                                                                {PolicyKind::kFleeApollonius, "flee-apollonius"},
+                                                                {PolicyKind::kRandom, "random"}}};
+const char* to_string(PolicyKind p);
+/// Whether a policy can play `role` (facl and random play both; guidance laws pursue; flee policies evade).
+bool plays(PolicyKind p, Role role);
+/// The policy called `name` for `role`; throws InvalidParameter naming `field` for an unknown name or one
+/// that does not play the role.
+PolicyKind policy_named(const std::string& name, Role role, const std::string& field);
 
 /// Which angle errors the observation carries.
 enum class AngleInputs {
   kAzimuth,           ///< paper: one signed azimuth error per direction (target, obstacle)
   kAzimuthElevation,  ///< a signed azimuth and a signed elevation error per direction
 };
+inline constexpr config::EnumNames<AngleInputs, 2> kAngleInputNames{
+    {{AngleInputs::kAzimuth, "azimuth"}, {AngleInputs::kAzimuthElevation, "azimuth-elevation"}}};
 
 /// The line the evader's target angle is measured from.
 enum class EvaderReference {
   kTowardPursuer,    ///< paper eq. (20): from E->P, so fleeing straight away reads +-pi (the wrap point)
   kAwayFromPursuer,  ///< from P->E, so fleeing straight away reads 0
 };
+inline constexpr config::EnumNames<EvaderReference, 2> kEvaderReferenceNames{
+    {{EvaderReference::kTowardPursuer, "toward-pursuer"}, {EvaderReference::kAwayFromPursuer, "away-from-pursuer"}}};
 
 /// How FACL turns observations into the two steering angles.
 enum class FaclStructure {
   kJoint,     ///< one actor-critic over all inputs with two outputs (the paper)
   kPerAngle,  ///< one actor-critic per steering angle, each over d_PE, its target error, d_O and its obstacle error
 };
+inline constexpr config::EnumNames<FaclStructure, 2> kFaclStructureNames{
+    {{FaclStructure::kJoint, "joint"}, {FaclStructure::kPerAngle, "per-angle"}}};
 
 enum class RewardKind {
   kPotentialField,  ///< paper eq. (15)-(18): w_r r_O + w_a r_PE + r_s
   kDistanceOnly,    ///< baseline: the normalised change of d_PE, (d(t) - d(t+1)) / ((vP + vE) dt)
 };
+inline constexpr config::EnumNames<RewardKind, 2> kRewardKindNames{
+    {{RewardKind::kPotentialField, "potential-field"}, {RewardKind::kDistanceOnly, "distance-only"}}};
 
 /// How the paper's "inverted" terms are read for the evader.
 enum class EvaderInversion {
   kNegate,  ///< r_E = -r_P term by term: 1 - exp(-beta dd), -gamma_s g (the repulsion form)
   kMirror,  ///< the sign of the argument flips: exp(beta dd) - 1, -gamma_s g
 };
+inline constexpr config::EnumNames<EvaderInversion, 2> kEvaderInversionNames{
+    {{EvaderInversion::kNegate, "negate"}, {EvaderInversion::kMirror, "mirror"}}};
 
 enum class CollisionMode {
   kTerminate,  ///< a collision ends the episode (no capture)
   kPenalize,   ///< the agent stops at the contact, receives the penalty, and the episode goes on
 };
+inline constexpr config::EnumNames<CollisionMode, 2> kCollisionModeNames{
+    {{CollisionMode::kTerminate, "terminate"}, {CollisionMode::kPenalize, "penalize"}}};
 
 /// Initial headings when the map's scenario gives none.
 enum class InitialHeading {
-  kChase,   ///< level; the pursuer faces the evader, the evader faces directly away
-  kFacing,  ///< level; each faces the other
-  kPlusX,   ///< level, both along +x
+  kChase,   ///< level; each pursuer faces its nearest evader, each evader faces directly away from its nearest pursuer
+  kFacing,  ///< level; each agent faces its nearest opponent
+  kPlusX,   ///< level, along +x
   kRandom,  ///< uniformly random directions (from the run's seed)
 };
+inline constexpr config::EnumNames<InitialHeading, 4> kInitialHeadingNames{{{InitialHeading::kChase, "chase"},
+                                                                            {InitialHeading::kFacing, "facing"},
+                                                                            {InitialHeading::kPlusX, "plus-x"},
+                                                                            {InitialHeading::kRandom, "random"}}};
+
+/// Which opponent an agent observes, is rewarded against and (with the motion space) steers relative to.
+enum class OpponentChoice {
+  kNearest,   ///< the nearest opponent still in the game (ties: the lower index)
+  kAssigned,  ///< opponent k mod n for the agent's index k among its role, while that one is in the game;
+              ///< the nearest one after
+};
+inline constexpr config::EnumNames<OpponentChoice, 2> kOpponentChoiceNames{
+    {{OpponentChoice::kNearest, "nearest"}, {OpponentChoice::kAssigned, "assigned"}}};
+
+/// Which pairs of agents collide with each other (spheres of their radii, swept over each step).
+enum class AgentCollisions {
+  kNone,       ///< agents pass through each other (the paper)
+  kOpponents,  ///< pursuers with evaders
+  kTeammates,  ///< pursuers with pursuers and evaders with evaders
+  kAll,        ///< every pair
+};
+inline constexpr config::EnumNames<AgentCollisions, 4> kAgentCollisionNames{{{AgentCollisions::kNone, "none"},
+                                                                            {AgentCollisions::kOpponents, "opponents"},
+                                                                            {AgentCollisions::kTeammates, "teammates"},
+                                                                            {AgentCollisions::kAll, "all"}}};
+
+/// Who receives the capture term r_s of a capture.
+enum class CaptureReward {
+  kIndividual,  ///< the capturing pursuer (+gamma_s) and the captured evader (-gamma_s)
+  kTeam,        ///< every pursuer (+gamma_s), and the captured evader and every evader still free (-gamma_s)
+};
+inline constexpr config::EnumNames<CaptureReward, 2> kCaptureRewardNames{
+    {{CaptureReward::kIndividual, "individual"}, {CaptureReward::kTeam, "team"}}};
 
 struct ObservationConfig {
   AngleInputs angles = AngleInputs::kAzimuthElevation;
@@ -63,7 +137,8 @@ struct ObservationConfig {
   bool boundary_is_obstacle = true;  ///< floor, ceiling and walls count in d_O, its direction and r_O
   double target_range = 35.0;        ///< m, d_PE partition [0, target_range], > 0 (paper 35)
   double obstacle_range = 5.0;       ///< m, d_O partition [0, obstacle_range], > 0 (paper 35)
-  int sets = 5;                      ///< triangular sets per input, >= 2 (paper 5)
+  int sets = 5;                      ///< triangular sets per input, in [2, 64] (paper 5)
+  bool operator==(const ObservationConfig&) const = default;
 };
 
 struct RewardConfig {
@@ -75,6 +150,7 @@ struct RewardConfig {
   double w_a = 10.0;      ///< attraction weight, >= 0 (paper 10)
   EvaderInversion inversion = EvaderInversion::kNegate;
   double collision_penalty = 0.0;  ///< subtracted from the colliding agent's reward, >= 0 (paper: none)
+  bool operator==(const RewardConfig&) const = default;
 };
 
 /// A safety layer on top of any policy: near an obstacle of the map (not the arena boundary), headings that
@@ -85,12 +161,12 @@ struct ObstacleGuard {
   bool enabled = true;
   double stop_distance = 0.8;  ///< m, > 0; covers radius + one step + the distance field's voxel error
   double warn_distance = 2.0;  ///< m, > stop_distance
+  bool operator==(const ObstacleGuard&) const = default;
 };
 
 /// One agent: who drives it and how it moves, senses, is rewarded and learns.
 struct AgentConfig {
-  /// facl | pure-pursuit | pn | apollonius | flee | flee-apollonius | random
-  std::string policy = "facl";
+  PolicyKind policy = PolicyKind::kFacl;
   double speed = 1.0;    ///< m/s; pursuer > 0, evader >= 0 (0: a motionless target); paper 1.1 and 1.0
   double radius = 0.25;  ///< m, collision sphere, > 0
   SteeringConfig steering;
@@ -101,6 +177,16 @@ struct AgentConfig {
   fuzzy::FaclConfig facl;
   FaclStructure structure = FaclStructure::kPerAngle;
   double pn_gain = 3.0;  ///< proportional-navigation constant N, > 0
+  bool operator==(const AgentConfig&) const = default;
+};
+
+/// How several pursuers and evaders play together (the paper's 1 v 1 is a team of one each).
+struct TeamConfig {
+  OpponentChoice pursuer_target = OpponentChoice::kNearest;  ///< the evader a pursuer plays against
+  OpponentChoice evader_threat = OpponentChoice::kNearest;   ///< the pursuer an evader plays against
+  AgentCollisions agent_collisions = AgentCollisions::kNone;
+  CaptureReward capture_reward = CaptureReward::kIndividual;
+  bool operator==(const TeamConfig&) const = default;
 };
 
 struct GameConfig {
@@ -109,26 +195,139 @@ struct GameConfig {
   double capture_distance = 1.0;  ///< m, d_s, > 0 (paper 1)
   CollisionMode collision = CollisionMode::kTerminate;
   InitialHeading initial_heading = InitialHeading::kChase;
-  AgentConfig pursuer;
-  AgentConfig evader;
+  AgentConfig pursuer;  ///< every pursuer without an entry in `pursuers`
+  AgentConfig evader;   ///< every evader without an entry in `evaders`
+  /// Per-agent settings: the k-th pursuer of a scenario plays pursuers[k] when the list has it. In a
+  /// configuration file an entry starts from `pursuer` and changes what it lists.
+  std::vector<AgentConfig> pursuers;
+  std::vector<AgentConfig> evaders;  ///< likewise for evaders, starting from `evader`
+  TeamConfig team;
 
   int max_steps() const;  ///< time_limit / dt, rounded
-  const AgentConfig& agent(Role r) const { return r == Role::kPursuer ? pursuer : evader; }
+  /// The configuration of the k-th agent (k >= 0) of a role.
+  const AgentConfig& agent(Role r, int k = 0) const {
+    const auto& list = r == Role::kPursuer ? pursuers : evaders;
+    return k < static_cast<int>(list.size()) ? list[static_cast<std::size_t>(k)] : (r == Role::kPursuer ? pursuer : evader);
+  }
+  /// Throws InvalidParameter naming the dotted field.
   void validate() const;
+  bool operator==(const GameConfig&) const = default;
 };
 
-/// Named configurations: "peg3d" (the default), "paper" (as faithful as the text allows) and "baseline"
-/// (FACL in the manner of Al-Mahbashi et al. 2020 for the pursuer). Throws std::invalid_argument for
-/// an unknown name.
+/// The preset names: "peg3d" (the default), "paper" (as faithful as the text allows) and "baseline" (FACL in
+/// the manner of Al-Mahbashi et al. 2020 for the pursuer).
+inline constexpr const char* kPresetNames[] = {"peg3d", "paper", "baseline"};
+/// A named configuration. Throws InvalidParameter for an unknown name.
 GameConfig preset(const std::string& name);
 /// The preset's settings for one agent (the pursuer's or the evader's side of that preset).
 AgentConfig agent_preset(const std::string& name, Role role);
 
-const char* to_string(Role r);
+// ---- Field tables (core/config_fields.hpp) ----
 
-void to_json(nlohmann::json& j, const GameConfig& c);
-void from_json(const nlohmann::json& j, GameConfig& c);
-void to_json(nlohmann::json& j, const AgentConfig& c);
-void from_json(const nlohmann::json& j, AgentConfig& c);
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, ObservationConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.choice("angles", c.angles, kAngleInputNames,
+           "angle errors observed: the azimuth only (the paper) or azimuth and elevation");
+  v.choice("evader_reference", c.evader_reference, kEvaderReferenceNames,
+           "line the evader's target angle is measured from (paper: toward-pursuer)");
+  v.flag("boundary_is_obstacle", c.boundary_is_obstacle,
+         "the arena's floor, ceiling and walls count as the nearest obstacle in d_O and r_O");
+  v.number("target_range", c.target_range, Range::positive(), "m", "d_PE is partitioned over [0, target_range] (paper 35)");
+  v.number("obstacle_range", c.obstacle_range, Range::positive(), "m",
+           "d_O is partitioned over [0, obstacle_range] (paper 35)");
+  v.integer("sets", c.sets, 2, 64, "", "triangular fuzzy sets per input (paper 5)");
+}
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, RewardConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.choice("kind", c.kind, kRewardKindNames, "the paper's potential-field reward or the baseline's distance change");
+  v.number("alpha_r", c.alpha_r, Range::non_negative(), "1/m", "repulsion coefficient of r_O, eq. 15 (paper 10)");
+  v.number("beta_a", c.beta_a, Range::non_negative(), "1/m", "attraction coefficient of r_PE, eq. 16 (paper 5)");
+  v.number("gamma_s", c.gamma_s, Range::non_negative(), "", "capture reward r_s, eq. 17 (paper 20)");
+  v.number("w_r", c.w_r, Range::non_negative(), "", "weight of r_O, eq. 18 (paper 5)");
+  v.number("w_a", c.w_a, Range::non_negative(), "", "weight of r_PE, eq. 18 (paper 10)");
+  v.choice("inversion", c.inversion, kEvaderInversionNames, "how the evader's terms invert the pursuer's");
+  v.number("collision_penalty", c.collision_penalty, Range::non_negative(), "",
+           "subtracted from the reward of an agent that hits an obstacle (paper: none)");
+}
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, ObstacleGuard>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.flag("enabled", c.enabled, "exclude headings that approach a nearby obstacle of the map");
+  v.number("stop_distance", c.stop_distance, Range::positive(), "m", "closer than this, no heading may approach it");
+  v.number("warn_distance", c.warn_distance, Range::positive(), "m",
+           "from here to stop_distance the excluded cone widens to a half-space");
+  v.require(c.warn_distance > c.stop_distance, "warn_distance", c.warn_distance, "must be > guard.stop_distance");
+}
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, AgentConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.choice("policy", c.policy, kPolicyNames, "who drives the agent");
+  v.number("speed", c.speed, Range::non_negative(), "m/s",
+           "constant speed; a pursuer's > 0, an evader may stand still (paper 1.1 and 1.0)");
+  v.number("radius", c.radius, Range::positive(), "m", "collision sphere (the paper gives none)");
+  v.section("steering", c.steering, "steering bound and climb limit");
+  v.flag("motion_space", c.motion_space, "keep the heading in the paper's optimal motion space (section 3.1)");
+  v.section("guard", c.guard, "the obstacle guard");
+  v.section("observation", c.observation, "FACL inputs");
+  v.section("reward", c.reward, "reward terms");
+  v.section("facl", c.facl, "FACL learning rates and exploration");
+  v.choice("structure", c.structure, kFaclStructureNames, "one joint learner (the paper) or one per steering angle");
+  v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
+  v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
+            "structure", "per-angle", "needs observation.angles = azimuth-elevation");
+}
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, TeamConfig>
+void visit_fields(V& v, C& c) {
+  v.choice("pursuer_target", c.pursuer_target, kOpponentChoiceNames, "the evader each pursuer plays against");
+  v.choice("evader_threat", c.evader_threat, kOpponentChoiceNames, "the pursuer each evader plays against");
+  v.choice("agent_collisions", c.agent_collisions, kAgentCollisionNames, "which pairs of agents collide");
+  v.choice("capture_reward", c.capture_reward, kCaptureRewardNames, "who receives the capture term r_s");
+}
+
+namespace detail {
+/// The role rules of one agent's settings (its policy plays the role; a pursuer moves).
+template <class V>
+void require_role(V& v, const AgentConfig& a, Role role, const std::string& prefix) {
+  v.require(plays(a.policy, role), prefix + ".policy", to_string(a.policy),
+            role == Role::kPursuer ? "is not a pursuer policy (facl, pure-pursuit, pn, apollonius, random)"
+                                   : "is not an evader policy (facl, flee, flee-apollonius, random)");
+  if (role == Role::kPursuer) v.require(a.speed > 0.0, prefix + ".speed", a.speed, "must be > 0 for a pursuer");
+}
+}  // namespace detail
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, GameConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.number("dt", c.dt, Range::positive(), "s", "sample time (paper 0.1)");
+  v.number("time_limit", c.time_limit, Range::positive(), "s", "episode limit (paper 100)");
+  v.number("capture_distance", c.capture_distance, Range::positive(), "m", "d_s: capture at d_PE <= d_s (paper 1)");
+  v.choice("collision", c.collision, kCollisionModeNames, "whether hitting an obstacle ends the episode");
+  v.choice("initial_heading", c.initial_heading, kInitialHeadingNames, "headings of starts that give none");
+  v.section("pursuer", c.pursuer, "every pursuer without its own entry in pursuers");
+  v.section("evader", c.evader, "every evader without its own entry in evaders");
+  v.sections("pursuers", c.pursuers, c.pursuer, "per-pursuer settings, by index in the scenario");
+  v.sections("evaders", c.evaders, c.evader, "per-evader settings, by index in the scenario");
+  v.section("team", c.team, "how teams play");
+  v.require(c.time_limit >= c.dt, "time_limit", c.time_limit, "must be >= dt");
+  v.require(c.time_limit / c.dt <= 1e8, "time_limit", c.time_limit, "must be at most 1e8 steps of dt");
+  detail::require_role(v, c.pursuer, Role::kPursuer, "pursuer");
+  detail::require_role(v, c.evader, Role::kEvader, "evader");
+  for (std::size_t k = 0; k < c.pursuers.size(); ++k)
+    detail::require_role(v, c.pursuers[k], Role::kPursuer, "pursuers." + std::to_string(k));
+  for (std::size_t k = 0; k < c.evaders.size(); ++k)
+    detail::require_role(v, c.evaders[k], Role::kEvader, "evaders." + std::to_string(k));
+}
 
 }  // namespace peg3d::game

@@ -15,8 +15,10 @@ namespace peg3d::game {
 /// Everything an agent may use to decide, at one instant.
 struct AgentView {
   Role role = Role::kPursuer;
+  int index = 0;             ///< the agent's index in the game (pursuers first, then evaders)
+  int opponent = -1;         ///< index of the opponent `other` describes
   KinematicState self;
-  KinematicState other;
+  KinematicState other;      ///< the opponent it plays against (game/sim.hpp, choose_opponent)
   double self_speed = 0.0;   ///< m/s
   double other_speed = 0.0;  ///< m/s
   double dt = 0.1;           ///< s

@@ -1,65 +1,114 @@
 #include "game/policy_io.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
+#include "core/config_json.hpp"
 #include "core/validation.hpp"
 
 namespace peg3d::game {
 
-nlohmann::json policy_to_json(const FaclPolicy& policy) {
+nlohmann::json policy_to_json(const FaclModel& model) {
   nlohmann::json doc{{"format", kPolicyFormat},
                      {"version", kPolicyVersion},
-                     {"role", to_string(policy.role())},
-                     {"config", policy.config()}};
+                     {"role", to_string(model.role())},
+                     {"config", config::to_json(model.config())}};
   doc["channels"] = nlohmann::json::array();
-  for (int c = 0; c < policy.channels(); ++c) {
-    const fuzzy::FaclLearner& l = policy.learner(c);
-    const auto actor = l.actor_table();
-    const auto critic = l.critic_table();
-    doc["channels"].push_back({{"rules", l.rules().rules()},
-                               {"actions", l.actions()},
+  for (int c = 0; c < model.channels(); ++c) {
+    const fuzzy::FaclTables& t = model.tables(c);
+    const auto actor = t.actor_table();
+    const auto critic = t.critic_table();
+    doc["channels"].push_back({{"rules", t.rules().rules()},
+                               {"actions", t.actions()},
                                {"actor", std::vector<double>(actor.begin(), actor.end())},
                                {"critic", std::vector<double>(critic.begin(), critic.end())}});
   }
   return doc;
 }
 
-std::unique_ptr<FaclPolicy> policy_from_json(const nlohmann::json& doc, std::uint64_t seed) {
-  try {
-    if (!doc.is_object() || doc.value("format", "") != kPolicyFormat) {
-      throw PolicyFormatError(fmt::format("not a peg3d policy (expected \"format\": \"{}\")", kPolicyFormat));
-    }
-    const int version = doc.at("version").get<int>();
-    if (version != kPolicyVersion) {
-      throw PolicyFormatError(fmt::format("policy version {} is not supported (this build reads {})", version, kPolicyVersion));
-    }
-    const std::string role_name = doc.at("role").get<std::string>();
-    if (role_name != "pursuer" && role_name != "evader") throw PolicyFormatError("role must be pursuer or evader");
-    const Role role = role_name == "pursuer" ? Role::kPursuer : Role::kEvader;
-    AgentConfig config = doc.at("config").get<AgentConfig>();
-    config.policy = "facl";
-    auto policy = std::make_unique<FaclPolicy>(config, role, seed);
-    const auto& channels = doc.at("channels");
-    if (!channels.is_array() || static_cast<int>(channels.size()) != policy->channels()) {
-      throw PolicyFormatError(fmt::format("expected {} channels for this configuration", policy->channels()));
-    }
-    for (int c = 0; c < policy->channels(); ++c) {
-      fuzzy::FaclLearner& l = policy->learner(c);
-      const auto actor = channels[c].at("actor").get<std::vector<double>>();
-      const auto critic = channels[c].at("critic").get<std::vector<double>>();
-      if (actor.size() != l.actor_table().size() || critic.size() != l.critic_table().size()) {
-        throw PolicyFormatError(fmt::format("channel {}: tables have {} and {} entries, expected {} and {}", c,
-                                            actor.size(), critic.size(), l.actor_table().size(), l.critic_table().size()));
-      }
-      std::copy(actor.begin(), actor.end(), l.actor_table().begin());
-      std::copy(critic.begin(), critic.end(), l.critic_table().begin());
-    }
-    return policy;
-  } catch (const nlohmann::json::exception& e) {
-    throw PolicyFormatError(std::string("malformed policy: ") + e.what());
-  } catch (const InvalidParameter& e) {
-    throw PolicyFormatError(std::string("invalid policy configuration: ") + e.what());
+namespace {
+
+const nlohmann::json& member(const nlohmann::json& j, const char* key, const std::filesystem::path& file,
+                             const std::string& field) {
+  const auto it = j.find(key);
+  if (it == j.end()) throw PolicyFormatError(file, 0, field, "missing");
+  return *it;
+}
+
+void read_table(const nlohmann::json& channel, const char* key, std::span<double> out, const std::filesystem::path& file,
+                const std::string& field) {
+  const nlohmann::json& j = member(channel, key, file, field);
+  if (!j.is_array()) throw PolicyFormatError(file, 0, field, "expects a list of numbers");
+  if (j.size() != out.size()) {
+    throw PolicyFormatError(file, 0, field,
+                            fmt::format("has {} entries, this configuration needs {}", j.size(), out.size()));
   }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (!j[i].is_number()) throw PolicyFormatError(file, 0, fmt::format("{}[{}]", field, i), "expects a number, got " + j[i].dump());
+    out[i] = j[i].get<double>();
+    if (!std::isfinite(out[i])) throw PolicyFormatError(file, 0, fmt::format("{}[{}]", field, i), "must be finite");
+  }
+}
+
+}  // namespace
+
+std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std::filesystem::path& file,
+                                            std::optional<Role> expected_role) {
+  if (!doc.is_object() || !doc.contains("format") || doc["format"] != kPolicyFormat) {
+    throw PolicyFormatError(file, 0, "format", fmt::format("not a peg3d policy (expected \"format\": \"{}\")", kPolicyFormat));
+  }
+  const nlohmann::json& version = member(doc, "version", file, "version");
+  if (!version.is_number_integer() || version.get<long long>() != kPolicyVersion) {
+    throw PolicyFormatError(file, 0, "version",
+                            fmt::format("policy version {} is not supported (this build reads {})", version.dump(), kPolicyVersion));
+  }
+  const nlohmann::json& role_node = member(doc, "role", file, "role");
+  if (role_node != "pursuer" && role_node != "evader") {
+    throw PolicyFormatError(file, 0, "role", "must be \"pursuer\" or \"evader\", got " + role_node.dump());
+  }
+  const Role role = role_node == "pursuer" ? Role::kPursuer : Role::kEvader;
+  if (expected_role && *expected_role != role) {
+    throw PolicyFormatError(file, 0, "role",
+                            fmt::format("this is a saved {} policy; it cannot play the {}", to_string(role),
+                                        to_string(*expected_role)));
+  }
+  // The configuration's own messages name its field; prefix the file and "config".
+  const auto config_error = [&](const InputError& e) {
+    return PolicyFormatError(InputError::Preformatted{}, format_input_error(file, 0, "config", e.what()), file, 0,
+                             "config." + e.field());
+  };
+  AgentConfig config;
+  std::shared_ptr<FaclModel> model;
+  try {
+    config::from_json(member(doc, "config", file, "config"), config, {{}, /*complete=*/true});
+    config::validate(config);
+    if (config.policy != PolicyKind::kFacl) throw InvalidParameter("policy", to_string(config.policy), "must be facl");
+    model = std::make_shared<FaclModel>(config, role);
+  } catch (const PolicyFormatError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw config_error(e);
+  }
+  const nlohmann::json& channels = member(doc, "channels", file, "channels");
+  if (!channels.is_array() || static_cast<int>(channels.size()) != model->channels()) {
+    throw PolicyFormatError(file, 0, "channels", fmt::format("expected a list of {} channels for this configuration", model->channels()));
+  }
+  for (int c = 0; c < model->channels(); ++c) {
+    fuzzy::FaclTables& t = model->tables(c);
+    const nlohmann::json& ch = channels[std::size_t(c)];
+    const std::string field = fmt::format("channels[{}]", c);
+    if (!ch.is_object()) throw PolicyFormatError(file, 0, field, "expects an object");
+    const nlohmann::json& rules = member(ch, "rules", file, field + ".rules");
+    const nlohmann::json& actions = member(ch, "actions", file, field + ".actions");
+    if (rules != t.rules().rules() || actions != t.actions()) {
+      throw PolicyFormatError(file, 0, field, fmt::format("has {} rules and {} actions, this configuration needs {} and {}",
+                                                          rules.dump(), actions.dump(), t.rules().rules(), t.actions()));
+    }
+    read_table(ch, "actor", t.actor_table(), file, field + ".actor");
+    read_table(ch, "critic", t.critic_table(), file, field + ".critic");
+  }
+  return model;
 }
 
 }  // namespace peg3d::game

@@ -1,17 +1,18 @@
 #pragma once
-// Trained FACL policies as versioned JSON documents: the agent's configuration (which fixes the rule bases)
-// and every learner's actor and critic consequents. Doubles are written with round-trip precision, so a
-// loaded policy acts exactly as the saved one.
+// Trained FACL models as versioned JSON documents: the agent's role and configuration (which fix the rule
+// bases) and every channel's actor and critic consequents. Doubles are written with round-trip precision,
+// so a loaded model acts exactly as the saved one.
 //
-//   {"format": "peg3d-policy", "version": 1, "role": "pursuer", "config": {...AgentConfig...},
+//   {"format": "peg3d-policy", "version": 1, "role": "pursuer", "config": {...AgentConfig, every field...},
 //    "channels": [{"rules": 625, "actions": 1, "actor": [...], "critic": [...]}, ...]}
 
+#include <filesystem>
 #include <memory>
-#include <stdexcept>
-#include <string>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
 #include "game/facl_policy.hpp"
 
 namespace peg3d::game {
@@ -19,16 +20,18 @@ namespace peg3d::game {
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
 inline constexpr int kPolicyVersion = 1;
 
-/// A policy document that cannot be read; what() says why (and the caller adds the file name).
-class PolicyFormatError : public std::runtime_error {
+/// A policy document that cannot be used: what() names the file and the field at fault.
+class PolicyFormatError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
-nlohmann::json policy_to_json(const FaclPolicy& policy);
+nlohmann::json policy_to_json(const FaclModel& model);
 
-/// Rebuilds a policy from its document; `seed` seeds its exploration noise should it keep learning.
-/// Throws PolicyFormatError on a wrong format, an unsupported version or tables that do not fit.
-std::unique_ptr<FaclPolicy> policy_from_json(const nlohmann::json& document, std::uint64_t seed = 0);
+/// Rebuilds a model from its document. Throws PolicyFormatError (naming `file`) on a wrong format, an
+/// unsupported version, a configuration with missing, unknown or invalid fields, tables of the wrong shape
+/// or with non-finite values, and, when `expected_role` is given, a policy saved for the other role.
+std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& document, const std::filesystem::path& file = {},
+                                            std::optional<Role> expected_role = std::nullopt);
 
 }  // namespace peg3d::game

@@ -20,7 +20,7 @@ RewardTerms reward(Role role, const RewardConfig& c, const RewardInputs& in, dou
     } else {
       t.target = std::exp(c.beta_a * dd_target) - 1.0;
     }
-    t.success = in.captured ? sign * c.gamma_s : 0.0;
+    t.success = in.captures > 0 ? sign * c.gamma_s * in.captures : 0.0;
     t.total = c.w_r * t.obstacle + c.w_a * t.target + t.success;
   }
   if (in.collided) t.total -= c.collision_penalty;

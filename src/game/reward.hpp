@@ -16,7 +16,7 @@ struct RewardInputs {
   double target_after = 0.0;     ///< d_PE(t+1), m
   double obstacle_before = 0.0;  ///< d_O(t), m (capped)
   double obstacle_after = 0.0;   ///< d_O(t+1), m (capped)
-  bool captured = false;         ///< g_s: capture happened in this step
+  int captures = 0;              ///< g_s: captures credited to this agent in this step (0 or 1 in a 1 v 1 game)
   bool collided = false;         ///< this agent hit an obstacle in this step
 };
 

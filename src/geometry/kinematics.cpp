@@ -6,14 +6,7 @@
 
 namespace peg3d {
 
-void SteeringConfig::validate(const std::string& prefix) const {
-  if (reading == SteeringReading::kPerStep) {
-    require_in_range(prefix + ".max_turn", max_turn, 0.0, kPi, /*lo_open=*/true);
-  } else {
-    require_positive(prefix + ".max_turn", max_turn);
-  }
-  require_in_range(prefix + ".polar_margin", polar_margin, 0.0, kPi / 2, false, /*hi_open=*/true);
-}
+void SteeringConfig::validate(const std::string& prefix) const { config::validate(*this, prefix + "."); }
 
 Heading steer(const Heading& h, const Steering& u, double bound, double polar_margin) {
   const double da = std::clamp(u.d_alpha, -bound, bound);
@@ -21,12 +14,16 @@ Heading steer(const Heading& h, const Steering& u, double bound, double polar_ma
   return {wrap_angle(h.alpha + da), std::clamp(h.theta + dt, polar_margin, kPi - polar_margin)};
 }
 
+KinematicState advance(const KinematicState& s, const Heading& h, double speed, double dt, const Box& bounds) {
+  KinematicState next;
+  next.heading = h;
+  next.position = bounds.clamp(s.position + (speed * dt) * direction(h));
+  return next;
+}
+
 KinematicState step(const KinematicState& s, const Steering& u, double speed, double dt, double bound,
                     const Box& bounds, double polar_margin) {
-  KinematicState next;
-  next.heading = steer(s.heading, u, bound, polar_margin);
-  next.position = bounds.clamp(s.position + (speed * dt) * direction(next.heading));
-  return next;
+  return advance(s, steer(s.heading, u, bound, polar_margin), speed, dt, bounds);
 }
 
 }  // namespace peg3d

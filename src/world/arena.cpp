@@ -8,8 +8,12 @@
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.hpp"
+#include "core/hash.hpp"
+
 #include "world/field_builder.hpp"
-#include "world/file_io.hpp"
+#include "world/map_rules.hpp"
+#include "world/obstacle_geometry.hpp"
 #include "world/voxel_grid.hpp"
 
 namespace peg3d::world {
@@ -24,6 +28,8 @@ const char* to_string(ObstacleKind kind) {
       return "mesh";
     case ObstacleKind::kBoundary:
       return "boundary";
+    case ObstacleKind::kAgent:
+      return "agent";
   }
   return "?";
 }
@@ -47,52 +53,6 @@ constexpr char kCacheMagic[8] = {'P', 'E', 'G', '3', 'D', 'W', 'L', 'D'};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/// Checks a spec that may have been written in code rather than loaded (load_map checks the same, with lines).
-void validate(const MapSpec& spec) {
-  auto fail = [&](const std::string& field, const std::string& message) -> void {
-    throw MapError(spec.source, 0, field, message);
-  };
-  const Box& b = spec.bounds;
-  if (!b.lo.allFinite() || !b.hi.allFinite() || !(b.lo.array() < b.hi.array()).all()) {
-    fail("arena", "the arena box must be finite and non-empty");
-  }
-  if (!std::isfinite(spec.resolution) || !(spec.resolution > 0.0)) {
-    fail("occupancy.resolution", fmt::format("must be > 0, got {}", spec.resolution));
-  }
-  if (!std::isfinite(spec.max_distance) || spec.max_distance < spec.resolution) {
-    fail("occupancy.max_distance", fmt::format("must be >= the resolution ({} m), got {}", spec.resolution, spec.max_distance));
-  }
-  if (b.size().minCoeff() < spec.resolution) {
-    fail("occupancy.resolution",
-         fmt::format("{} m is coarser than the arena's smallest side ({} m)", spec.resolution, b.size().minCoeff()));
-  }
-  const double extent = std::max(b.lo.cwiseAbs().maxCoeff(), b.hi.cwiseAbs().maxCoeff());
-  if (extent / spec.resolution > 32000.0) {
-    fail("occupancy.resolution", fmt::format("{} m is too fine for an arena reaching {} m from the origin (OctoMap "
-                                             "allows 32000 voxels)",
-                                             spec.resolution, extent));
-  }
-  for (std::size_t i = 0; i < spec.spheres.size(); ++i) {
-    const SphereObstacle& s = spec.spheres[i];
-    if (!s.center.allFinite() || !std::isfinite(s.radius) || !(s.radius > 0.0)) {
-      fail(fmt::format("spheres[{}]", i), "needs a finite centre and a radius > 0");
-    }
-  }
-  for (std::size_t i = 0; i < spec.cylinders.size(); ++i) {
-    const CylinderObstacle& c = spec.cylinders[i];
-    if (!c.base.allFinite() || !std::isfinite(c.radius) || !(c.radius > 0.0) || !std::isfinite(c.height) ||
-        !(c.height > 0.0)) {
-      fail(fmt::format("cylinders[{}]", i), "needs a finite base, a radius > 0 and a height > 0");
-    }
-  }
-  for (std::size_t i = 0; i < spec.meshes.size(); ++i) {
-    const TerrainMesh& m = spec.meshes[i];
-    if (!std::isfinite(m.scale) || !(m.scale > 0.0) || !m.rotation_deg.allFinite() || !m.translation.allFinite()) {
-      throw MapError(spec.source, m.line, fmt::format("terrain[{}]", i), "needs a scale > 0 and a finite placement");
-    }
-  }
 }
 
 /// Hash of everything the octree and the field depend on: the arena, resolution, cap, boundary faces, every
@@ -211,6 +171,7 @@ void write_cache(const std::filesystem::path& file, std::uint64_t key, const Dis
                  const std::string& octree_bt, std::size_t occupied) {
   const CacheHeader h = make_header(key, field.grid(), field.max_distance(), occupied, octree_bt.size());
   const auto& cells = field.cells();
+  std::filesystem::create_directories(file.parent_path());
   write_file_atomically(file, {std::string_view(reinterpret_cast<const char*>(&h), sizeof(h)), octree_bt,
                                std::string_view(reinterpret_cast<const char*>(cells.data()),
                                                 cells.size() * sizeof(cells[0]))});
@@ -224,7 +185,7 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
   arena->spec_ = spec_in;
   MapSpec& spec = arena->spec_;
   if (options.resolution_override) spec.resolution = *options.resolution_override;
-  validate(spec);
+  validate_map(spec);
 
   ArenaStats& st = arena->stats_;
   st.resolution = spec.resolution;
@@ -233,7 +194,8 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
   st.meshes = spec.meshes.size();
   for (std::size_t i = 0; i < spec.meshes.size(); ++i) {
     try {
-      arena->meshes_.push_back(load_terrain_mesh(spec.meshes[i]));
+      arena->meshes_.push_back(spec.meshes[i].imported ? *spec.meshes[i].imported : load_terrain_mesh(spec.meshes[i]));
+      spec.meshes[i].imported.reset();  // the Arena keeps one copy of the triangles
     } catch (const MeshError& e) {
       throw MapError(spec.source, spec.meshes[i].line, fmt::format("terrain[{}].file", i), e.what());
     }
@@ -299,6 +261,17 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
   return arena;
 }
 
-void Arena::save_octree(const std::filesystem::path& bt_file) const { write_file_atomically(bt_file, {octree_bt_}); }
+bool Arena::below_solid_terrain(const Vec3& p) const {
+  for (std::size_t i = 0; i < meshes_.size(); ++i) {
+    if (spec_.meshes[i].solid_below && is_below_surface(meshes_[i], p)) return true;
+  }
+  return false;
+}
+
+void Arena::save_octree(const std::filesystem::path& bt_file) const {
+  std::error_code ignored;  // a folder that cannot be made shows up as the writer's error, naming the file
+  if (bt_file.has_parent_path()) std::filesystem::create_directories(bt_file.parent_path(), ignored);
+  write_file_atomically(bt_file, {std::string_view(octree_bt_)});
+}
 
 }  // namespace peg3d::world

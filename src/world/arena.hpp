@@ -20,8 +20,9 @@
 namespace peg3d::world {
 
 /// What an obstacle is; kBoundary is a face of the arena box (octree and distance field only, never a
-/// collision: the game keeps agents inside the box).
-enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary };
+/// collision: the game keeps agents inside the box); kAgent is another agent (when the game lets agents
+/// collide).
+enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary, kAgent };
 
 /// Name of a kind: "sphere", "cylinder", "mesh", "boundary".
 const char* to_string(ObstacleKind kind);
@@ -84,6 +85,10 @@ class Arena {
   /// A distance (m, may be < 0) that no point of a sphere, cylinder or mesh is nearer to p than, wherever it
   /// lies; arena faces are left out (they are not collisions). The collision early-out rests on it.
   double clearance_lower_bound(const Vec3& p) const { return field_.clearance_lower_bound(p); }
+
+  /// True when p lies under a terrain mesh marked solid_below (exact: a vertical ray through its triangles).
+  /// Bullet sees only a terrain's surface, so this is how a start buried under a height field is caught.
+  bool below_solid_terrain(const Vec3& p) const;
 
   /// Writes the octree as an OctoMap .bt file (view it with octovis). Written to a temporary file then
   /// renamed, so a crash never leaves half a file. Throws std::runtime_error if it cannot be written.

@@ -229,6 +229,15 @@ int CollisionWorld::add_agent(double radius) {
   return id;
 }
 
+void CollisionWorld::set_agent_radius(int agent, double radius) {
+  assert(agent >= 0 && agent < agent_count());
+  require_positive("agent radius", radius);
+  auto& a = impl_->agents[std::size_t(agent)];
+  if (a.radius == radius) return;
+  a.radius = radius;
+  a.shape->setUnscaledRadius(radius);
+}
+
 void CollisionWorld::place_agent(int agent, const Vec3& p) {
   assert(agent >= 0 && agent < agent_count());
   auto& a = impl_->agents[std::size_t(agent)];

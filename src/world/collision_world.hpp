@@ -46,6 +46,8 @@ class CollisionWorld {
 
   /// Adds a kinematic sphere of `radius` m (> 0) at the origin; returns its index 0, 1, ...
   int add_agent(double radius);
+  /// Changes an agent's radius (m, > 0) without allocating (a pool of agents reused across scenarios).
+  void set_agent_radius(int agent, double radius);
   /// Teleports an agent without any check (use overlap() to test the new place).
   void place_agent(int agent, const Vec3& p);
   /// Sweeps the agent's sphere from its position to `to`. On a hit the agent stops at the time of impact, a

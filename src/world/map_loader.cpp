@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "world/map_rules.hpp"
 #include "world/map_spec.hpp"
-#include "world/obstacle_geometry.hpp"
 #include "world/random_obstacles.hpp"
 #include "world/triangle_mesh.hpp"
 
@@ -25,22 +25,6 @@ const Scenario* MapSpec::find_scenario(const std::string& wanted) const {
   }
   return nullptr;
 }
-
-namespace {
-
-std::string format_error(const std::filesystem::path& file, int line, const std::string& field,
-                         const std::string& message) {
-  std::string where = line > 0 ? fmt::format("{}:{}", file.string(), line) : file.string();
-  return field.empty() ? fmt::format("{}: {}", where, message) : fmt::format("{}: {}: {}", where, field, message);
-}
-
-}  // namespace
-
-MapError::MapError(std::filesystem::path file, int line, std::string field, const std::string& message)
-    : std::runtime_error(format_error(file, line, field, message)),
-      file_(std::move(file)),
-      line_(line),
-      field_(std::move(field)) {}
 
 namespace {
 
@@ -265,15 +249,10 @@ class Loader {
 
   std::filesystem::path file_;
   std::vector<StartRef> starts_;
-  std::vector<int> sphere_lines_, cylinder_lines_;  // lines of the explicit obstacles
-  std::vector<TriangleMesh> meshes_;                // imported terrain, for the start checks
 };
 
 void Loader::require_in_arena(const Node& n, const std::string& field, const Vec3& p, const MapSpec& spec) const {
-  if (!spec.bounds.contains(p)) {
-    fail(n, field, fmt::format("{} lies outside the arena [{} .. {}]", format_vec(p), format_vec(spec.bounds.lo),
-                               format_vec(spec.bounds.hi)));
-  }
+  if (const Problem problem = check_in_arena(p, spec.bounds)) fail(n, field, problem.message);
 }
 
 void Loader::read_arena(const Node& n, MapSpec& spec) {
@@ -282,8 +261,10 @@ void Loader::read_arena(const Node& n, MapSpec& spec) {
   const Vec3 lo = f.find("min") ? vec3(*f.find("min"), f.field("min")) : Vec3::Zero();
   const Node& size_node = f.need("size");
   const Vec3 size = vec3(size_node, f.field("size"));
-  for (int i = 0; i < 3; ++i) {
-    if (!(size[i] > 0.0)) fail(size_node[i], fmt::format("arena.size[{}]", i), fmt::format("must be > 0, got {}", size[i]));
+  if (const Problem p = check_arena(lo, size)) {
+    // p.field is "min" or "size[i]": report the offending number's own line.
+    const Node& at = p.field == "min" ? *f.find("min") : size_node[std::size_t(p.field.at(5) - '0')];
+    fail(at, f.field(p.field), p.message);
   }
   spec.bounds = Box{lo, lo + size};
   if (const Node* faces = f.find("faces_are_obstacles")) {
@@ -301,27 +282,14 @@ void Loader::read_occupancy(const Node* n, MapSpec& spec) {
     const Fields f(*this, *n, "occupancy");
     f.allow({"resolution", "max_distance"});
     line = max_line = line_of(*n);
-    if (const Node* v = f.find("resolution")) spec.resolution = positive(*v, f.field("resolution")), line = line_of(*v);
+    if (const Node* v = f.find("resolution")) spec.resolution = number(*v, f.field("resolution")), line = line_of(*v);
     if (const Node* v = f.find("max_distance")) {
-      spec.max_distance = positive(*v, f.field("max_distance"));
+      spec.max_distance = number(*v, f.field("max_distance"));
       max_line = line_of(*v);
     }
   }
-  const Vec3 size = spec.bounds.size();
-  if (size.minCoeff() < spec.resolution) {
-    fail(line, "occupancy.resolution",
-         fmt::format("{} m is coarser than the arena's smallest side ({} m)", spec.resolution, size.minCoeff()));
-  }
-  // OctoMap keys are 16-bit: coordinates must stay within +-32767 voxels of the origin (with a margin).
-  const double extent = std::max(spec.bounds.lo.cwiseAbs().maxCoeff(), spec.bounds.hi.cwiseAbs().maxCoeff());
-  if (extent / spec.resolution > 32000.0) {
-    fail(line, "occupancy.resolution",
-         fmt::format("{} m is too fine for an arena reaching {} m from the origin (OctoMap allows 32000 voxels)",
-                     spec.resolution, extent));
-  }
-  if (spec.max_distance < spec.resolution) {
-    fail(max_line, "occupancy.max_distance",
-         fmt::format("must be >= occupancy.resolution ({} m), got {}", spec.resolution, spec.max_distance));
+  if (const Problem p = check_occupancy(spec.bounds, spec.resolution, spec.max_distance)) {
+    fail(p.field == "max_distance" ? max_line : line, "occupancy." + p.field, p.message);
   }
 }
 
@@ -331,7 +299,9 @@ AgentStart Loader::read_agent(const Node& n, const std::string& field) {
   AgentStart a;
   const Node& pos = f.need("position");
   a.position = vec3(pos, f.field("position"));
-  starts_.push_back({a.position, f.field("position"), line_of(pos)});
+  a.field = f.field("position");
+  a.line = line_of(pos);
+  starts_.push_back({a.position, a.field, a.line});
   if (const Node* h = f.find("heading")) {
     const Fields hf(*this, *h, f.field("heading"));
     hf.allow({"alpha_deg", "theta_deg"});
@@ -347,15 +317,33 @@ AgentStart Loader::read_agent(const Node& n, const std::string& field) {
 Scenario Loader::read_scenario(const Node& n, const std::string& field, std::string name) {
   const Fields f(*this, n, field);
   if (name.empty()) {
-    f.allow({"name", "pursuer", "evader"});
-    name = text(f.need("name"), f.field("name"));
+    f.allow({"name", "pursuer", "pursuers", "evader", "evaders"});
+    const Node& name_node = f.need("name");
+    name = text(name_node, f.field("name"));
+    if (const Problem p = check_scenario_name(name)) fail(name_node, f.field("name"), p.message);
   } else {
-    f.allow({"pursuer", "evader"});
+    f.allow({"pursuer", "pursuers", "evader", "evaders"});
   }
   Scenario s;
   s.name = std::move(name);
-  s.pursuer = read_agent(f.need("pursuer"), f.field("pursuer"));
-  s.evader = read_agent(f.need("evader"), f.field("evader"));
+  s.line = line_of(n);
+  // Each role: one agent (`pursuer: {...}`) or a list of them (`pursuers: [{...}, ...]`).
+  for (const auto& [one, many, out] : {std::tuple{"pursuer", "pursuers", &s.pursuers}, std::tuple{"evader", "evaders", &s.evaders}}) {
+    const Node* single = f.find(one);
+    const Node* list = f.find(many);
+    if (single != nullptr && list != nullptr) fail(*list, f.field(many), fmt::format("give either '{}' or '{}', not both", one, many));
+    if (single != nullptr) {
+      out->push_back(read_agent(*single, f.field(one)));
+    } else if (list != nullptr) {
+      sequence(*list, f.field(many));
+      if (list->size() < 1 || list->size() > static_cast<std::size_t>(kMaxAgentsPerRole)) {
+        fail(*list, f.field(many), fmt::format("needs 1 to {} entries, got {}", kMaxAgentsPerRole, list->size()));
+      }
+      for (std::size_t i = 0; i < list->size(); ++i) out->push_back(read_agent((*list)[i], fmt::format("{}[{}]", f.field(many), i)));
+    } else {
+      fail(n, f.field(one), fmt::format("missing required field (or give '{}', a list)", many));
+    }
+  }
   return s;
 }
 
@@ -365,19 +353,15 @@ void Loader::read_obstacle(const Node& n, const std::string& field, MapSpec& spe
   const std::string kind = text(kind_node, f.field("kind"));
   if (kind == "sphere") {
     f.allow({"kind", "center", "radius"});
-    const Node& c = f.need("center");
-    SphereObstacle s{vec3(c, f.field("center")), positive(f.need("radius"), f.field("radius"))};
-    require_in_arena(c, f.field("center"), s.center, spec);
+    const SphereObstacle s{vec3(f.need("center"), f.field("center")), number(f.need("radius"), f.field("radius"))};
+    if (const Problem p = check_sphere(s, spec.bounds)) fail(f.need(p.field), f.field(p.field), p.message);
     spec.spheres.push_back(s);
-    sphere_lines_.push_back(line_of(n));
   } else if (kind == "cylinder") {
     f.allow({"kind", "base", "radius", "height"});
-    const Node& b = f.need("base");
-    CylinderObstacle c{vec3(b, f.field("base")), positive(f.need("radius"), f.field("radius")),
-                       positive(f.need("height"), f.field("height"))};
-    require_in_arena(b, f.field("base"), c.base, spec);
+    const CylinderObstacle c{vec3(f.need("base"), f.field("base")), number(f.need("radius"), f.field("radius")),
+                             number(f.need("height"), f.field("height"))};
+    if (const Problem p = check_cylinder(c, spec.bounds)) fail(f.need(p.field), f.field(p.field), p.message);
     spec.cylinders.push_back(c);
-    cylinder_lines_.push_back(line_of(n));
   } else {
     fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", kind));
   }
@@ -391,24 +375,26 @@ void Loader::read_terrain(const Node& n, const std::string& field, MapSpec& spec
   const Node& file_node = f.need("file");
   const std::filesystem::path rel = text(file_node, f.field("file"));
   t.file = std::filesystem::absolute((file_.parent_path() / rel).lexically_normal());
-  if (const Node* v = f.find("scale")) t.scale = positive(*v, f.field("scale"));
+  if (const Node* v = f.find("scale")) t.scale = number(*v, f.field("scale"));
   if (const Node* v = f.find("rotation_deg")) t.rotation_deg = vec3(*v, f.field("rotation_deg"));
   if (const Node* v = f.find("translation")) t.translation = vec3(*v, f.field("translation"));
   if (const Node* v = f.find("solid_below")) t.solid_below = boolean(*v, f.field("solid_below"));
-  TriangleMesh mesh;
+  if (const Problem p = check_placement(t)) fail(f.need(p.field), f.field(p.field), p.message);
+  // Imported once: the Arena builds from this copy instead of reading the file again.
+  auto mesh = std::make_shared<TriangleMesh>();
   try {
-    mesh = load_terrain_mesh(t);
+    *mesh = load_terrain_mesh(t);
   } catch (const MeshError& e) {
     fail(file_node, f.field("file"), e.what());
   }
-  const Box b = mesh.bounds();
+  const Box b = mesh->bounds();
   const bool apart = (b.hi.array() < spec.bounds.lo.array()).any() || (b.lo.array() > spec.bounds.hi.array()).any();
   if (apart) {
     fail(n, field, fmt::format("mesh '{}' lies entirely outside the arena (placed bounds {} .. {})", rel.string(),
                                format_vec(b.lo), format_vec(b.hi)));
   }
+  t.imported = std::move(mesh);
   spec.meshes.push_back(t);
-  meshes_.push_back(std::move(mesh));
 }
 
 void Loader::read_generator(const Node& n, const std::string& field, MapSpec& spec) {
@@ -473,31 +459,11 @@ void Loader::read_generator(const Node& n, const std::string& field, MapSpec& sp
   spec.cylinders.insert(spec.cylinders.end(), placed.cylinders.begin(), placed.cylinders.end());
 }
 
+// Starts are points of the map: here only their place in the arena is checked. Whether an agent's sphere fits
+// there depends on the game's radii, and the game checks it (game::Sim), once, before any run.
 void Loader::check_starts(const MapSpec& spec) const {
   for (const StartRef& s : starts_) {
-    const Box& b = spec.bounds;
-    if (!((s.position.array() > b.lo.array()).all() && (s.position.array() < b.hi.array()).all())) {
-      fail(s.line, s.field, fmt::format("start {} lies outside the arena [{} .. {}]", format_vec(s.position),
-                                        format_vec(b.lo), format_vec(b.hi)));
-    }
-    for (std::size_t i = 0; i < sphere_lines_.size(); ++i) {
-      if (signed_distance(s.position, spec.spheres[i]) <= 0.0) {
-        fail(s.line, s.field, fmt::format("start {} is inside an obstacle (the sphere at line {})",
-                                          format_vec(s.position), sphere_lines_[i]));
-      }
-    }
-    for (std::size_t i = 0; i < cylinder_lines_.size(); ++i) {
-      if (signed_distance(s.position, spec.cylinders[i]) <= 0.0) {
-        fail(s.line, s.field, fmt::format("start {} is inside an obstacle (the cylinder at line {})",
-                                          format_vec(s.position), cylinder_lines_[i]));
-      }
-    }
-    for (std::size_t i = 0; i < meshes_.size(); ++i) {
-      if (spec.meshes[i].solid_below && is_below_surface(meshes_[i], s.position)) {
-        fail(s.line, s.field, fmt::format("start {} is inside an obstacle (under the terrain at line {})",
-                                          format_vec(s.position), spec.meshes[i].line));
-      }
-    }
+    if (const Problem p = check_start(s.position, spec.bounds)) fail(s.line, s.field, p.message);
   }
 }
 

@@ -6,12 +6,18 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include <memory>
+
+#include "core/error.hpp"
 #include "geometry/angles.hpp"
 #include "geometry/vector.hpp"
 
 namespace peg3d::world {
+
+struct TriangleMesh;
 
 /// A solid ball.
 struct SphereObstacle {
@@ -36,20 +42,35 @@ struct TerrainMesh {
   Vec3 translation = Vec3::Zero();           ///< m
   bool solid_below = false;                  ///< everything under the surface counts as occupied (height field)
   int line = 0;                              ///< line of the entry in the map file (1-based, 0 unknown), for errors
+  /// The placed triangles when load_map() has imported the file already (Arena::build() then does not read
+  /// it again); null for entries written in code.
+  std::shared_ptr<const TriangleMesh> imported;
 };
 
 /// Where an agent starts; the heading is optional (the game chooses one when absent).
 struct AgentStart {
-  Vec3 position = Vec3::Zero();  ///< m, strictly inside the arena and outside every obstacle
+  Vec3 position = Vec3::Zero();  ///< m, strictly inside the arena (the game checks its radius against obstacles)
   std::optional<Heading> heading;
+  std::string field;             ///< where it is written, e.g. "scenarios[1].pursuers[0].position", for messages
+  int line = 0;                  ///< line of the position in the map file (0: unknown), for messages
 };
 
-/// One named pair of starts.
+/// Most agents of one role in a scenario.
+inline constexpr int kMaxAgentsPerRole = 256;
+
+/// One named set of starts: one or more pursuers and one or more evaders (the paper plays one of each).
 struct Scenario {
-  std::string name;
-  AgentStart pursuer;
-  AgentStart evader;
+  std::string name;  ///< unique in its map; letters, digits, '-', '_' and '.', not starting with '.' (it names result files)
+  std::vector<AgentStart> pursuers;
+  std::vector<AgentStart> evaders;
+  int line = 0;  ///< line of the scenario in the map file (0: unknown)
+
+  int agents() const { return static_cast<int>(pursuers.size() + evaders.size()); }
 };
+
+/// Whether `name` may name a scenario (and so a result file): 1 to 64 characters from [A-Za-z0-9._-], not
+/// starting with '.', so it can never climb out of an output folder or hide a file.
+bool is_safe_name(std::string_view name);
 
 /// Everything a map file says. Obstacles from random generators are already expanded, in a stable order
 /// (explicit ones first, then each generator's in the file's order).
@@ -71,20 +92,11 @@ struct MapSpec {
   const Scenario* find_scenario(const std::string& name) const;
 };
 
-/// A bad map. what() is "FILE:LINE: FIELD: message" ("FILE: message" when there is no line).
-class MapError : public std::runtime_error {
+/// A bad map. what() is "FILE:LINE: FIELD: message" ("FILE: message" when there is no line); field() is
+/// empty for syntax errors.
+class MapError : public InputError {
  public:
-  MapError(std::filesystem::path file, int line, std::string field, const std::string& message);
-  const std::filesystem::path& file() const noexcept { return file_; }
-  /// 1-based line in the map file, 0 when unknown.
-  int line() const noexcept { return line_; }
-  /// Dotted path of the offending field, e.g. "obstacles[2].radius"; empty for syntax errors.
-  const std::string& field() const noexcept { return field_; }
-
- private:
-  std::filesystem::path file_;
-  int line_;
-  std::string field_;
+  using InputError::InputError;
 };
 
 /// Reads and validates a YAML map (docs/maps.md): every problem throws MapError naming file, line and

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "geometry/vector.hpp"
 
 namespace peg3d::world {
@@ -25,9 +26,9 @@ struct TriangleMesh {
 };
 
 /// A mesh file that cannot be used; what() says why, naming the file.
-class MeshError : public std::runtime_error {
+class MeshError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 /// Imports every triangle of a mesh file (all its meshes, node transforms applied) in the file's own units.

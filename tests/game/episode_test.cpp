@@ -1,3 +1,5 @@
+// Whole episodes through play(): analytic capture and impact times, the constraint layer at work over an
+// episode, determinism, and the episode's figures.
 #include "game/episode.hpp"
 
 #include <gtest/gtest.h>
@@ -10,14 +12,15 @@ namespace peg3d::game {
 namespace {
 
 using testing::make_arena;
+using testing::play_once;
 using testing::scenario;
 
 const Vec3 kSize(35, 35, 20);
 
-GameConfig pursuit_config(const std::string& pursuer_policy, double evader_speed) {
+GameConfig pursuit_config(PolicyKind pursuer_policy, double evader_speed) {
   GameConfig c = preset("peg3d");
   c.pursuer.policy = pursuer_policy;
-  c.evader.policy = "flee";
+  c.evader.policy = PolicyKind::kFlee;
   c.evader.speed = evader_speed;
   return c;
 }
@@ -25,12 +28,8 @@ GameConfig pursuit_config(const std::string& pursuer_policy, double evader_speed
 TEST(Episode, PurePursuitCapturesAMotionlessEvaderInTheAnalyticTime) {
   // 20 m apart, the pursuer facing the evader: d(k) = 20 - 0.11 k <= 1 first at k = ceil(19 / 0.11) = 173.
   const auto s = scenario("line", {5, 17.5, 10}, {25, 17.5, 10});
-  const auto arena = make_arena(kSize, {}, {s});
-  const GameConfig c = pursuit_config("pure-pursuit", 0.0);
-  Game game(arena, c);
-  auto p = make_policy(c.pursuer, Role::kPursuer, 1);
-  auto e = make_policy(c.evader, Role::kEvader, 2);
-  const EpisodeResult r = game.play(s, *p, *e, false, 3);
+  const Sim sim(make_arena(kSize, {}, {s}), pursuit_config(PolicyKind::kPurePursuit, 0.0));
+  const EpisodeResult r = play_once(sim, s, 3);
   EXPECT_EQ(r.outcome, Outcome::kCapture);
   EXPECT_EQ(r.steps, 173);
   EXPECT_NEAR(r.duration, 17.3, 1e-9);
@@ -38,21 +37,21 @@ TEST(Episode, PurePursuitCapturesAMotionlessEvaderInTheAnalyticTime) {
   EXPECT_NEAR(r.pursuer_path, 173 * 0.11, 1e-9);
   EXPECT_EQ(r.evader_path, 0.0);
   EXPECT_EQ(r.collisions, 0);
+  EXPECT_EQ(r.captures, 1);
+  EXPECT_NEAR(r.last_capture_time, 17.3, 1e-9);
 }
 
 TEST(Episode, CollisionEndsTheEpisodeAtTheTimeOfImpact) {
   // A sphere of radius 1 centred 10 m ahead: the pursuer's 0.25 m sphere touches it after 8.75 m, at 8.75 / 1.1 s.
   const auto s = scenario("wall", {5, 17.5, 10}, {30, 17.5, 10});
-  const auto arena = make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s});
-  GameConfig c = pursuit_config("pure-pursuit", 0.0);
+  GameConfig c = pursuit_config(PolicyKind::kPurePursuit, 0.0);
   c.pursuer.guard.enabled = false;
-  Game game(arena, c);
-  auto p = make_policy(c.pursuer, Role::kPursuer, 1);
-  auto e = make_policy(c.evader, Role::kEvader, 2);
-  const EpisodeResult r = game.play(s, *p, *e, false, 3);
+  const Sim sim(make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s}), c);
+  const EpisodeResult r = play_once(sim, s, 3);
   EXPECT_EQ(r.outcome, Outcome::kPursuerCollision);
   ASSERT_TRUE(r.first_collision.has_value());
-  EXPECT_EQ(r.first_collision->agent, Role::kPursuer);
+  EXPECT_EQ(r.first_collision->agent, 0);
+  EXPECT_EQ(r.first_collision->role, Role::kPursuer);
   EXPECT_EQ(r.first_collision->kind, world::ObstacleKind::kSphere);
   EXPECT_EQ(r.first_collision->obstacle_id, 0);
   EXPECT_NEAR(r.first_collision->time, 8.75 / 1.1, 2e-3);
@@ -62,12 +61,8 @@ TEST(Episode, CollisionEndsTheEpisodeAtTheTimeOfImpact) {
 
 TEST(Episode, GuardSteersAroundTheObstacleWithoutCollision) {
   const auto s = scenario("wall", {5, 17.5, 10}, {30, 17.5, 10});
-  const auto arena = make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s});
-  const GameConfig c = pursuit_config("pure-pursuit", 0.0);  // guard on by default
-  Game game(arena, c);
-  auto p = make_policy(c.pursuer, Role::kPursuer, 1);
-  auto e = make_policy(c.evader, Role::kEvader, 2);
-  const EpisodeResult r = game.play(s, *p, *e, false, 3);
+  const Sim sim(make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s}), pursuit_config(PolicyKind::kPurePursuit, 0.0));
+  const EpisodeResult r = play_once(sim, s, 3);  // guard on by default
   EXPECT_EQ(r.collisions, 0);
   EXPECT_EQ(r.outcome, Outcome::kCapture);
   EXPECT_GT(r.pursuer_path, 24.0);  // the detour is longer than the straight 24 m
@@ -75,51 +70,43 @@ TEST(Episode, GuardSteersAroundTheObstacleWithoutCollision) {
 
 TEST(Episode, PursuerHeadingStaysInTheApolloniusCone) {
   const auto s = scenario("open", {5, 17.5, 10}, {20, 17.5, 10});
-  const auto arena = make_arena(kSize, {}, {s});
   GameConfig c = preset("peg3d");
-  c.pursuer.policy = "random";  // the motion space has to do all the work
-  c.evader.policy = "flee";
-  Game game(arena, c);
-  auto p = make_policy(c.pursuer, Role::kPursuer, 1);
-  auto e = make_policy(c.evader, Role::kEvader, 2);
-  std::vector<StepRecord> trace;
-  game.play(s, *p, *e, false, 3, &trace);
-  ASSERT_GT(trace.size(), 20u);
+  c.pursuer.policy = PolicyKind::kRandom;  // the motion space has to do all the work
+  c.evader.policy = PolicyKind::kFlee;
+  const Sim sim(make_arena(kSize, {}, {s}), c);
+  Trace trace;
+  play_once(sim, s, 3, &trace);
+  ASSERT_GT(trace.frame_count(), 20);
   const double half = pursuer_cone_half_angle(1.1, 1.0);
-  for (std::size_t k = 1; k < trace.size(); ++k) {
-    const Vec3 los = trace[k - 1].evader.position - trace[k - 1].pursuer.position;
-    EXPECT_LE(angle_between(direction(trace[k].pursuer.heading), los), half + 1e-9) << "step " << k;
+  for (int k = 1; k < trace.frame_count(); ++k) {
+    const Vec3 los = trace.at(k - 1, 1).state.position - trace.at(k - 1, 0).state.position;
+    EXPECT_LE(angle_between(direction(trace.at(k, 0).state.heading), los), half + 1e-9) << "step " << k;
   }
 }
 
 TEST(Episode, EvaderMotionSpaceKeepsAlpha1AtLeastARightAngle) {
   const auto s = scenario("open", {5, 17.5, 10}, {20, 17.5, 10});
-  const auto arena = make_arena(kSize, {}, {s});
   GameConfig c = preset("paper");  // the paper turns the evader's motion space on
   c.evader.steering.polar_margin = kPi / 3;  // away from the poles every heading change is within reach
-  c.pursuer.policy = "pure-pursuit";
-  c.evader.policy = "random";
-  Game game(arena, c);
-  auto p = make_policy(c.pursuer, Role::kPursuer, 1);
-  auto e = make_policy(c.evader, Role::kEvader, 2);
-  std::vector<StepRecord> trace;
-  game.play(s, *p, *e, false, 3, &trace);
-  for (std::size_t k = 1; k < trace.size(); ++k) {
-    const Vec3 ep = trace[k - 1].pursuer.position - trace[k - 1].evader.position;
-    EXPECT_GE(angle_between(direction(trace[k].evader.heading), ep), kPi / 2 - 1e-9) << "step " << k;
+  c.pursuer.policy = PolicyKind::kPurePursuit;
+  c.evader.policy = PolicyKind::kRandom;
+  const Sim sim(make_arena(kSize, {}, {s}), c);
+  Trace trace;
+  play_once(sim, s, 3, &trace);
+  for (int k = 1; k < trace.frame_count(); ++k) {
+    const Vec3 ep = trace.at(k - 1, 0).state.position - trace.at(k - 1, 1).state.position;
+    EXPECT_GE(angle_between(direction(trace.at(k, 1).state.heading), ep), kPi / 2 - 1e-9) << "step " << k;
   }
 }
 
 TEST(Episode, SameSeedSameEpisodeDifferentSeedDifferentEpisode) {
   const auto s = scenario("open", {5, 5, 3}, {20, 25, 8});
-  const auto arena = make_arena(kSize, {{{12, 15, 5}, 1.0}}, {s});
-  const GameConfig c = preset("peg3d");
+  const Sim sim(make_arena(kSize, {{{12, 15, 5}, 1.0}}, {s}), preset("peg3d"));
   auto run = [&](std::uint64_t seed) {
-    Game game(arena, c);
-    auto p = make_policy(c.pursuer, Role::kPursuer, seed);
-    auto e = make_policy(c.evader, Role::kEvader, seed + 1);
+    SimState state(sim);
+    Lineup l = testing::lineup_for(sim.config(), s, seed, seed + 1);
     EpisodeResult last;
-    for (int i = 0; i < 5; ++i) last = game.play(s, *p, *e, true, seed + 2 + i);
+    for (int i = 0; i < 5; ++i) last = play(sim, state, s, l.policies(), true, seed + 2 + i);
     return last;
   };
   const EpisodeResult a = run(10), b = run(10), d = run(11);
@@ -130,11 +117,21 @@ TEST(Episode, SameSeedSameEpisodeDifferentSeedDifferentEpisode) {
   EXPECT_NE(a.pursuer_return, d.pursuer_return);
 }
 
-TEST(Episode, StartInsideAnObstacleIsRejected) {
-  const auto s = scenario("bad", {15, 17.5, 10}, {30, 17.5, 10});
-  const auto arena = make_arena(kSize, {{{15.5, 17.5, 10}, 1.0}}, {scenario("ok", {5, 5, 5}, {30, 30, 5})});
-  Game game(arena, preset("peg3d"));
-  EXPECT_THROW(game.start(s, 0), std::runtime_error);
+TEST(Episode, TraceRecordsEveryInstantAndTheEvents) {
+  const auto s = scenario("line", {5, 17.5, 10}, {25, 17.5, 10});
+  const Sim sim(make_arena(kSize, {}, {s}), pursuit_config(PolicyKind::kPurePursuit, 0.0));
+  Trace trace;
+  const EpisodeResult r = play_once(sim, s, 3, &trace);
+  EXPECT_EQ(trace.agents, 2);
+  EXPECT_EQ(trace.frame_count(), r.steps + 1);
+  EXPECT_EQ(trace.times.front(), 0.0);
+  EXPECT_NEAR(trace.times.back(), r.duration, 1e-12);
+  ASSERT_EQ(trace.captures.size(), 1u);
+  EXPECT_EQ(trace.captures[0].pursuer, 0);
+  EXPECT_EQ(trace.captures[0].evader, 1);
+  EXPECT_EQ(trace.captures[0].step, r.steps);
+  EXPECT_TRUE(trace.collisions.empty());
+  EXPECT_EQ(trace.at(0, 0).state.position, Vec3(5, 17.5, 10));
 }
 
 }  // namespace

@@ -23,45 +23,120 @@ AgentView random_view(Rng& rng) {
   return v;
 }
 
+// Learning on random transitions gives the tables distinct values.
+void train_randomly(FaclPolicy& p, Rng& rng, int steps) {
+  p.begin_episode({}, true);
+  for (int i = 0; i < steps; ++i) {
+    p.act(random_view(rng));
+    p.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_view(rng), i % 50 == 49);
+  }
+}
+
 TEST(FaclPolicy, SavedAndLoadedPoliciesActIdentically) {
   for (const char* name : {"peg3d", "paper"}) {
     const AgentConfig c = agent_preset(name, Role::kPursuer);
     FaclPolicy trained(c, Role::kPursuer, 5);
-    // Give the tables distinct values through learning on random transitions.
     Rng rng(1);
-    trained.begin_episode({}, true);
-    for (int i = 0; i < 2000; ++i) {
-      trained.act(random_view(rng));
-      trained.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_view(rng), i % 50 == 49);
-    }
-    const nlohmann::json doc = policy_to_json(trained);
-    const auto loaded = policy_from_json(nlohmann::json::parse(doc.dump()));  // through text, as on disk
+    train_randomly(trained, rng, 2000);
+    const nlohmann::json doc = policy_to_json(trained.model());
+    FaclPolicy loaded(std::shared_ptr<const FaclModel>(policy_from_json(nlohmann::json::parse(doc.dump()))));  // through text, as on disk
     trained.begin_episode({}, false);
-    loaded->begin_episode({}, false);
+    loaded.begin_episode({}, false);
     for (int i = 0; i < 1000; ++i) {
       const AgentView v = random_view(rng);
-      const Steering a = trained.act(v), b = loaded->act(v);
+      const Steering a = trained.act(v), b = loaded.act(v);
       ASSERT_EQ(a.d_alpha, b.d_alpha) << name;
       ASSERT_EQ(a.d_theta, b.d_theta) << name;
     }
   }
 }
 
+TEST(FaclPolicy, ActDependsOnlyOnItsViewAndTheTables) {
+  // Two copies of one trained model and two policies with the same exploration seed. One acts right after
+  // learn() (which fired the successor view), the other after a fresh begin_episode() (nothing fired): for
+  // the view learn() saw and for any other view, both act the same.
+  FaclPolicy trained(agent_preset("peg3d", Role::kEvader), Role::kEvader, 3);
+  Rng rng(2);
+  train_randomly(trained, rng, 500);
+  const nlohmann::json doc = policy_to_json(trained.model());
+  FaclPolicy a(policy_from_json(doc), 9), b(policy_from_json(doc), 9);
+  a.begin_episode({}, true);
+  b.begin_episode({}, true);
+  for (int i = 0; i < 200; ++i) {
+    const AgentView now = random_view(rng), seen = random_view(rng), other = random_view(rng);
+    const Steering ua = a.act(now), ub = b.act(now);
+    ASSERT_EQ(ua.d_alpha, ub.d_alpha);
+    a.learn(0.5, seen, false);
+    b.learn(0.5, seen, false);
+    b.begin_episode({}, true);  // forgets what learn() fired; the exploration stream goes on
+    const AgentView& v = i % 2 == 0 ? seen : other;
+    const Steering va = a.act(v), vb = b.act(v);
+    ASSERT_EQ(va.d_alpha, vb.d_alpha) << i;
+    ASSERT_EQ(va.d_theta, vb.d_theta) << i;
+    const AgentView end = random_view(rng);
+    a.learn(-0.5, end, true);
+    b.learn(-0.5, end, true);
+  }
+}
+
+TEST(FaclPolicy, TeammatesShareOneModelAndFrozenModelsCannotLearn) {
+  auto model = std::make_shared<FaclModel>(agent_preset("peg3d", Role::kPursuer), Role::kPursuer);
+  FaclPolicy a(model, 1), b(model, 2);
+  Rng rng(3);
+  const double before = model->tables(0).critic_table()[0];
+  train_randomly(a, rng, 300);
+  EXPECT_NE(std::vector<double>(model->tables(0).critic_table().begin(), model->tables(0).critic_table().end()),
+            std::vector<double>(model->tables(0).critic_table().size(), before));
+  // b acts on what a learned.
+  b.begin_episode({}, false);
+  FaclPolicy frozen{std::shared_ptr<const FaclModel>(model)};
+  frozen.begin_episode({}, false);
+  const AgentView v = random_view(rng);
+  EXPECT_EQ(b.act(v).d_alpha, frozen.act(v).d_alpha);
+  EXPECT_THROW(frozen.begin_episode({}, true), std::logic_error);
+}
+
 TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
-  const FaclPolicy p(agent_preset("peg3d", Role::kEvader), Role::kEvader, 1);
-  nlohmann::json doc = policy_to_json(p);
+  const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
+  const nlohmann::json doc = policy_to_json(m);
   EXPECT_EQ(doc["format"], "peg3d-policy");
   EXPECT_EQ(doc["channels"].size(), 2u);
-  nlohmann::json wrong_version = doc;
-  wrong_version["version"] = 99;
-  EXPECT_THROW(policy_from_json(wrong_version), PolicyFormatError);
-  nlohmann::json short_table = doc;
-  short_table["channels"][0]["actor"].erase(0);
-  EXPECT_THROW(policy_from_json(short_table), PolicyFormatError);
-  EXPECT_THROW(policy_from_json(nlohmann::json{{"format", "other"}}), PolicyFormatError);
-  nlohmann::json bad_config = doc;
-  bad_config["config"]["facl"]["actor_rate"] = -1.0;
-  EXPECT_THROW(policy_from_json(bad_config), PolicyFormatError);
+  const auto expect_error = [](const nlohmann::json& d, const std::string& field, std::optional<Role> role = std::nullopt) {
+    try {
+      policy_from_json(d, "p.json", role);
+      ADD_FAILURE() << "accepted; expected an error at " << field;
+    } catch (const PolicyFormatError& e) {
+      EXPECT_EQ(e.field(), field) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("p.json: ", 0), 0u) << e.what();
+    }
+  };
+  nlohmann::json d = doc;
+  d["version"] = 99;
+  expect_error(d, "version");
+  d = doc;
+  d["channels"][0]["actor"].erase(0);
+  expect_error(d, "channels[0].actor");
+  d = doc;
+  d["channels"][1]["critic"][3] = "x";
+  expect_error(d, "channels[1].critic[3]");
+  expect_error(nlohmann::json{{"format", "other"}}, "format");
+  d = doc;
+  d["config"]["facl"]["actor_rate"] = -1.0;
+  expect_error(d, "config.facl.actor_rate");
+  d = doc;
+  d["config"]["facl"].erase("discount");
+  expect_error(d, "config.facl.discount");  // saved policies are complete
+  d = doc;
+  d["config"]["colour"] = "blue";
+  expect_error(d, "config.colour");
+  d = doc;
+  d["config"]["policy"] = "flee";
+  expect_error(d, "config.policy");
+  d = doc;
+  d["role"] = "referee";
+  expect_error(d, "role");
+  expect_error(doc, "role", Role::kPursuer);  // an evader's policy cannot play the pursuer
+  EXPECT_NO_THROW(policy_from_json(doc, "p.json", Role::kEvader));
 }
 
 TEST(FaclPolicy, ShortTrainingCapturesMoreOftenThanBefore) {
@@ -72,21 +147,23 @@ TEST(FaclPolicy, ShortTrainingCapturesMoreOftenThanBefore) {
                              std::pair{Vec3(14, 14, 5), Vec3(6, 5, 5)}}) {
     starts.push_back(testing::scenario("s", p, e));
   }
-  const auto arena = testing::make_arena({20, 20, 10}, {}, starts);
+  const auto arena = testing::make_arena({20, 20, 10}, {}, {});
   GameConfig c = preset("peg3d");
   c.initial_heading = InitialHeading::kPlusX;
   c.pursuer.motion_space = false;
-  c.evader.policy = "flee";
+  c.evader.policy = PolicyKind::kFlee;
   c.time_limit = 40.0;
+  const Sim sim(arena, c);
+  SimState state(sim);
   int before = 0, after = 0;
   for (std::size_t k = 0; k < starts.size(); ++k) {
     for (std::uint64_t seed = 0; seed < 4; ++seed) {
-      Game game(arena, c);
-      auto p = make_policy(c.pursuer, Role::kPursuer, derive_seed(seed, {k, 1}));
-      auto e = make_policy(c.evader, Role::kEvader, derive_seed(seed, {k, 2}));
-      before += game.play(starts[k], *p, *e, false, 0).captured();
-      for (std::uint64_t episode = 0; episode < 120; ++episode) game.play(starts[k], *p, *e, true, derive_seed(seed, {k, 3, episode}));
-      after += game.play(starts[k], *p, *e, false, 0).captured();
+      Lineup l = testing::lineup_for(c, starts[k], derive_seed(seed, {k, 1}), derive_seed(seed, {k, 2}));
+      before += play(sim, state, starts[k], l.policies(), false, 0).captured();
+      for (std::uint64_t episode = 0; episode < 120; ++episode) {
+        play(sim, state, starts[k], l.policies(), true, derive_seed(seed, {k, 3, episode}));
+      }
+      after += play(sim, state, starts[k], l.policies(), false, 0).captured();
     }
   }
   std::printf("captures before %d, after %d of 12\n", before, after);

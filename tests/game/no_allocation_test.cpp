@@ -1,39 +1,56 @@
 // The step loop allocates nothing: whole training and evaluation episodes (observe, act, steer, move, sweep,
-// reward, learn) run without a single operator new once the game and its policies exist. This test program
-// replaces the global operator new with a counting one, so it is a target of its own.
+// capture, reward, learn, record) run without a single operator new once the Sim, its state and the
+// policies exist, for one against one and for teams. This test program replaces the global operator new
+// with a counting one, so it is a target of its own.
 
 #include <gtest/gtest.h>
 
 #include "../support/counting_new.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
+#include "game/lineup.hpp"
 #include "world/map_spec.hpp"
 
 namespace peg3d::game {
 namespace {
 
-TEST(GameNoAllocation, TrainingAndEvaluationEpisodes) {
-  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/paper.yaml"));
-  for (const char* name : {"peg3d", "paper", "baseline"}) {
-    const GameConfig c = preset(name);
-    Game game(arena, c);
-    auto p = make_policy(c.pursuer, Role::kPursuer, 1);
-    auto e = make_policy(c.evader, Role::kEvader, 2);
-    const auto& scenarios = arena->map().scenarios;
-    game.play(scenarios[0], *p, *e, true, 0);  // warm-up: anything lazily created is created now
-    std::vector<StepRecord> trace;
-    trace.reserve(c.max_steps() + 1);
-    const long before = testing::g_allocations.load();
-    long steps = 0;
-    for (std::uint64_t k = 0; k < 8; ++k) {
-      steps += game.play(scenarios[k % scenarios.size()], *p, *e, true, derive_seed(3, {k})).steps;
-    }
-    steps += game.play(scenarios[1], *p, *e, false, 4).steps;
-    trace.clear();
-    steps += game.play(scenarios[2], *p, *e, false, 5, &trace).steps;
-    EXPECT_EQ(testing::g_allocations.load() - before, 0) << name << ": allocations over " << steps << " steps";
-    EXPECT_GT(steps, 1000) << name;
+void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions) {
+  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));
+  GameConfig c = preset(preset_name);
+  c.team.agent_collisions = collisions;
+  const Sim sim(arena, c);
+  SimState state(sim);
+  const auto& scenarios = arena->map().scenarios;
+  // One lineup per scenario (team sizes differ between scenarios).
+  std::vector<Lineup> lineups(scenarios.size());
+  for (std::size_t k = 0; k < scenarios.size(); ++k) {
+    add_configured(lineups[k], c, Role::kPursuer, static_cast<int>(scenarios[k].pursuers.size()), 1 + k);
+    add_configured(lineups[k], c, Role::kEvader, static_cast<int>(scenarios[k].evaders.size()), 100 + k);
+    play(sim, state, scenarios[k], lineups[k].policies(), true, 0);  // warm-up: anything lazily made is made now
   }
+  int most = 0;
+  for (const auto& s : scenarios) most = std::max(most, s.agents());
+  Trace trace;
+  trace.reserve(c.max_steps(), most);
+  const long before = testing::g_allocations.load();
+  long steps = 0;
+  for (std::uint64_t k = 0; k < 8; ++k) {
+    const std::size_t i = k % scenarios.size();
+    steps += play(sim, state, scenarios[i], lineups[i].policies(), true, derive_seed(3, {k})).steps;
+  }
+  steps += play(sim, state, scenarios[1], lineups[1].policies(), false, 4).steps;
+  steps += play(sim, state, scenarios[2], lineups[2].policies(), false, 5, &trace).steps;
+  EXPECT_EQ(testing::g_allocations.load() - before, 0) << map << " " << preset_name << ": allocations over " << steps << " steps";
+  EXPECT_GT(steps, 1000) << map << " " << preset_name;
+}
+
+TEST(GameNoAllocation, OneAgainstOneTrainingAndEvaluation) {
+  for (const char* name : {"peg3d", "paper", "baseline"}) expect_no_allocation("maps/paper.yaml", name, AgentCollisions::kNone);
+}
+
+TEST(GameNoAllocation, TeamsTrainingAndEvaluation) {
+  expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kNone);
+  expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kAll);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <memory>
 #include <vector>
 
+#include "game/episode.hpp"
+#include "game/lineup.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::testing {
@@ -11,8 +13,17 @@ namespace peg3d::testing {
 inline world::Scenario scenario(const char* name, const Vec3& pursuer, const Vec3& evader) {
   world::Scenario s;
   s.name = name;
-  s.pursuer.position = pursuer;
-  s.evader.position = evader;
+  s.pursuers.push_back({pursuer, std::nullopt, "", 0});
+  s.evaders.push_back({evader, std::nullopt, "", 0});
+  return s;
+}
+
+/// A scenario of several pursuers and evaders.
+inline world::Scenario team(const char* name, const std::vector<Vec3>& pursuers, const std::vector<Vec3>& evaders) {
+  world::Scenario s;
+  s.name = name;
+  for (const Vec3& p : pursuers) s.pursuers.push_back({p, std::nullopt, "", 0});
+  for (const Vec3& e : evaders) s.evaders.push_back({e, std::nullopt, "", 0});
   return s;
 }
 
@@ -28,6 +39,24 @@ inline std::shared_ptr<const world::Arena> make_arena(const Vec3& size, std::vec
   m.spheres = std::move(spheres);
   m.scenarios = std::move(scenarios);
   return world::Arena::build(m);
+}
+
+/// The configuration's policies for every agent of `scenario` (pursuers seeded from 1, evaders from 2).
+inline game::Lineup lineup_for(const game::GameConfig& c, const world::Scenario& s, std::uint64_t pursuer_seed = 1,
+                               std::uint64_t evader_seed = 2) {
+  game::Lineup l;
+  game::add_configured(l, c, game::Role::kPursuer, static_cast<int>(s.pursuers.size()), pursuer_seed);
+  game::add_configured(l, c, game::Role::kEvader, static_cast<int>(s.evaders.size()), evader_seed);
+  return l;
+}
+
+/// One episode of `scenario` on a fresh state, played by the configuration's policies.
+inline game::EpisodeResult play_once(const game::Sim& sim, const world::Scenario& s, std::uint64_t seed,
+                                     game::Trace* trace = nullptr) {
+  game::SimState state(sim);
+  game::Lineup l = lineup_for(sim.config(), s);
+  if (trace) trace->reserve(sim.max_steps(), s.agents());
+  return game::play(sim, state, s, l.policies(), false, seed, trace);
 }
 
 }  // namespace peg3d::testing

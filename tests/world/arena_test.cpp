@@ -82,7 +82,7 @@ TEST(WorldArena, CacheKeyFollowsWhatShapesTheWorld) {
   EXPECT_NE(testing::build(ceiling)->stats().cache_key, key);
   // Scenarios do not shape the world: editing them keeps the cache.
   MapSpec other_start = base;
-  other_start.scenarios[0].pursuer.position = Vec3(1, 5, 4);
+  other_start.scenarios[0].pursuers.front().position = Vec3(1, 5, 4);
   EXPECT_EQ(testing::build(other_start)->stats().cache_key, key);
 }
 
@@ -187,7 +187,7 @@ TEST(WorldArena, PaperMapBuildsAtItsResolution) {
   EXPECT_EQ(arena->stats().field_dims, (std::array<int, 3>{177, 177, 102}));
   // The starts sit 1 m above the floor, which is the nearest obstacle.
   for (const auto& s : arena->map().scenarios) {
-    const NearestObstacle n = arena->nearest_obstacle(s.pursuer.position);
+    const NearestObstacle n = arena->nearest_obstacle(s.pursuers.front().position);
     EXPECT_TRUE(n.found);
     EXPECT_NEAR(n.distance, 1.0, 1e-9) << s.name;
   }

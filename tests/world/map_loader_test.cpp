@@ -28,11 +28,11 @@ TEST(WorldMapLoader, MinimalMapTakesDefaults) {
   EXPECT_TRUE(m.floor_is_obstacle && m.ceiling_is_obstacle && m.walls_is_obstacle);
   ASSERT_EQ(m.scenarios.size(), 1u);
   EXPECT_EQ(m.scenarios[0].name, "default");
-  EXPECT_EQ(m.scenarios[0].pursuer.position, Vec3(1, 1, 1));
-  EXPECT_FALSE(m.scenarios[0].pursuer.heading.has_value());
-  ASSERT_TRUE(m.scenarios[0].evader.heading.has_value());
-  EXPECT_NEAR(m.scenarios[0].evader.heading->alpha, 90 * kDeg, 1e-12);
-  EXPECT_NEAR(m.scenarios[0].evader.heading->theta, 45 * kDeg, 1e-12);
+  EXPECT_EQ(m.scenarios[0].pursuers.front().position, Vec3(1, 1, 1));
+  EXPECT_FALSE(m.scenarios[0].pursuers.front().heading.has_value());
+  ASSERT_TRUE(m.scenarios[0].evaders.front().heading.has_value());
+  EXPECT_NEAR(m.scenarios[0].evaders.front().heading->alpha, 90 * kDeg, 1e-12);
+  EXPECT_NEAR(m.scenarios[0].evaders.front().heading->theta, 45 * kDeg, 1e-12);
 }
 
 TEST(WorldMapLoader, ReadsEveryField) {
@@ -59,7 +59,7 @@ TEST(WorldMapLoader, ReadsEveryField) {
   EXPECT_EQ(m.meshes[0].line, 15);
   ASSERT_EQ(m.scenarios.size(), 2u);
   EXPECT_EQ(m.scenarios[1].name, "second");
-  EXPECT_NEAR(m.scenarios[0].pursuer.heading->alpha, -90 * kDeg, 1e-12);
+  EXPECT_NEAR(m.scenarios[0].pursuers.front().heading->alpha, -90 * kDeg, 1e-12);
   ASSERT_NE(m.find_scenario("second"), nullptr);
   EXPECT_EQ(m.find_scenario("third"), nullptr);
   // Generated spheres: radius in range, inside the region, clear of the starts by 1 m and of each other by 0.5 m.
@@ -70,8 +70,8 @@ TEST(WorldMapLoader, ReadsEveryField) {
     EXPECT_TRUE((s.center.array() - s.radius >= Vec3(-5, -5, 3).array()).all());
     EXPECT_TRUE((s.center.array() + s.radius <= Vec3(5, 5, 10).array()).all());
     for (const auto& sc : m.scenarios) {
-      EXPECT_GE(signed_distance(sc.pursuer.position, s), 1.0);
-      EXPECT_GE(signed_distance(sc.evader.position, s), 1.0);
+      EXPECT_GE(signed_distance(sc.pursuers.front().position, s), 1.0);
+      EXPECT_GE(signed_distance(sc.evaders.front().position, s), 1.0);
     }
     for (std::size_t j = 0; j < i; ++j) EXPECT_GE(gap(s, m.spheres[j]), 0.5);
   }
@@ -146,16 +146,16 @@ TEST(WorldMapLoader, PaperMapIsThePapersArena) {
   ASSERT_EQ(m.scenarios.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(m.scenarios[i].name, fmt::format("S{}", i + 1));
-    EXPECT_EQ(m.scenarios[i].pursuer.position, starts[i].first);
-    EXPECT_EQ(m.scenarios[i].evader.position, starts[i].second);
+    EXPECT_EQ(m.scenarios[i].pursuers.front().position, starts[i].first);
+    EXPECT_EQ(m.scenarios[i].evaders.front().position, starts[i].second);
   }
   for (std::size_t i = 0; i < m.spheres.size(); ++i) {
     const auto& s = m.spheres[i];
     EXPECT_DOUBLE_EQ(s.radius, 1.0);
     EXPECT_TRUE(m.bounds.shrunk(1.0).contains(s.center));
     for (const auto& sc : m.scenarios) {
-      EXPECT_GE(signed_distance(sc.pursuer.position, s), 3.0);
-      EXPECT_GE(signed_distance(sc.evader.position, s), 3.0);
+      EXPECT_GE(signed_distance(sc.pursuers.front().position, s), 3.0);
+      EXPECT_GE(signed_distance(sc.evaders.front().position, s), 3.0);
     }
     for (std::size_t j = 0; j < i; ++j) EXPECT_GE(gap(s, m.spheres[j]), 1.0);
   }
@@ -177,8 +177,8 @@ TEST(WorldMapLoader, StartsAboveTerrainAreAccepted) {
   const MapSpec valley = load_map(testing::source_dir() / "maps" / "valley.yaml");
   const TriangleMesh terrain = load_terrain_mesh(valley.meshes[0]);
   for (const auto& s : valley.scenarios) {
-    EXPECT_FALSE(is_below_surface(terrain, s.pursuer.position)) << s.name;
-    EXPECT_FALSE(is_below_surface(terrain, s.evader.position)) << s.name;
+    EXPECT_FALSE(is_below_surface(terrain, s.pursuers.front().position)) << s.name;
+    EXPECT_FALSE(is_below_surface(terrain, s.evaders.front().position)) << s.name;
   }
 }
 

@@ -47,7 +47,11 @@ inline MapSpec empty_spec(const Vec3& size, double resolution, double max_distan
   s.resolution = resolution;
   s.max_distance = max_distance;
   s.floor_is_obstacle = s.ceiling_is_obstacle = s.walls_is_obstacle = false;
-  s.scenarios.push_back({"default", {Vec3::Constant(0.5), std::nullopt}, {size - Vec3::Constant(0.5), std::nullopt}});
+  Scenario sc;
+  sc.name = "default";
+  sc.pursuers.push_back({Vec3::Constant(0.5), std::nullopt, "", 0});
+  sc.evaders.push_back({size - Vec3::Constant(0.5), std::nullopt, "", 0});
+  s.scenarios.push_back(std::move(sc));
   return s;
 }
 

@@ -1,4 +1,4 @@
-#include "experiment/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,12 +9,12 @@
 #include <stdexcept>
 #include <string>
 
-namespace peg3d::experiment {
+namespace peg3d {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ExperimentAtomicFile : public ::testing::Test {
+class CoreAtomicFile : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -36,7 +36,7 @@ class ExperimentAtomicFile : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(ExperimentAtomicFile, CommitWritesContentAndLeavesNoTemporary) {
+TEST_F(CoreAtomicFile, CommitWritesContentAndLeavesNoTemporary) {
   const fs::path target = dir_ / "results.csv";
   {
     AtomicFile file(target);
@@ -48,15 +48,18 @@ TEST_F(ExperimentAtomicFile, CommitWritesContentAndLeavesNoTemporary) {
   EXPECT_EQ(entries(), 1u);
 }
 
-TEST_F(ExperimentAtomicFile, TemporaryIsBesideTargetWithPid) {
+TEST_F(CoreAtomicFile, TemporaryIsBesideTargetWithPid) {
   const fs::path target = dir_ / "results.csv";
   AtomicFile file(target);
   EXPECT_EQ(file.path(), target);
-  EXPECT_EQ(file.temp_path(), fs::path(target.string() + ".tmp-" + std::to_string(::getpid())));
+  const std::string prefix = target.string() + ".tmp-" + std::to_string(::getpid()) + "-";
+  EXPECT_EQ(file.temp_path().string().rfind(prefix, 0), 0u) << file.temp_path();
+  AtomicFile second(target);  // a second writer of the same target gets its own temporary
+  EXPECT_NE(second.temp_path(), file.temp_path());
   EXPECT_TRUE(fs::exists(file.temp_path()));
 }
 
-TEST_F(ExperimentAtomicFile, TargetKeepsOldContentUntilCommit) {
+TEST_F(CoreAtomicFile, TargetKeepsOldContentUntilCommit) {
   const fs::path target = dir_ / "summary.json";
   write_file_atomically(target, "old");
   AtomicFile file(target);
@@ -67,7 +70,7 @@ TEST_F(ExperimentAtomicFile, TargetKeepsOldContentUntilCommit) {
   EXPECT_EQ(read(target), "new");
 }
 
-TEST_F(ExperimentAtomicFile, AbandonedWriteRemovesTemporaryAndKeepsTarget) {
+TEST_F(CoreAtomicFile, AbandonedWriteRemovesTemporaryAndKeepsTarget) {
   const fs::path target = dir_ / "summary.json";
   write_file_atomically(target, "old");
   {
@@ -78,19 +81,19 @@ TEST_F(ExperimentAtomicFile, AbandonedWriteRemovesTemporaryAndKeepsTarget) {
   EXPECT_EQ(entries(), 1u);
 }
 
-TEST_F(ExperimentAtomicFile, AbandonedFirstWriteLeavesNothing) {
+TEST_F(CoreAtomicFile, AbandonedFirstWriteLeavesNothing) {
   { AtomicFile file(dir_ / "never.csv"); }
   EXPECT_EQ(entries(), 0u);
 }
 
-TEST_F(ExperimentAtomicFile, WriteFileAtomicallyReplacesContent) {
+TEST_F(CoreAtomicFile, WriteFileAtomicallyReplacesContent) {
   const fs::path target = dir_ / "config.txt";
   write_file_atomically(target, "first\n");
   write_file_atomically(target, std::string_view("sec\0nd", 6));
   EXPECT_EQ(read(target), std::string("sec\0nd", 6));
 }
 
-TEST_F(ExperimentAtomicFile, MissingDirectoryNamesPathAndReason) {
+TEST_F(CoreAtomicFile, MissingDirectoryNamesPathAndReason) {
   const fs::path target = dir_ / "missing" / "results.csv";
   try {
     AtomicFile file(target);
@@ -102,7 +105,7 @@ TEST_F(ExperimentAtomicFile, MissingDirectoryNamesPathAndReason) {
   }
 }
 
-TEST_F(ExperimentAtomicFile, FailedRenameThrowsAndKeepsTarget) {
+TEST_F(CoreAtomicFile, FailedRenameThrowsAndKeepsTarget) {
   // A non-empty directory cannot be replaced by a file: the rename fails.
   const fs::path target = dir_ / "occupied";
   fs::create_directories(target / "inside");
@@ -121,11 +124,11 @@ TEST_F(ExperimentAtomicFile, FailedRenameThrowsAndKeepsTarget) {
   EXPECT_EQ(entries(), 1u);  // the temporary is gone
 }
 
-TEST_F(ExperimentAtomicFile, CommitTwiceIsALogicError) {
+TEST_F(CoreAtomicFile, CommitTwiceIsALogicError) {
   AtomicFile file(dir_ / "twice.txt");
   file.commit();
   EXPECT_THROW(file.commit(), std::logic_error);
 }
 
 }  // namespace
-}  // namespace peg3d::experiment
+}  // namespace peg3d

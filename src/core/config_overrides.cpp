@@ -1,4 +1,4 @@
-#include "experiment/config_overrides.hpp"
+#include "core/config_overrides.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -9,12 +9,16 @@
 #include <optional>
 #include <utility>
 
-namespace peg3d::experiment {
+namespace peg3d::config {
 
 using nlohmann::json;
 
-ConfigError::ConfigError(std::string key, const std::string& message)
-    : std::invalid_argument(message), key_(std::move(key)) {}
+namespace {
+// Overrides come from the command line: no file, the key as the field, and the message says it all.
+ConfigError override_error(const std::string& key, const std::string& message) {
+  return ConfigError(InputError::Preformatted{}, message, std::filesystem::path(), 0, key);
+}
+}  // namespace
 
 namespace {
 
@@ -33,7 +37,7 @@ std::string describe_level(const json& node, std::string_view path) {
 
 [[noreturn]] void fail(const std::string& key, std::string_view problem, const json& level,
                        std::string_view level_path) {
-  throw ConfigError(key,
+  throw override_error(key,
                     fmt::format("configuration key '{}': {}; {}", key, problem, describe_level(level, level_path)));
 }
 
@@ -147,11 +151,11 @@ void flatten_into(const json& node, const std::string& prefix, std::vector<std::
 void apply_override(json& config, std::string_view assignment) {
   const std::size_t eq = assignment.find('=');
   if (!config.is_object()) {
-    throw ConfigError(std::string(assignment.substr(0, eq)), "configuration overrides need a JSON object to apply to");
+    throw override_error(std::string(assignment.substr(0, eq)), "configuration overrides need a JSON object to apply to");
   }
   if (eq == std::string_view::npos) {
     const std::string whole(assignment);
-    throw ConfigError(whole, fmt::format("configuration override '{}': missing '=' (expected key=value); {}", whole,
+    throw override_error(whole, fmt::format("configuration override '{}': missing '=' (expected key=value); {}", whole,
                                          describe_level(config, "")));
   }
   const std::string key(assignment.substr(0, eq));
@@ -213,4 +217,4 @@ std::vector<std::string> flatten(const json& config) {
   return lines;
 }
 
-}  // namespace peg3d::experiment
+}  // namespace peg3d::config

@@ -1,15 +1,16 @@
-#include "experiment/atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <fmt/format.h>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 
-namespace peg3d::experiment {
+namespace peg3d {
 namespace {
 
 std::string errno_text(int error) {
@@ -34,7 +35,9 @@ void sync_file(const std::filesystem::path& path) {
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path path)
-    : path_(std::move(path)), temp_path_(path_.string() + ".tmp-" + std::to_string(::getpid())) {
+    : path_(std::move(path)) {
+  static std::atomic<unsigned long> counter{0};
+  temp_path_ = fmt::format("{}.tmp-{}-{}", path_.string(), static_cast<long>(::getpid()), counter.fetch_add(1));
   errno = 0;
   out_.open(temp_path_, std::ios::out | std::ios::binary | std::ios::trunc);
   if (!out_.is_open()) fail("cannot create temporary file", temp_path_, errno);
@@ -65,9 +68,13 @@ void AtomicFile::commit() {
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  write_file_atomically(path, {content});
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::initializer_list<std::string_view> chunks) {
   AtomicFile file(path);
-  file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
+  for (const std::string_view chunk : chunks) file.stream().write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
   file.commit();
 }
 
-}  // namespace peg3d::experiment
+}  // namespace peg3d

@@ -6,13 +6,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <ostream>
 #include <string_view>
 
-namespace peg3d::experiment {
+namespace peg3d {
 
-/// A file written through a temporary "<path>.tmp-<pid>" in the same directory (a rename is atomic only
-/// within one file system). Not copyable or movable: the temporary belongs to this object.
+/// A file written through a temporary "<path>.tmp-<pid>-<n>" in the same directory (a rename is atomic only
+/// within one file system; n is a per-process counter, so threads writing the same target never share a
+/// temporary). Not copyable or movable: the temporary belongs to this object.
 class AtomicFile {
  public:
   /// Opens the temporary file for writing (binary: no newline translation). The directory must exist.
@@ -45,5 +47,7 @@ class AtomicFile {
 
 /// Writes `content` to `path` through an AtomicFile. Throws std::runtime_error on failure.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+/// The chunks one after the other, through one AtomicFile.
+void write_file_atomically(const std::filesystem::path& path, std::initializer_list<std::string_view> chunks);
 
-}  // namespace peg3d::experiment
+}  // namespace peg3d

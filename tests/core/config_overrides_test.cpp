@@ -1,11 +1,11 @@
-#include "experiment/config_overrides.hpp"
+#include "core/config_overrides.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-namespace peg3d::experiment {
+namespace peg3d::config {
 namespace {
 
 using nlohmann::json;
@@ -37,21 +37,21 @@ std::string message_of(json& config, std::string_view assignment) {
 
 bool contains(const std::string& text, std::string_view part) { return text.find(part) != std::string::npos; }
 
-TEST(ExperimentConfigOverrides, SetsNestedFloat) {
+TEST(CoreConfigOverrides, SetsNestedFloat) {
   json config = sample_config();
   apply_override(config, "game.dt=0.05");
   EXPECT_EQ(config["game"]["dt"], 0.05);
   EXPECT_TRUE(config["game"]["dt"].is_number_float());
 }
 
-TEST(ExperimentConfigOverrides, IntegerIntoFloatLeafStaysFloat) {
+TEST(CoreConfigOverrides, IntegerIntoFloatLeafStaysFloat) {
   json config = sample_config();
   apply_override(config, "game.capture_radius=2");
   EXPECT_TRUE(config["game"]["capture_radius"].is_number_float());
   EXPECT_EQ(config["game"]["capture_radius"].get<double>(), 2.0);
 }
 
-TEST(ExperimentConfigOverrides, IntegralFloatIntoIntegerLeafBecomesInteger) {
+TEST(CoreConfigOverrides, IntegralFloatIntoIntegerLeafBecomesInteger) {
   json config = sample_config();
   apply_override(config, "game.max_steps=1e3");
   EXPECT_TRUE(config["game"]["max_steps"].is_number_integer());
@@ -60,7 +60,7 @@ TEST(ExperimentConfigOverrides, IntegralFloatIntoIntegerLeafBecomesInteger) {
   EXPECT_EQ(config["game"]["max_steps"].get<int>(), -20);
 }
 
-TEST(ExperimentConfigOverrides, FractionIntoIntegerLeafIsRejected) {
+TEST(CoreConfigOverrides, FractionIntoIntegerLeafIsRejected) {
   json config = sample_config();
   const std::string message = message_of(config, "game.max_steps=2.5");
   EXPECT_TRUE(contains(message, "'game.max_steps'")) << message;
@@ -68,7 +68,7 @@ TEST(ExperimentConfigOverrides, FractionIntoIntegerLeafIsRejected) {
   EXPECT_EQ(config["game"]["max_steps"], 500);  // unchanged
 }
 
-TEST(ExperimentConfigOverrides, NegativeIntoUnsignedLeafIsRejected) {
+TEST(CoreConfigOverrides, NegativeIntoUnsignedLeafIsRejected) {
   json config = sample_config();
   EXPECT_THROW(apply_override(config, "game.episodes=-1"), ConfigError);
   apply_override(config, "game.episodes=20");
@@ -76,7 +76,7 @@ TEST(ExperimentConfigOverrides, NegativeIntoUnsignedLeafIsRejected) {
   EXPECT_EQ(config["game"]["episodes"].get<std::size_t>(), 20u);
 }
 
-TEST(ExperimentConfigOverrides, SetsBoolean) {
+TEST(CoreConfigOverrides, SetsBoolean) {
   json config = sample_config();
   apply_override(config, "learner.greedy=true");
   EXPECT_EQ(config["learner"]["greedy"], true);
@@ -84,7 +84,7 @@ TEST(ExperimentConfigOverrides, SetsBoolean) {
   EXPECT_THROW(apply_override(config, "learner.greedy=1"), ConfigError);
 }
 
-TEST(ExperimentConfigOverrides, StringLeafTakesTextVerbatim) {
+TEST(CoreConfigOverrides, StringLeafTakesTextVerbatim) {
   json config = sample_config();
   apply_override(config, "learner.name=q-learning");
   EXPECT_EQ(config["learner"]["name"], "q-learning");
@@ -96,7 +96,7 @@ TEST(ExperimentConfigOverrides, StringLeafTakesTextVerbatim) {
   EXPECT_EQ(config["learner"]["name"], "");
 }
 
-TEST(ExperimentConfigOverrides, ReplacesArrayCheckingElementTypes) {
+TEST(CoreConfigOverrides, ReplacesArrayCheckingElementTypes) {
   json config = sample_config();
   apply_override(config, "learner.seeds=[7, 8]");
   EXPECT_EQ(config["learner"]["seeds"], json::array({7, 8}));
@@ -105,7 +105,7 @@ TEST(ExperimentConfigOverrides, ReplacesArrayCheckingElementTypes) {
   EXPECT_THROW(apply_override(config, "learner.seeds=4"), ConfigError);
 }
 
-TEST(ExperimentConfigOverrides, AddressesArrayElementsByIndex) {
+TEST(CoreConfigOverrides, AddressesArrayElementsByIndex) {
   json config = sample_config();
   apply_override(config, "agents.1.speed=3.5");
   EXPECT_EQ(config["agents"][1]["speed"], 3.5);
@@ -113,13 +113,13 @@ TEST(ExperimentConfigOverrides, AddressesArrayElementsByIndex) {
   EXPECT_TRUE(contains(message, "valid indices under 'agents': 0..1")) << message;
 }
 
-TEST(ExperimentConfigOverrides, NullLeafAcceptsAnyValue) {
+TEST(CoreConfigOverrides, NullLeafAcceptsAnyValue) {
   json config = sample_config();
   apply_override(config, "optional_map=maps/forest.yaml");
   EXPECT_EQ(config["optional_map"], "maps/forest.yaml");
 }
 
-TEST(ExperimentConfigOverrides, UnknownKeyNamesKeyAndListsValidKeys) {
+TEST(CoreConfigOverrides, UnknownKeyNamesKeyAndListsValidKeys) {
   json config = sample_config();
   const std::string message = message_of(config, "game.dtt=0.1");
   EXPECT_TRUE(contains(message, "'game.dtt'")) << message;
@@ -129,7 +129,7 @@ TEST(ExperimentConfigOverrides, UnknownKeyNamesKeyAndListsValidKeys) {
   EXPECT_TRUE(contains(top, "valid keys at the top level: agents, game, learner, optional_map")) << top;
 }
 
-TEST(ExperimentConfigOverrides, ConfigErrorCarriesTheKey) {
+TEST(CoreConfigOverrides, ConfigErrorCarriesTheKey) {
   json config = sample_config();
   try {
     apply_override(config, "game.nope=1");
@@ -139,7 +139,7 @@ TEST(ExperimentConfigOverrides, ConfigErrorCarriesTheKey) {
   }
 }
 
-TEST(ExperimentConfigOverrides, MissingEqualsIsRejected) {
+TEST(CoreConfigOverrides, MissingEqualsIsRejected) {
   json config = sample_config();
   const std::string message = message_of(config, "game.dt");
   EXPECT_TRUE(contains(message, "'game.dt'")) << message;
@@ -147,42 +147,42 @@ TEST(ExperimentConfigOverrides, MissingEqualsIsRejected) {
   EXPECT_TRUE(contains(message, "valid keys at the top level")) << message;
 }
 
-TEST(ExperimentConfigOverrides, EmptyKeySegmentIsRejected) {
+TEST(CoreConfigOverrides, EmptyKeySegmentIsRejected) {
   json config = sample_config();
   EXPECT_THROW(apply_override(config, "=1"), ConfigError);
   EXPECT_THROW(apply_override(config, "game..dt=1"), ConfigError);
   EXPECT_THROW(apply_override(config, "game.=1"), ConfigError);
 }
 
-TEST(ExperimentConfigOverrides, KeyBelowAValueIsRejected) {
+TEST(CoreConfigOverrides, KeyBelowAValueIsRejected) {
   json config = sample_config();
   const std::string message = message_of(config, "game.dt.x=1");
   EXPECT_TRUE(contains(message, "'game.dt' is a number and has no key 'x'")) << message;
   EXPECT_TRUE(contains(message, "valid keys under 'game'")) << message;
 }
 
-TEST(ExperimentConfigOverrides, WholeSectionCannotBeReplaced) {
+TEST(CoreConfigOverrides, WholeSectionCannotBeReplaced) {
   json config = sample_config();
   const std::string message = message_of(config, "game={\"dt\": 1.0}");
   EXPECT_TRUE(contains(message, "is a section")) << message;
   EXPECT_TRUE(contains(message, "valid keys under 'game'")) << message;
 }
 
-TEST(ExperimentConfigOverrides, TypeMismatchNamesExpectedTypeAndLevel) {
+TEST(CoreConfigOverrides, TypeMismatchNamesExpectedTypeAndLevel) {
   json config = sample_config();
   const std::string message = message_of(config, "game.dt=fast");
   EXPECT_TRUE(contains(message, "configuration key 'game.dt': expects a number (now 0.1), got 'fast'")) << message;
   EXPECT_TRUE(contains(message, "valid keys under 'game'")) << message;
 }
 
-TEST(ExperimentConfigOverrides, LaterOverridesWin) {
+TEST(CoreConfigOverrides, LaterOverridesWin) {
   json config = sample_config();
   const std::vector<std::string> sets = {"game.dt=0.2", "game.dt=0.3"};
   apply_overrides(config, sets);
   EXPECT_EQ(config["game"]["dt"], 0.3);
 }
 
-TEST(ExperimentConfigOverrides, FlattenListsSortedLeaves) {
+TEST(CoreConfigOverrides, FlattenListsSortedLeaves) {
   const std::vector<std::string> expected = {
       "agents.0.speed=1.0",
       "agents.1.speed=2.0",
@@ -198,7 +198,7 @@ TEST(ExperimentConfigOverrides, FlattenListsSortedLeaves) {
   EXPECT_EQ(flatten(sample_config()), expected);
 }
 
-TEST(ExperimentConfigOverrides, FlattenQuotesOnlyStringsWithControlCharacters) {
+TEST(CoreConfigOverrides, FlattenQuotesOnlyStringsWithControlCharacters) {
   json config;
   config["a"] = "two\nlines";
   config["b"] = "x, y";
@@ -208,7 +208,7 @@ TEST(ExperimentConfigOverrides, FlattenQuotesOnlyStringsWithControlCharacters) {
   EXPECT_EQ(flatten(config), expected);
 }
 
-TEST(ExperimentConfigOverrides, FlattenedLinesApplyBack) {
+TEST(CoreConfigOverrides, FlattenedLinesApplyBack) {
   const json original = sample_config();
   json changed = original;
   apply_override(changed, "game.dt=9");
@@ -220,4 +220,4 @@ TEST(ExperimentConfigOverrides, FlattenedLinesApplyBack) {
 }
 
 }  // namespace
-}  // namespace peg3d::experiment
+}  // namespace peg3d::config

@@ -11,19 +11,10 @@
 #include <string_view>
 #include <vector>
 
-namespace peg3d::experiment {
+#include "core/config_json.hpp"  // ConfigError
 
-/// A configuration override or lookup that cannot be applied. what() names the key and lists the valid
-/// keys at the level where it failed.
-class ConfigError : public std::invalid_argument {
- public:
-  ConfigError(std::string key, const std::string& message);
-  /// The dotted key the error is about (the whole assignment when it has no '=').
-  const std::string& key() const noexcept { return key_; }
+namespace peg3d::config {
 
- private:
-  std::string key_;
-};
 
 /// Applies one "a.b.c=value" assignment to `config` (a JSON object), replacing the existing leaf a.b.c.
 /// - Path: dot-separated object keys; an array element is addressed by its index ("agents.0.speed").
@@ -51,4 +42,4 @@ void apply_overrides(nlohmann::json& config, std::span<const std::string> assign
 /// Empty objects and arrays print as {} and [].
 std::vector<std::string> flatten(const nlohmann::json& config);
 
-}  // namespace peg3d::experiment
+}  // namespace peg3d::config

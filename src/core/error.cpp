@@ -1,0 +1,28 @@
+#include "core/error.hpp"
+
+#include <fmt/format.h>
+
+namespace peg3d {
+
+std::string format_input_error(const std::filesystem::path& file, int line, const std::string& field,
+                               const std::string& message) {
+  std::string where = file.empty() ? std::string() : file.string();
+  if (line > 0) where += fmt::format(":{}", line);
+  std::string out = where.empty() ? std::string() : where + ": ";
+  if (!field.empty()) out += field + ": ";
+  return out + message;
+}
+
+InputError::InputError(const std::string& message) : std::runtime_error(message) {}
+
+InputError::InputError(std::filesystem::path file, int line, std::string field, const std::string& message)
+    : std::runtime_error(format_input_error(file, line, field, message)),
+      file_(std::move(file)),
+      line_(line),
+      field_(std::move(field)) {}
+
+InputError::InputError(Preformatted, const std::string& message, std::filesystem::path file, int line,
+                       std::string field)
+    : std::runtime_error(message), file_(std::move(file)), line_(line), field_(std::move(field)) {}
+
+}  // namespace peg3d

@@ -1,0 +1,76 @@
+#include "game/constraints.hpp"
+
+#include <algorithm>
+
+namespace peg3d::game {
+
+Heading bounded_steer(const Heading& h, const Steering& u, const SteeringConfig& steering, double dt) {
+  return steer(h, u, steering.step_bound(dt), steering.polar_margin);
+}
+
+std::optional<Cone> motion_space(Role role, const Vec3& self, const Vec3& opponent, double self_speed,
+                                 double opponent_speed) {
+  const Vec3& pursuer = role == Role::kPursuer ? self : opponent;
+  const Vec3& evader = role == Role::kPursuer ? opponent : self;
+  if ((evader - pursuer).squaredNorm() == 0.0) return std::nullopt;
+  if (role == Role::kPursuer) return pursuer_motion_cone(pursuer, evader, self_speed, opponent_speed);
+  return evader_motion_cone(pursuer, evader);
+}
+
+bool keep_within(const Cone& cone, Vec3& d, double polar_margin, const Vec3& current, double commit_angle) {
+  if (cone.contains(d)) return false;
+  d = project_within_band(cone, d, polar_margin, current, commit_angle);
+  return true;
+}
+
+std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position, const ObstacleSense& nearest) {
+  const Vec3 away = position - nearest.point;
+  if (!guard.enabled || !nearest.found || !(nearest.distance < guard.warn_distance) || away.squaredNorm() == 0.0) {
+    return std::nullopt;
+  }
+  const double excluded =
+      0.5 * kPi *
+      std::min(1.0, (guard.warn_distance - nearest.distance) / (guard.warn_distance - guard.stop_distance));
+  return Cone{away.normalized(), kPi - excluded};
+}
+
+bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box) {
+  Vec3 along = d, axis_along = allowed.axis;
+  for (int a = 0; a < 3; ++a) {
+    const bool at_lo = position[a] <= box.lo[a] + 1e-9, at_hi = position[a] >= box.hi[a] - 1e-9;
+    if ((at_lo && along[a] < 0.0) || (at_hi && along[a] > 0.0)) along[a] = 0.0;
+    if (at_lo || at_hi) axis_along[a] = 0.0;
+  }
+  if (along.squaredNorm() > 1e-12 && axis_along.squaredNorm() > 1e-12 && !allowed.contains(along.normalized())) {
+    d = first_inside_on_arc(allowed, along.normalized(), axis_along.normalized());
+    return true;
+  }
+  return false;
+}
+
+Heading constrained_heading(const ConstraintInputs& in, const Steering& u) {
+  const AgentConfig& c = *in.config;
+  const double margin = c.steering.polar_margin;
+  const Heading requested = bounded_steer(in.self.heading, u, c.steering, in.dt);
+  Vec3 d = direction(requested);
+  const Vec3 current = direction(in.self.heading);
+  bool changed = false;
+  if (c.motion_space) {
+    if (const auto cone = motion_space(in.role, in.self.position, in.opponent, c.speed, in.opponent_speed)) {
+      changed |= keep_within(*cone, d, margin, current, 0.0);
+    }
+  }
+  // The guard comes last: staying clear of obstacles outranks the motion space.
+  if (const auto allowed = guard_cone(c.guard, in.self.position, in.field)) {
+    // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
+    // to; deciding it from the request would flip sides every step.
+    changed |= keep_within(*allowed, d, margin, current, kGuardCommitAngle);
+    changed |= guard_along_faces(*allowed, d, in.self.position, in.arena.shrunk(c.radius));
+  }
+  if (!changed) return requested;
+  // Turn towards the constrained direction within the same steering bound.
+  const AngleErrors e = angle_errors(in.self.heading, d);
+  return bounded_steer(in.self.heading, {e.azimuth, e.elevation}, c.steering, in.dt);
+}
+
+}  // namespace peg3d::game

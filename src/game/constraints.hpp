@@ -1,0 +1,65 @@
+#pragma once
+// The constraint layer between what a policy asks for and how an agent moves, applied in this order:
+//   bounded steering   the requested heading change is clamped to the steering bound and the climb limit
+//   motion space       the paper's optimal motion space (section 3.1): a cone of headings about the line of sight
+//   obstacle guard     headings that approach a nearby obstacle of the map are excluded (it outranks the motion space)
+//   arena clamp        the agent moves along the heading and is clamped into the arena (kinematics advance())
+// Each is a free function over plain data, tested on its own; constrained_heading() composes the first three.
+
+#include <optional>
+
+#include "game/game_config.hpp"
+#include "game/percept.hpp"
+#include "geometry/motion_cone.hpp"
+
+namespace peg3d::game {
+
+/// The heading after steering by u within the agent's bound for one sample of dt and its climb limit.
+Heading bounded_steer(const Heading& h, const Steering& u, const SteeringConfig& steering, double dt);
+
+/// The paper's optimal motion space of an agent of `role` at `self` playing against `opponent`: for a
+/// pursuer, the cone of half-angle asin(v_E / v_P) about the line to the evader (eq. 6); for an evader,
+/// the half-space alpha1 >= pi/2 away from the pursuer. nullopt when the two stand on the same point.
+std::optional<Cone> motion_space(Role role, const Vec3& self, const Vec3& opponent, double self_speed,
+                                 double opponent_speed);
+
+/// Brings the unit direction `d` into `cone` when it lies outside: the nearest direction in the cone within
+/// the climb limit (project_within_band). Near the direction opposite the cone's axis the side is taken
+/// from `current` (the heading's direction) within `commit_angle`, so the choice does not flip each step.
+/// Returns whether d changed.
+bool keep_within(const Cone& cone, Vec3& d, double polar_margin, const Vec3& current, double commit_angle);
+
+/// The angle (rad) within which the guard commits to the side the agent already leans to.
+inline constexpr double kGuardCommitAngle = 0.35;  // 20 degrees
+
+/// The headings the obstacle guard allows at `position` given the map's nearest obstacle (`nearest`, from the
+/// distance field, arena faces excluded): everything but a cone about the direction to the obstacle, which
+/// widens from nothing at warn_distance to a half-space at stop_distance. nullopt when the guard is off, no
+/// obstacle is within warn_distance, or the agent stands on the obstacle point.
+std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position, const ObstacleSense& nearest);
+
+/// Against a face of the arena the clamp removes the motion into the face, and what remains may still
+/// approach the obstacle. `d` lies in `allowed` already (keep_within). If its part along the faces the agent
+/// touches (`box` is the arena shrunk by its radius) is not allowed, d becomes the first allowed direction on
+/// the arc, within those faces, towards the obstacle-free side (the face-plane part of the allowed cone's
+/// axis). Returns whether d changed.
+bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box);
+
+/// Everything one agent's constrained heading depends on, at the start of a step.
+struct ConstraintInputs {
+  const AgentConfig* config = nullptr;
+  Role role = Role::kPursuer;
+  double dt = 0.1;                 ///< s
+  KinematicState self;             ///< position and heading now
+  Vec3 opponent = Vec3::Zero();    ///< the opponent's position now (for the motion space)
+  double opponent_speed = 0.0;     ///< m/s
+  ObstacleSense field;             ///< the map's nearest obstacle (arena faces excluded)
+  Box arena;                       ///< the arena box (not shrunk)
+};
+
+/// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),
+/// then the guard (when enabled). When a constraint moved the direction, the agent turns towards the
+/// constrained direction within the same steering bound.
+Heading constrained_heading(const ConstraintInputs& in, const Steering& u);
+
+}  // namespace peg3d::game

@@ -1,0 +1,190 @@
+#pragma once
+// The steppable game, in the manner of MuJoCo's mj_step(const mjModel*, mjData*):
+//   Sim        the read-only model: the Arena, the GameConfig and what derives from them. Shared by all
+//              threads.
+//   SimState   one run's changing state: every agent's kinematic state, time and step, which evaders are
+//              still free, the run's totals, its random engine and its collision scratch (a Bullet world).
+//   reset      puts a state at a scenario's start; step turns it into the next state given one steering
+//              command per agent and reports what happened (StepEvents).
+// Every loop (play(), experiments, replays of recorded motions, external controllers) is built on step().
+//
+// Agents are indexed pursuers first, then evaders, each in the scenario's order. Each step:
+//   every active agent's command -> bounded steering -> motion space -> obstacle guard   (constraints.hpp)
+//   -> move along the heading, clamped to the arena -> swept collision with the map's obstacles
+//   -> (optionally) swept collision between agents -> captures -> new observations -> rewards.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "game/game_config.hpp"
+#include "game/percept.hpp"
+#include "game/policy.hpp"
+#include "game/reward.hpp"
+#include "world/arena.hpp"
+#include "world/collision_world.hpp"
+
+namespace peg3d::game {
+
+/// A start that the game cannot play: an agent's sphere overlaps an obstacle or (when agents collide) another
+/// agent. what() names the map file, the start's line and field, and what it overlaps.
+class StartError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+/// An agent touching an obstacle or another agent.
+struct CollisionEvent {
+  int step = 0;                           ///< the step during which it happened (1 = the first step)
+  double time = 0.0;                      ///< s, time of impact within the episode
+  int agent = 0;                          ///< index of the agent that hit
+  Role role = Role::kPursuer;             ///< its role
+  world::ObstacleKind kind = world::ObstacleKind::kSphere;
+  int obstacle_id = -1;                   ///< index in the map's list of that kind; the other agent's index for kAgent
+  int triangle = -1;                      ///< triangle within the mesh for kMesh, else -1
+  Vec3 point = Vec3::Zero();              ///< m, contact point
+  Vec3 normal = Vec3::UnitZ();            ///< unit, from the obstacle towards the agent
+  double fraction = 0.0;                  ///< time of impact as a fraction of the step, [0, 1]
+  double penetration = 0.0;               ///< m, overlap depth when already intersecting
+};
+
+/// A pursuer coming within the capture distance of a free evader at the end of a step.
+struct CaptureEvent {
+  int step = 0;
+  double time = 0.0;      ///< s
+  int pursuer = 0;        ///< index of the capturing pursuer (the nearest; the lower index on a tie)
+  int evader = 0;         ///< index of the captured evader
+  double distance = 0.0;  ///< m, their distance at the capture
+};
+
+/// One agent's state in a run, and its running totals.
+struct AgentState {
+  Role role = Role::kPursuer;
+  int rank = 0;                       ///< index among the agents of its role
+  const AgentConfig* config = nullptr;  ///< its settings (owned by the Sim)
+  KinematicState kinematics;
+  bool active = true;                 ///< in the game; an evader leaves it when captured
+  int opponent = -1;                  ///< index of the agent it plays against now
+  Percept percept;                    ///< what it senses now, relative to `opponent`
+  ObstacleSense field;                ///< the map's nearest obstacle now (arena faces excluded)
+  int body = -1;                      ///< its sphere in the state's collision world
+  // Totals over the run so far.
+  double path = 0.0;                  ///< m travelled
+  double total_reward = 0.0;          ///< undiscounted sum of its rewards
+  int steps = 0;                      ///< steps it took part in
+  int pinned_steps = 0;               ///< steps ending with its centre within max(radius, 0.1 m) of a face
+  int collisions = 0;                 ///< collision events it caused
+  int captures = 0;                   ///< evaders it captured (pursuers)
+  double captured_at = -1.0;          ///< s, when it was captured (evaders; < 0 while free)
+};
+
+/// What happened to one agent in a step.
+struct AgentEvents {
+  Steering command;             ///< the command it was given
+  RewardTerms reward;           ///< its reward for the step (zero for an agent that was out of the game)
+  int opponent = -1;            ///< the opponent its reward terms were measured against
+  bool collided = false;        ///< it hit an obstacle or an agent (the first contact is in StepEvents::collisions)
+  int captures = 0;             ///< evaders it captured in this step (pursuer)
+  bool captured = false;        ///< it was captured in this step (evader)
+  bool terminal = false;        ///< the step ended the game for it (its capture, the last capture, a terminating collision)
+  bool acted = false;           ///< it was in the game at the start of the step
+};
+
+/// How an episode ended.
+enum class Outcome {
+  kCapture,           ///< every evader captured
+  kTimeout,           ///< time_limit reached
+  kPursuerCollision,  ///< a pursuer hit something (CollisionMode::kTerminate)
+  kEvaderCollision,   ///< an evader hit something (CollisionMode::kTerminate)
+};
+const char* to_string(Outcome o);
+
+/// What one step did. Lives in the SimState and is overwritten by the next step.
+struct StepEvents {
+  std::vector<AgentEvents> agents;         ///< one per agent
+  std::vector<CollisionEvent> collisions;  ///< in the order detected (agents in index order)
+  std::vector<CaptureEvent> captures;      ///< in evader index order
+  bool terminal = false;   ///< the game ended: every evader captured or a terminating collision
+  bool truncated = false;  ///< the time limit ended it (not a terminal state of the game: learners bootstrap)
+};
+
+class Sim;
+
+/// One run's changing state. Build one per thread or run; reset() reuses its storage, so resets and steps
+/// of scenarios no larger than before allocate nothing. Use it only with the Sim it was made for (or a copy
+/// of that Sim): its agents point at that Sim's configuration.
+class SimState {
+ public:
+  explicit SimState(const Sim& sim);
+
+  std::vector<AgentState> agents;  ///< pursuers first, then evaders
+  int pursuers = 0;                ///< agents [0, pursuers) are pursuers, the rest evaders
+  double time = 0.0;               ///< s
+  int step = 0;
+  int free_evaders = 0;
+  bool done = false;               ///< the episode is over (terminal or truncated)
+  Outcome outcome = Outcome::kTimeout;  ///< valid once done
+  std::optional<CollisionEvent> first_collision;
+  int collisions = 0;              ///< collision events so far
+  Rng rng;                         ///< the run's engine (random initial headings)
+  world::CollisionWorld collider;  ///< per-run collision scratch over the Sim's arena (agent i is body i)
+  StepEvents events;               ///< what the last step did
+
+  /// Per-step working storage, sized by reset().
+  struct Scratch {
+    std::vector<KinematicState> next;     ///< where each agent moves this step
+    std::vector<double> target_before;    ///< d to its opponent at the start of the step
+    std::vector<double> obstacle_before;  ///< d_O at the start of the step
+    std::vector<Vec3> positions;          ///< start positions (reset)
+    std::vector<Steering> commands;       ///< play()'s command buffer
+  } scratch;
+
+  int agent_count() const { return static_cast<int>(agents.size()); }
+  int evaders() const { return agent_count() - pursuers; }
+};
+
+/// The read-only model of a game: an arena and a configuration. Thread-safe to share.
+class Sim {
+ public:
+  /// Validates the configuration (InvalidParameter) and checks every scenario of the arena's map against it
+  /// once, before any run (StartError), so that no run can fail on its start.
+  Sim(std::shared_ptr<const world::Arena> arena, GameConfig config);
+
+  const GameConfig& config() const { return *config_; }
+  const world::Arena& arena() const { return *arena_; }
+  const std::shared_ptr<const world::Arena>& arena_ptr() const { return arena_; }
+  int max_steps() const { return max_steps_; }
+
+  /// Throws StartError when an agent of `scenario`, with its configured radius and kept inside the arena,
+  /// starts overlapping an obstacle or (when agents collide) another agent; InvalidParameter when the
+  /// scenario has no pursuer or no evader or more than kMaxAgentsPerRole of either.
+  void check_scenario(const world::Scenario& scenario) const;
+
+ private:
+  std::shared_ptr<const world::Arena> arena_;
+  std::shared_ptr<const GameConfig> config_;  // shared by copies: agents' config pointers stay valid
+  int max_steps_ = 0;
+};
+
+/// Puts `state` at the start of `scenario`: positions kept radius inside the arena, headings from the scenario
+/// or the configured InitialHeading (kRandom draws from `seed`), first observations, totals zeroed. Throws
+/// StartError like Sim::check_scenario.
+void reset(const Sim& sim, SimState& state, const world::Scenario& scenario, std::uint64_t seed);
+
+/// Advances `state` by one sample of dt. `commands` has one steering command per agent (entries of agents
+/// out of the game are ignored); the command is a requested heading change that the constraint layer
+/// bounds. Returns the state's StepEvents. The state must not be done. Allocates nothing.
+const StepEvents& step(const Sim& sim, SimState& state, std::span<const Steering> commands);
+
+/// What agent i may use to decide now (its percept is the one computed by the last reset() or step()).
+AgentView observe(const Sim& sim, const SimState& state, int i);
+
+/// The opponent agent `i` plays against in `state` by the team rule, among the opponents still in the game
+/// (or its current one when none is left). Pure: depends on positions and activity only.
+int choose_opponent(const SimState& state, int i, OpponentChoice rule);
+
+}  // namespace peg3d::game

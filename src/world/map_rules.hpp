@@ -1,0 +1,42 @@
+#pragma once
+// The rules a map must follow, each stated once. load_map() applies them while reading a file (and reports
+// the offending value's line); Arena::build() applies them to maps written in code. A rule returns the
+// first Problem it finds: the field (relative to the thing checked, e.g. "radius") and what is wrong.
+
+#include <string>
+#include <string_view>
+
+#include "geometry/vector.hpp"
+#include "world/map_spec.hpp"
+
+namespace peg3d::world {
+
+struct Problem {
+  std::string field;    ///< relative field, e.g. "radius", "size[2]"; empty for the thing as a whole
+  std::string message;  ///< empty when there is no problem
+  explicit operator bool() const { return !message.empty(); }
+};
+
+/// A point inside the (closed) arena box: what obstacles' centres and generator regions must satisfy.
+Problem check_in_arena(const Vec3& p, const Box& arena);
+/// The arena box: finite, every side of `size` > 0 (fields "min", "size[i]").
+Problem check_arena(const Vec3& min, const Vec3& size);
+/// Occupancy settings for the arena: resolution > 0, not coarser than the smallest side, within OctoMap's
+/// 16-bit keys; max_distance >= resolution (fields "resolution", "max_distance").
+Problem check_occupancy(const Box& arena, double resolution, double max_distance);
+/// A sphere: finite centre inside the arena, radius > 0 ("center", "radius").
+Problem check_sphere(const SphereObstacle& s, const Box& arena);
+/// A cylinder: finite base inside the arena, radius and height > 0 ("base", "radius", "height").
+Problem check_cylinder(const CylinderObstacle& c, const Box& arena);
+/// A terrain placement: scale > 0, finite rotation and translation ("scale", "rotation_deg", "translation").
+Problem check_placement(const TerrainMesh& t);
+/// A start point: finite and strictly inside the arena.
+Problem check_start(const Vec3& p, const Box& arena);
+/// A scenario name (it names result files): see is_safe_name().
+Problem check_scenario_name(std::string_view name);
+
+/// Every rule over a whole spec (a map built in code): throws MapError naming spec.source, the line when the
+/// spec carries one, and the field (e.g. "spheres[3].radius").
+void validate_map(const MapSpec& spec);
+
+}  // namespace peg3d::world

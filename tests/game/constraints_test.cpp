@@ -1,0 +1,108 @@
+// The constraint layer, function by function, with answers worked out by hand.
+#include "game/constraints.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace peg3d::game {
+namespace {
+
+TEST(Constraints, BoundedSteeringClampsEachAngleAndTheClimb) {
+  SteeringConfig s;  // pi/4 per step, no climb limit
+  const Heading h{0.0, kPi / 2};
+  const Heading a = bounded_steer(h, {2.0, -0.1}, s, 0.1);
+  EXPECT_DOUBLE_EQ(a.alpha, kPi / 4);
+  EXPECT_DOUBLE_EQ(a.theta, kPi / 2 - 0.1);
+  s.polar_margin = kPi / 3;  // theta in [pi/3, 2pi/3]
+  EXPECT_DOUBLE_EQ(bounded_steer(h, {0.0, -0.7}, s, 0.1).theta, kPi / 3);
+  s.reading = SteeringReading::kPerSecond;  // pi/4 rad/s: at most pi/40 in 0.1 s
+  EXPECT_DOUBLE_EQ(bounded_steer(h, {1.0, 0.0}, s, 0.1).alpha, kPi / 40);
+}
+
+TEST(Constraints, MotionSpacesAreThePapersCones) {
+  const Vec3 p(0, 0, 0), e(10, 0, 0);
+  const auto pc = motion_space(Role::kPursuer, p, e, 1.1, 1.0);
+  ASSERT_TRUE(pc.has_value());
+  EXPECT_TRUE(pc->axis.isApprox(Vec3::UnitX()));
+  EXPECT_NEAR(pc->half_angle, std::asin(1.0 / 1.1), 1e-15);  // 65.38 degrees, eq. 6
+  const auto ec = motion_space(Role::kEvader, e, p, 1.0, 1.1);  // the evader at e, its pursuer at p
+  ASSERT_TRUE(ec.has_value());
+  EXPECT_TRUE(ec->axis.isApprox(Vec3::UnitX()));  // away from the pursuer
+  EXPECT_NEAR(ec->half_angle, kPi / 2, 1e-15);
+  EXPECT_FALSE(motion_space(Role::kPursuer, p, p, 1.1, 1.0).has_value());
+}
+
+TEST(Constraints, KeepWithinProjectsOnlyWhatLiesOutside) {
+  const Cone cone{Vec3::UnitX(), kPi / 4};
+  Vec3 inside = Vec3(1, 0.5, 0).normalized();
+  const Vec3 kept = inside;
+  EXPECT_FALSE(keep_within(cone, inside, 0.0, Vec3::UnitX(), 0.0));
+  EXPECT_EQ(inside, kept);
+  Vec3 outside = Vec3::UnitY();
+  EXPECT_TRUE(keep_within(cone, outside, 0.0, Vec3::UnitX(), 0.0));
+  EXPECT_NEAR(angle_between(outside, Vec3::UnitX()), kPi / 4, 1e-12);  // onto the cone's surface
+  EXPECT_NEAR(outside.z(), 0.0, 1e-12);                                // in the plane of d and the axis
+}
+
+TEST(Constraints, GuardConeWidensFromWarnToStopDistance) {
+  const ObstacleGuard g;  // stop 0.8 m, warn 2 m
+  const Vec3 at(0, 0, 0);
+  const auto near = [&](double d) { return ObstacleSense{d, Vec3(d, 0, 0), true}; };
+  EXPECT_FALSE(guard_cone(g, at, near(2.5)).has_value());  // beyond warn_distance
+  const auto half = guard_cone(g, at, near(1.4));         // halfway: a quarter-turn cone excluded
+  ASSERT_TRUE(half.has_value());
+  EXPECT_TRUE(half->axis.isApprox(-Vec3::UnitX()));
+  EXPECT_NEAR(half->half_angle, kPi - kPi / 4, 1e-12);
+  EXPECT_NEAR(guard_cone(g, at, near(0.8))->half_angle, kPi / 2, 1e-12);  // at stop: never approach
+  EXPECT_NEAR(guard_cone(g, at, near(0.3))->half_angle, kPi / 2, 1e-12);
+  ObstacleGuard off = g;
+  off.enabled = false;
+  EXPECT_FALSE(guard_cone(off, at, near(0.5)).has_value());
+  EXPECT_FALSE(guard_cone(g, at, ObstacleSense{0.5, Vec3::Zero(), false}).has_value());
+}
+
+TEST(Constraints, AgainstAFaceTheGuardTurnsTheMotionAlongIt) {
+  // An obstacle up and ahead (+x +z): the guard allows x + z <= 0, and d = (0.6, 0.3, -0.8) is allowed. On
+  // the floor the clamp removes its downward part, leaving (0.6, 0.3, 0), which approaches the obstacle:
+  // within the floor it turns to the first allowed direction on the way to -x, which is +y.
+  const Cone allowed{Vec3(-1, 0, -1).normalized(), kPi / 2};
+  const Box box{Vec3(0.25, 0.25, 0.25), Vec3(34.75, 34.75, 19.75)};
+  const Vec3 start = Vec3(0.6, 0.3, -0.8).normalized();
+  ASSERT_TRUE(allowed.contains(start));
+  Vec3 d = start;
+  EXPECT_TRUE(guard_along_faces(allowed, d, Vec3(10, 10, 0.25), box));
+  EXPECT_NEAR(d.x(), 0.0, 1e-8);
+  EXPECT_NEAR(d.y(), 1.0, 1e-8);
+  EXPECT_NEAR(d.z(), 0.0, 1e-12);
+  Vec3 free = start;  // away from every face the allowed direction stands
+  EXPECT_FALSE(guard_along_faces(allowed, free, Vec3(10, 10, 5), box));
+  EXPECT_EQ(free, start);
+}
+
+TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
+  AgentConfig c = agent_preset("peg3d", Role::kPursuer);
+  ConstraintInputs in;
+  in.config = &c;
+  in.role = Role::kPursuer;
+  in.self = {Vec3(5, 5, 5), Heading{0.0, kPi / 2}};  // flying along +x
+  in.opponent = Vec3(15, 5, 5);                      // straight ahead
+  in.opponent_speed = 1.0;
+  in.arena = Box{Vec3::Zero(), Vec3(35, 35, 20)};
+  // Nothing in the way: the request, bounded.
+  const Heading plain = constrained_heading(in, {0.3, 0.0});
+  EXPECT_DOUBLE_EQ(plain.alpha, 0.3);
+  // A request to turn right round leaves the cone; the agent turns back towards it by at most pi/4.
+  const Heading back = constrained_heading(in, {kPi, 0.0});
+  EXPECT_LE(std::abs(back.alpha), kPi / 4 + 1e-12);
+  // An obstacle 0.5 m ahead (inside stop_distance): straight ahead is what the motion space wants, but the
+  // guard forbids approaching it at all.
+  in.field = ObstacleSense{0.5, Vec3(5.5, 5, 5), true};
+  // The allowed half-space lies a quarter turn away; the agent turns towards it as far as one step allows.
+  const Heading guarded = constrained_heading(in, {0.0, 0.0});
+  EXPECT_NEAR(std::abs(guarded.alpha), kPi / 4, 1e-9);
+  EXPECT_LE(direction(guarded).dot(Vec3::UnitX()), std::cos(kPi / 4) + 1e-9);
+}
+
+}  // namespace
+}  // namespace peg3d::game

@@ -1,0 +1,269 @@
+// The steppable game: reset/step/observe, external commands, teams (captures, opponents, rewards, agent
+// collisions) and the start checks.
+#include "game/sim.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <gtest/gtest.h>
+
+#include "game/episode.hpp"
+#include "game/scripted_policies.hpp"
+#include "test_arena.hpp"
+#include "world/map_spec.hpp"
+
+namespace peg3d::game {
+namespace {
+
+using testing::make_arena;
+using testing::scenario;
+using testing::team;
+
+const Vec3 kSize(35, 35, 20);
+
+GameConfig stationary_evaders(PolicyKind pursuer = PolicyKind::kPurePursuit) {
+  GameConfig c = preset("peg3d");
+  c.pursuer.policy = pursuer;
+  c.evader.policy = PolicyKind::kFlee;
+  c.evader.speed = 0.0;
+  return c;
+}
+
+TEST(Sim, ExternalCommandsReproduceThePolicysEpisode) {
+  // Record pure pursuit against flee, then drive the pursuer from the recorded commands through step():
+  // every instant and every reward is the same, bit for bit.
+  const auto s = scenario("chase", {5, 5, 5}, {20, 25, 12});
+  GameConfig c = preset("peg3d");
+  c.pursuer.policy = PolicyKind::kPurePursuit;
+  c.evader.policy = PolicyKind::kFlee;
+  const Sim sim(make_arena(kSize, {{{12, 15, 8}, 1.5}}, {s}), c);
+  Trace recorded;
+  const EpisodeResult original = testing::play_once(sim, s, 7, &recorded);
+  ASSERT_GT(recorded.frame_count(), 50);
+
+  SimState state(sim);
+  reset(sim, state, s, 7);
+  FleeLineOfSight flee;
+  std::vector<Steering> commands(2);
+  int k = 0;
+  while (!state.done) {
+    ++k;
+    commands[0] = recorded.at(k, 0).command;
+    commands[1] = flee.act(observe(sim, state, 1));
+    const StepEvents& ev = step(sim, state, commands);
+    for (int i = 0; i < 2; ++i) {
+      ASSERT_EQ(state.agents[std::size_t(i)].kinematics.position, recorded.at(k, i).state.position) << "step " << k;
+      ASSERT_EQ(ev.agents[std::size_t(i)].reward.total, recorded.at(k, i).reward) << "step " << k;
+    }
+  }
+  const EpisodeResult replayed = summarize(state);
+  EXPECT_EQ(k, recorded.frame_count() - 1);
+  EXPECT_EQ(replayed.outcome, original.outcome);
+  EXPECT_EQ(replayed.pursuer_return, original.pursuer_return);
+  EXPECT_EQ(replayed.evader_path, original.evader_path);
+
+  // The same commands as a policy inside play(): the same episode again.
+  std::vector<Steering> script;
+  for (int f = 1; f < recorded.frame_count(); ++f) script.push_back(recorded.at(f, 0).command);
+  CommandScript pursuer(script);
+  FleeLineOfSight evader;
+  Policy* policies[] = {&pursuer, &evader};
+  SimState again(sim);
+  const EpisodeResult scripted = play(sim, again, s, policies, false, 7);
+  EXPECT_EQ(scripted.steps, original.steps);
+  EXPECT_EQ(scripted.pursuer_return, original.pursuer_return);
+  EXPECT_EQ(scripted.final_distance, original.final_distance);
+}
+
+TEST(Sim, ResetIsAFunctionOfTheScenarioAndTheSeedOnly) {
+  const auto s = scenario("open", {5, 5, 3}, {20, 25, 8});
+  GameConfig c = preset("peg3d");
+  c.initial_heading = InitialHeading::kRandom;
+  const Sim sim(make_arena(kSize, {}, {s}), c);
+  SimState a(sim), b(sim);
+  reset(sim, a, s, 42);
+  // b first plays a while, then is reset: no trace of its past remains.
+  reset(sim, b, s, 1);
+  std::vector<Steering> commands(2, Steering{0.3, -0.2});
+  for (int k = 0; k < 30; ++k) step(sim, b, commands);
+  reset(sim, b, s, 42);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(a.agents[std::size_t(i)].kinematics.position, b.agents[std::size_t(i)].kinematics.position);
+    EXPECT_EQ(a.agents[std::size_t(i)].kinematics.heading.alpha, b.agents[std::size_t(i)].kinematics.heading.alpha);
+    EXPECT_EQ(a.agents[std::size_t(i)].kinematics.heading.theta, b.agents[std::size_t(i)].kinematics.heading.theta);
+    EXPECT_EQ(b.agents[std::size_t(i)].path, 0.0);
+  }
+  EXPECT_EQ(b.step, 0);
+  EXPECT_FALSE(b.done);
+  reset(sim, b, s, 43);
+  EXPECT_NE(a.agents[0].kinematics.heading.alpha, b.agents[0].kinematics.heading.alpha);
+}
+
+TEST(Sim, EveryEvaderCanBeCapturedByAnyPursuerAndLeavesTheGame) {
+  // P0 is 10 m from E0, P1 20 m from E1 (each nearer its own than the other's); the evaders stand still.
+  // P0 captures E0 when 10 - 0.11 k <= 1, at k = 82; P1 captures E1 at k = ceil(19 / 0.11) = 173 (P0,
+  // retargeted at E1 at 22.8 m, would need 198 more steps).
+  const auto s = team("2v2", {{5, 10, 10}, {5, 30, 10}}, {{15, 10, 10}, {25, 30, 10}});
+  const Sim sim(make_arena(kSize, {}, {s}), stationary_evaders());
+  Trace trace;
+  const EpisodeResult r = testing::play_once(sim, s, 1, &trace);
+  EXPECT_EQ(r.outcome, Outcome::kCapture);
+  EXPECT_EQ(r.evaders, 2);
+  EXPECT_EQ(r.captures, 2);
+  EXPECT_EQ(r.steps, 173);
+  ASSERT_EQ(trace.captures.size(), 2u);
+  EXPECT_EQ(trace.captures[0].step, 82);
+  EXPECT_EQ(trace.captures[0].pursuer, 0);
+  EXPECT_EQ(trace.captures[0].evader, 2);
+  EXPECT_EQ(trace.captures[1].step, 173);
+  EXPECT_EQ(trace.captures[1].pursuer, 1);
+  EXPECT_EQ(trace.captures[1].evader, 3);
+  EXPECT_NEAR(r.capture_time_sum, 8.2 + 17.3, 1e-9);
+  EXPECT_NEAR(r.last_capture_time, 17.3, 1e-9);
+  // The captured evader is out of the game from its capture on; P0 turned to the remaining evader.
+  EXPECT_TRUE(trace.at(82, 2).active);
+  EXPECT_FALSE(trace.at(83, 2).active);
+  EXPECT_EQ(trace.at(83, 0).percept.target_distance, (trace.at(83, 3).state.position - trace.at(83, 0).state.position).norm());
+  EXPECT_LT(trace.at(172, 0).percept.target_distance, trace.at(83, 0).percept.target_distance);
+}
+
+TEST(Sim, CaptureRewardGoesToTheCapturerAndTheCapturedOrToTheTeams) {
+  const auto s = team("2v2", {{5, 10, 10}, {5, 30, 10}}, {{15, 10, 10}, {25, 30, 10}});
+  for (const CaptureReward rule : {CaptureReward::kIndividual, CaptureReward::kTeam}) {
+    GameConfig c = stationary_evaders();
+    c.team.capture_reward = rule;
+    const Sim sim(make_arena(kSize, {}, {s}), c);
+    SimState state(sim);
+    Lineup l = testing::lineup_for(c, s);
+    reset(sim, state, s, 1);
+    std::vector<Steering> commands(4);
+    for (int k = 0; k < 82; ++k) {
+      for (int i = 0; i < 4; ++i) commands[std::size_t(i)] = l[i].act(observe(sim, state, i));
+      step(sim, state, commands);
+    }
+    const StepEvents& ev = state.events;
+    ASSERT_EQ(ev.captures.size(), 1u);
+    const bool team_rule = rule == CaptureReward::kTeam;
+    EXPECT_EQ(ev.agents[0].reward.success, 20.0);
+    EXPECT_EQ(ev.agents[1].reward.success, team_rule ? 20.0 : 0.0);
+    EXPECT_EQ(ev.agents[2].reward.success, -20.0);
+    EXPECT_EQ(ev.agents[3].reward.success, team_rule ? -20.0 : 0.0);
+    EXPECT_TRUE(ev.agents[2].terminal);   // the captured evader's game is over
+    EXPECT_FALSE(ev.agents[0].terminal);  // the others play on
+    EXPECT_FALSE(ev.terminal);
+    EXPECT_FALSE(state.agents[2].active);
+  }
+}
+
+TEST(Sim, OpponentsAreTheNearestOrTheAssignedOne) {
+  // Both pursuers are nearest to E0; by assignment P1 plays E1.
+  const auto s = team("2v2", {{5, 10, 10}, {5, 12, 10}}, {{10, 10, 10}, {30, 30, 10}});
+  GameConfig c = preset("peg3d");
+  const Sim nearest(make_arena(kSize, {}, {s}), c);
+  SimState st(nearest);
+  reset(nearest, st, s, 0);
+  EXPECT_EQ(st.agents[0].opponent, 2);
+  EXPECT_EQ(st.agents[1].opponent, 2);
+  EXPECT_EQ(st.agents[2].opponent, 0);
+  EXPECT_EQ(st.agents[3].opponent, 1);  // (30,30) is nearer to (5,12) than to (5,10)
+  EXPECT_EQ(observe(nearest, st, 1).opponent, 2);
+  c.team.pursuer_target = OpponentChoice::kAssigned;
+  const Sim assigned(make_arena(kSize, {}, {s}), c);
+  SimState st2(assigned);
+  reset(assigned, st2, s, 0);
+  EXPECT_EQ(st2.agents[0].opponent, 2);
+  EXPECT_EQ(st2.agents[1].opponent, 3);
+  EXPECT_EQ(observe(assigned, st2, 1).other.position, Vec3(30, 30, 10));
+}
+
+TEST(Sim, AgentsCollideWhenConfiguredAndPassThroughOtherwise) {
+  // Capture only at 0.1 m, radii 0.25 m: a pursuer closing on a standing evader from 5 m touches it after
+  // 4.5 m, at 4.5 / 1.1 s, when agents collide; otherwise it captures at 5 - 0.11 k <= 0.1, k = 45.
+  const auto s = scenario("touch", {10, 17.5, 10}, {15, 17.5, 10});
+  GameConfig c = stationary_evaders();
+  c.capture_distance = 0.1;
+  const Sim passing(make_arena(kSize, {}, {s}), c);
+  const EpisodeResult free_run = testing::play_once(passing, s, 1);
+  EXPECT_EQ(free_run.outcome, Outcome::kCapture);
+  EXPECT_EQ(free_run.steps, 45);
+  c.team.agent_collisions = AgentCollisions::kOpponents;
+  const Sim colliding(make_arena(kSize, {}, {s}), c);
+  Trace trace;
+  const EpisodeResult r = testing::play_once(colliding, s, 1, &trace);
+  EXPECT_EQ(r.outcome, Outcome::kPursuerCollision);
+  ASSERT_TRUE(r.first_collision.has_value());
+  EXPECT_EQ(r.first_collision->kind, world::ObstacleKind::kAgent);
+  EXPECT_EQ(r.first_collision->agent, 0);
+  EXPECT_EQ(r.first_collision->obstacle_id, 1);
+  EXPECT_NEAR(r.first_collision->time, 4.5 / 1.1, 1e-9);
+  EXPECT_NEAR(r.first_collision->point.x(), 14.75, 1e-9);
+  ASSERT_EQ(trace.collisions.size(), 2u);  // both agents report the contact
+  EXPECT_EQ(trace.collisions[1].agent, 1);
+  EXPECT_EQ(trace.collisions[1].obstacle_id, 0);
+  const double gap = (trace.at(r.steps, 1).state.position - trace.at(r.steps, 0).state.position).norm();
+  EXPECT_GT(gap, 0.5);  // stopped a hair before touching
+  EXPECT_LT(gap, 0.5 + 2e-3);
+  // Teammates only: the pursuer and the evader pass through each other again.
+  c.team.agent_collisions = AgentCollisions::kTeammates;
+  const Sim teammates(make_arena(kSize, {}, {s}), c);
+  EXPECT_EQ(testing::play_once(teammates, s, 1).outcome, Outcome::kCapture);
+}
+
+TEST(Sim, OverlappingTeammatesCannotStartWhenTeammatesCollide) {
+  const auto s = team("crowded", {{5, 10, 10}, {5, 10.3, 10}}, {{30, 30, 10}});
+  GameConfig c = preset("peg3d");
+  EXPECT_NO_THROW(Sim(make_arena(kSize, {}, {s}), c));
+  c.team.agent_collisions = AgentCollisions::kTeammates;
+  EXPECT_THROW(Sim(make_arena(kSize, {}, {s}), c), StartError);
+}
+
+TEST(Sim, ScenariosNeedAPursuerAndAnEvader) {
+  const auto ok = scenario("ok", {5, 5, 5}, {30, 30, 5});
+  const Sim sim(make_arena(kSize, {}, {ok}), preset("peg3d"));
+  SimState state(sim);
+  world::Scenario lonely = ok;
+  lonely.evaders.clear();
+  EXPECT_THROW(reset(sim, state, lonely, 0), InvalidParameter);
+  EXPECT_THROW(sim.check_scenario(lonely), InvalidParameter);
+}
+
+// Every file in tests/data/maps/bad-starts/ is a valid map whose start cannot be played with the default
+// agents. Its first line says what the game must report: # expect: LINE FIELD MESSAGE-FRAGMENT
+TEST(Sim, BadStartsNameTheMapFileLineAndField) {
+  const auto dir = std::filesystem::path(PEG3D_TEST_DATA_DIR) / "maps" / "bad-starts";
+  int cases = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++cases;
+    std::ifstream in(entry.path());
+    std::string first;
+    std::getline(in, first);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(first, m, std::regex(R"(# expect: (\d+) (\S+) (.+))"))) << entry.path();
+    const auto arena = world::Arena::build(world::load_map(entry.path()));
+    try {
+      Sim sim(arena, preset("peg3d"));
+      ADD_FAILURE() << "accepted " << entry.path();
+    } catch (const StartError& e) {
+      EXPECT_EQ(e.file(), entry.path());
+      EXPECT_EQ(e.line(), std::stoi(m[1])) << e.what();
+      EXPECT_EQ(e.field(), m[2].str()) << e.what();
+      EXPECT_NE(std::string(e.what()).find(m[3].str()), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind(entry.path().string() + ":" + m[1].str() + ": ", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_GE(cases, 3);
+}
+
+TEST(Sim, StartsAreKeptARadiusInsideTheArena) {
+  const auto s = scenario("edge", {0.1, 5, 5}, {30, 30, 19.95});
+  const Sim sim(make_arena(kSize, {}, {s}), preset("peg3d"));
+  SimState st(sim);
+  reset(sim, st, s, 0);
+  EXPECT_EQ(st.agents[0].kinematics.position, Vec3(0.25, 5, 5));
+  EXPECT_EQ(st.agents[1].kinematics.position, Vec3(30, 30, 19.75));
+}
+
+}  // namespace
+}  // namespace peg3d::game
