@@ -23,6 +23,16 @@ bool keep_within(const Cone& cone, Vec3& d, double polar_margin, const Vec3& cur
   return true;
 }
 
+namespace {
+// keep_within with the heading's direction computed only when a projection needs it (a sincos pair saved
+// on every unconstrained step).
+bool keep_within_heading(const Cone& cone, Vec3& d, double polar_margin, const Heading& current, double commit_angle) {
+  if (cone.contains(d)) return false;
+  d = project_within_band(cone, d, polar_margin, direction(current), commit_angle);
+  return true;
+}
+}  // namespace
+
 std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position, const ObstacleSense& nearest) {
   const Vec3 away = position - nearest.point;
   if (!guard.enabled || !nearest.found || !(nearest.distance < guard.warn_distance) || away.squaredNorm() == 0.0) {
@@ -53,18 +63,17 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u) {
   const double margin = c.steering.polar_margin;
   const Heading requested = bounded_steer(in.self.heading, u, c.steering, in.dt);
   Vec3 d = direction(requested);
-  const Vec3 current = direction(in.self.heading);
   bool changed = false;
   if (c.motion_space) {
     if (const auto cone = motion_space(in.role, in.self.position, in.opponent, c.speed, in.opponent_speed)) {
-      changed |= keep_within(*cone, d, margin, current, 0.0);
+      changed |= keep_within_heading(*cone, d, margin, in.self.heading, 0.0);
     }
   }
   // The guard comes last: staying clear of obstacles outranks the motion space.
   if (const auto allowed = guard_cone(c.guard, in.self.position, in.field)) {
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
     // to; deciding it from the request would flip sides every step.
-    changed |= keep_within(*allowed, d, margin, current, kGuardCommitAngle);
+    changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);
     changed |= guard_along_faces(*allowed, d, in.self.position, in.arena.shrunk(c.radius));
   }
   if (!changed) return requested;

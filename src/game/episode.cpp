@@ -89,7 +89,7 @@ void Trace::record(const SimState& st, bool after_step) {
     const AgentState& a = st.agents[std::size_t(i)];
     AgentFrame f;
     f.state = a.kinematics;
-    f.percept = a.percept;
+    f.percept = a.view.percept;
     f.active = a.active;
     if (after_step) {
       const AgentEvents& e = st.events.agents[std::size_t(i)];
@@ -110,7 +110,7 @@ EpisodeResult play(const Sim& sim, SimState& st, const world::Scenario& scenario
   reset(sim, st, scenario, seed);
   const int n = st.agent_count();
   assert(static_cast<int>(policies.size()) == n);
-  for (int i = 0; i < n; ++i) policies[std::size_t(i)]->begin_episode(observe(sim, st, i), learning);
+  for (int i = 0; i < n; ++i) policies[std::size_t(i)]->begin_episode(observe(st, i), learning);
   if (trace) trace->record(st, false);
 
   // Commands of agents out of the game are ignored by step(); the buffer is the state's, so no allocation.
@@ -118,14 +118,14 @@ EpisodeResult play(const Sim& sim, SimState& st, const world::Scenario& scenario
   commands.assign(std::size_t(n), Steering{});
   while (!st.done) {
     for (int i = 0; i < n; ++i) {
-      if (st.agents[std::size_t(i)].active) commands[std::size_t(i)] = policies[std::size_t(i)]->act(observe(sim, st, i));
+      if (st.agents[std::size_t(i)].active) commands[std::size_t(i)] = policies[std::size_t(i)]->act(observe(st, i));
     }
     const StepEvents& ev = step(sim, st, commands);
     if (learning) {
       for (int i = 0; i < n; ++i) {
         const AgentEvents& e = ev.agents[std::size_t(i)];
         // The time limit truncates the episode; it is not a terminal state of the game, so learners bootstrap.
-        if (e.acted) policies[std::size_t(i)]->learn(e.reward.total, observe(sim, st, i), e.terminal);
+        if (e.acted) policies[std::size_t(i)]->learn(e.reward.total, observe(st, i), e.terminal);
       }
     }
     if (trace) trace->record(st, true);

@@ -104,14 +104,24 @@ Heading level(const Vec3& d) {
   return {d.x() == 0.0 && d.y() == 0.0 ? 0.0 : std::atan2(d.y(), d.x()), kPi / 2};
 }
 
-// Fills the agent's field and percept from its position and its opponent.
+// Rebuilds the agent's view from its position and its opponent's state.
 void perceive_agent(const Sim& sim, SimState& st, int i) {
   AgentState& a = st.agents[std::size_t(i)];
   const AgentState& o = st.agents[std::size_t(a.opponent)];
+  AgentView& v = a.view;
+  v.role = a.role;
+  v.index = i;
+  v.opponent = a.opponent;
+  v.self = a.kinematics;
+  v.other = o.kinematics;
+  v.self_speed = a.config->speed;
+  v.other_speed = o.config->speed;
+  v.dt = sim.config().dt;
+  v.arena = sim.arena().bounds();
   // The map's shapes only: whether the arena's faces count is the agent's observation setting, not the map's.
   const world::NearestObstacle n = sim.arena().nearest_shape(a.kinematics.position);
-  a.field = {n.distance, n.point, n.found};
-  a.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, a.field, sim.arena().bounds(),
+  v.field = {n.distance, n.point, n.found};
+  v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());
 }
 
@@ -125,6 +135,7 @@ int choose_opponent(const SimState& st, int i, OpponentChoice rule) {
   const AgentState& a = st.agents[std::size_t(i)];
   const int lo = a.role == Role::kPursuer ? st.pursuers : 0;
   const int hi = a.role == Role::kPursuer ? st.agent_count() : st.pursuers;
+  if (hi - lo == 1) return st.agents[std::size_t(lo)].active ? lo : a.opponent;  // one against one
   if (rule == OpponentChoice::kAssigned && hi > lo) {
     const int k = lo + a.rank % (hi - lo);
     if (st.agents[std::size_t(k)].active) return k;
@@ -198,6 +209,8 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   st.outcome = Outcome::kTimeout;
   st.first_collision.reset();
   st.collisions = 0;
+  // A margin above d_s^2 so that rounding can never skip a pair whose distance is <= d_s.
+  st.scratch.capture_reach2 = g.capture_distance * g.capture_distance * (1.0 + 1e-9) + 1e-12;
   while (st.collider.agent_count() < n) st.collider.add_agent(1.0);
 
   start_positions(sim, scenario, st.scratch.positions);
@@ -244,24 +257,6 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
     a.opponent = choose_opponent(st, i, rule_of(g, a.role));
     perceive_agent(sim, st, i);
   }
-}
-
-AgentView observe(const Sim& sim, const SimState& st, int i) {
-  const AgentState& a = st.agents[std::size_t(i)];
-  const AgentState& o = st.agents[std::size_t(a.opponent)];
-  AgentView v;
-  v.role = a.role;
-  v.index = i;
-  v.opponent = a.opponent;
-  v.self = a.kinematics;
-  v.other = o.kinematics;
-  v.self_speed = a.config->speed;
-  v.other_speed = o.config->speed;
-  v.dt = sim.config().dt;
-  v.arena = sim.arena().bounds();
-  v.field = a.field;
-  v.percept = a.percept;
-  return v;
 }
 
 namespace {
@@ -362,9 +357,9 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     e.acted = a.active;
     if (!a.active) continue;
     const AgentState& o = st.agents[std::size_t(a.opponent)];
-    st.scratch.target_before[std::size_t(i)] = a.percept.target_distance;
-    st.scratch.obstacle_before[std::size_t(i)] = a.percept.obstacle.distance;
-    const ConstraintInputs in{a.config, a.role, g.dt, a.kinematics, o.kinematics.position, o.config->speed, a.field,
+    st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
+    st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
+    const ConstraintInputs in{a.config, a.role, g.dt, a.kinematics, o.kinematics.position, o.config->speed, a.view.field,
                               arena.bounds()};
     const Heading h = constrained_heading(in, e.command);
     st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, a.config->speed, g.dt, arena.bounds().shrunk(a.config->radius));
@@ -402,7 +397,10 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     int by = -1;
     double best = std::numeric_limits<double>::infinity();
     for (int p = 0; p < st.pursuers; ++p) {
-      const double d = (ea.kinematics.position - st.agents[std::size_t(p)].kinematics.position).norm();
+      const Vec3 pe = ea.kinematics.position - st.agents[std::size_t(p)].kinematics.position;
+      // Far pairs are skipped on the squared distance; near ones compare the distance itself, as d_PE <= d_s.
+      if (pe.squaredNorm() > st.scratch.capture_reach2) continue;
+      const double d = pe.norm();
       if (d <= g.capture_distance && d < best) best = d, by = p;
     }
     if (by < 0) continue;
@@ -435,15 +433,19 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     } else {
       success = captures;  // every pursuer, and every evader that was still in the game
     }
+    // The distance now to the opponent of the step; the percept already holds it when the opponent is
+    // unchanged (the same expression, so the same bits).
+    const double target_after = a.opponent == e.opponent ? a.view.percept.target_distance
+                                                         : (o.kinematics.position - a.kinematics.position).norm();
     const RewardInputs in{st.scratch.target_before[std::size_t(i)],
-                          (o.kinematics.position - a.kinematics.position).norm(),
+                          target_after,
                           st.scratch.obstacle_before[std::size_t(i)],
-                          a.percept.obstacle.distance,
+                          a.view.percept.obstacle.distance,
                           success,
                           e.collided};
     e.reward = reward(a.role, a.config->reward, in, (a.config->speed + o.config->speed) * g.dt);
     a.total_reward += e.reward.total;
-    a.pinned_steps += a.percept.pinned;
+    a.pinned_steps += a.view.percept.pinned;
     if (e.captured) a.active = false;
   }
 

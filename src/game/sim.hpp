@@ -69,8 +69,9 @@ struct AgentState {
   KinematicState kinematics;
   bool active = true;                 ///< in the game; an evader leaves it when captured
   int opponent = -1;                  ///< index of the agent it plays against now
-  Percept percept;                    ///< what it senses now, relative to `opponent`
-  ObstacleSense field;                ///< the map's nearest obstacle now (arena faces excluded)
+  /// What it may use to decide now: its percept relative to `opponent`, the map's nearest obstacle (arena
+  /// faces excluded), both agents' states. Rebuilt by reset() and by every step() it takes part in.
+  AgentView view;
   int body = -1;                      ///< its sphere in the state's collision world
   // Totals over the run so far.
   double path = 0.0;                  ///< m travelled
@@ -141,6 +142,7 @@ class SimState {
     std::vector<double> obstacle_before;  ///< d_O at the start of the step
     std::vector<Vec3> positions;          ///< start positions (reset)
     std::vector<Steering> commands;       ///< play()'s command buffer
+    double capture_reach2 = 0.0;          ///< squared distance beyond which no capture is possible
   } scratch;
 
   int agent_count() const { return static_cast<int>(agents.size()); }
@@ -180,8 +182,8 @@ void reset(const Sim& sim, SimState& state, const world::Scenario& scenario, std
 /// bounds. Returns the state's StepEvents. The state must not be done. Allocates nothing.
 const StepEvents& step(const Sim& sim, SimState& state, std::span<const Steering> commands);
 
-/// What agent i may use to decide now (its percept is the one computed by the last reset() or step()).
-AgentView observe(const Sim& sim, const SimState& state, int i);
+/// What agent i may use to decide now: its view as the last reset() or step() left it.
+inline const AgentView& observe(const SimState& state, int i) { return state.agents[std::size_t(i)].view; }
 
 /// The opponent agent `i` plays against in `state` by the team rule, among the opponents still in the game
 /// (or its current one when none is left). Pure: depends on positions and activity only.

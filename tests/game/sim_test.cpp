@@ -50,7 +50,7 @@ TEST(Sim, ExternalCommandsReproduceThePolicysEpisode) {
   while (!state.done) {
     ++k;
     commands[0] = recorded.at(k, 0).command;
-    commands[1] = flee.act(observe(sim, state, 1));
+    commands[1] = flee.act(observe(state, 1));
     const StepEvents& ev = step(sim, state, commands);
     for (int i = 0; i < 2; ++i) {
       ASSERT_EQ(state.agents[std::size_t(i)].kinematics.position, recorded.at(k, i).state.position) << "step " << k;
@@ -139,7 +139,7 @@ TEST(Sim, CaptureRewardGoesToTheCapturerAndTheCapturedOrToTheTeams) {
     reset(sim, state, s, 1);
     std::vector<Steering> commands(4);
     for (int k = 0; k < 82; ++k) {
-      for (int i = 0; i < 4; ++i) commands[std::size_t(i)] = l[i].act(observe(sim, state, i));
+      for (int i = 0; i < 4; ++i) commands[std::size_t(i)] = l[i].act(observe(state, i));
       step(sim, state, commands);
     }
     const StepEvents& ev = state.events;
@@ -167,14 +167,14 @@ TEST(Sim, OpponentsAreTheNearestOrTheAssignedOne) {
   EXPECT_EQ(st.agents[1].opponent, 2);
   EXPECT_EQ(st.agents[2].opponent, 0);
   EXPECT_EQ(st.agents[3].opponent, 1);  // (30,30) is nearer to (5,12) than to (5,10)
-  EXPECT_EQ(observe(nearest, st, 1).opponent, 2);
+  EXPECT_EQ(observe(st, 1).opponent, 2);
   c.team.pursuer_target = OpponentChoice::kAssigned;
   const Sim assigned(make_arena(kSize, {}, {s}), c);
   SimState st2(assigned);
   reset(assigned, st2, s, 0);
   EXPECT_EQ(st2.agents[0].opponent, 2);
   EXPECT_EQ(st2.agents[1].opponent, 3);
-  EXPECT_EQ(observe(assigned, st2, 1).other.position, Vec3(30, 30, 10));
+  EXPECT_EQ(observe(st2, 1).other.position, Vec3(30, 30, 10));
 }
 
 TEST(Sim, AgentsCollideWhenConfiguredAndPassThroughOtherwise) {
