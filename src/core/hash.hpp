@@ -20,9 +20,11 @@ class Fnv1a {
   void add_value(const T& value) {
     add(&value, sizeof(T));
   }
-  template <class T>
-  void add_span(std::span<const T> values) {
-    add(values.data(), values.size_bytes());
+  /// Every element's representation, in order (any contiguous range of trivially copyable values).
+  template <class Range>
+  void add_span(const Range& values) {
+    const std::span view(values);
+    add(view.data(), view.size_bytes());
   }
   void add_text(std::string_view text) {
     add_value(text.size());

@@ -6,7 +6,8 @@
 namespace peg3d {
 
 InvalidParameter::InvalidParameter(std::string_view name, std::string_view value, std::string_view requirement)
-    : InputError({}, 0, std::string(name), fmt::format("invalid parameter '{}' = {}: {}", name, value, requirement)),
+    : InputError(Preformatted{}, fmt::format("invalid parameter '{}' = {}: {}", name, value, requirement), {}, 0,
+                 std::string(name)),
       name_(name) {}
 
 std::string format_value(double value) {

@@ -1,5 +1,7 @@
 #include "geometry/kinematics.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "core/validation.hpp"
@@ -21,6 +23,22 @@ TEST(Kinematics, MovesSpeedTimesDtAlongTheHeading) {
   s.heading = {kPi / 4, kPi / 4};
   n = step(s, {}, 1.0, 1.0, kPi / 4, kArena);
   EXPECT_LT((n.position - Vec3(10.5, 10.5, 10 + std::sqrt(0.5))).norm(), 1e-12);
+}
+
+TEST(Kinematics, AdvanceMovesAlongTheGivenHeadingAndSlidesAlongTheArena) {
+  const Box box{Vec3::Zero(), Vec3(10, 10, 10)};
+  const KinematicState s{Vec3(5, 5, 5), Heading{0.0, kPi / 2}};
+  const KinematicState up = advance(s, Heading{0.0, 0.0}, 2.0, 0.5, box);  // straight up, 1 m
+  EXPECT_NEAR((up.position - Vec3(5, 5, 6)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(up.heading.theta, 0.0);
+  const KinematicState wall = advance({Vec3(9.9, 5, 5), s.heading}, Heading{kPi / 4, kPi / 2}, 1.0, 1.0, box);
+  EXPECT_EQ(wall.position.x(), 10.0);  // clamped into the box: the motion along the wall remains
+  EXPECT_NEAR(wall.position.y(), 5.0 + std::sqrt(0.5), 1e-12);
+  // step() is steering followed by advance().
+  const Steering u{0.3, -0.2};
+  const KinematicState a = step(s, u, 1.0, 0.1, kPi / 4, box);
+  const KinematicState b = advance(s, steer(s.heading, u, kPi / 4), 1.0, 0.1, box);
+  EXPECT_EQ(a.position, b.position);
 }
 
 TEST(Kinematics, SteeringIsClampedToTheBound) {

@@ -197,5 +197,40 @@ TEST(WorldMapLoader, UnknownKeySuggestsTheNearestKey) {
   }
 }
 
+TEST(WorldMapLoader, TeamsListTheirAgentsWithWhereEachIsWritten) {
+  const auto file = testing::source_dir() / "maps" / "pack.yaml";
+  const MapSpec m = load_map(file);
+  ASSERT_EQ(m.scenarios.size(), 4u);
+  const Scenario& s = m.scenarios[0];
+  EXPECT_EQ(s.name, "3v2-corners");
+  ASSERT_EQ(s.pursuers.size(), 3u);
+  ASSERT_EQ(s.evaders.size(), 2u);
+  EXPECT_EQ(s.pursuers[2].position, Vec3(5, 17.5, 12));
+  EXPECT_EQ(s.pursuers[2].field, "scenarios[0].pursuers[2].position");
+  EXPECT_EQ(s.evaders[1].field, "scenarios[0].evaders[1].position");
+  EXPECT_GT(s.evaders[1].line, s.pursuers[2].line);
+  EXPECT_EQ(m.scenarios[2].agents(), 4);
+  // Obstacles keep their clearance from every agent's start.
+  for (const auto& sc : m.scenarios) {
+    for (const auto* list : {&sc.pursuers, &sc.evaders}) {
+      for (const auto& a : *list) {
+        for (const auto& sphere : m.spheres) EXPECT_GE(signed_distance(a.position, sphere), 3.0) << sc.name;
+      }
+    }
+  }
+}
+
+TEST(WorldMapLoader, TerrainIsImportedOnceAndHandedToTheArena) {
+  const MapSpec m = load_map(testing::source_dir() / "maps" / "valley.yaml");
+  ASSERT_FALSE(m.meshes.empty());
+  ASSERT_TRUE(m.meshes[0].imported != nullptr);
+  const std::size_t triangles = m.meshes[0].imported->triangle_count();
+  EXPECT_GT(triangles, 0u);
+  // The Arena uses those triangles (the file is not read again) and keeps one copy.
+  const auto arena = Arena::build(m);
+  EXPECT_EQ(arena->meshes()[0].triangle_count(), triangles);
+  EXPECT_EQ(arena->map().meshes[0].imported, nullptr);
+}
+
 }  // namespace
 }  // namespace peg3d::world

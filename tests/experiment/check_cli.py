@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""End-to-end checks of the experiment binaries' command line:
+- peg-matchup plays teams on maps/pack.yaml and writes matchups.csv, agents.csv and summary.json;
+- every input error exits with status 2, prints 'error: ...' naming the file or flag, and writes nothing:
+  a malformed policy file, an evader's policy passed as the pursuer's, a start within an agent's radius of
+  an obstacle, a scenario name that climbs out of --out, a configuration file with an unknown key, a policy
+  that cannot play its role;
+- figures are drawn into an --out path with spaces and quotes (no shell in between);
+- the programs carry no path into the source tree and run from a copy of build/bin and build/share.
+
+usage: check_cli.py BUILD_BIN_DIR SOURCE_DIR WORK_DIR
+"""
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def run(cmd, cwd=None, env=None):
+    return subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, env=env)
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def main():
+    bin_dir, source, work = sys.argv[1:4]
+    matchup, paper = os.path.join(bin_dir, "peg-matchup"), os.path.join(bin_dir, "peg-paper")
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    os.chdir(source)
+    quick = ["--repeats", "1", "--episodes", "2", "--plain-progress", "--no-cache"]
+
+    # Teams: 3 v 2 and 2 v 2 scenarios, every pursuer policy against every evader policy.
+    out = os.path.join(work, "pack")
+    r = run([matchup, "--map", "maps/pack.yaml", "--out", out, *quick])
+    check(r.returncode == 0, f"peg-matchup on pack.yaml: status {r.returncode}: {r.stderr[-2000:]}")
+    if r.returncode == 0:
+        games = rows(os.path.join(out, "matchups.csv"))
+        agents = rows(os.path.join(out, "agents.csv"))
+        check(len(games) == 4 * 16, f"matchups.csv has {len(games)} games, expected 64")
+        check(len(agents) == (5 + 5 + 4 + 4) * 16, f"agents.csv has {len(agents)} rows, expected 288")
+        check({a["role"] for a in agents} == {"pursuer", "evader"}, "agents.csv roles")
+        summary = json.load(open(os.path.join(out, "summary.json")))
+        check(len(summary) == 16, "one summary entry per policy pair")
+        for entry in summary:
+            check(entry["evaders"] == 8, f"{entry['pursuer']}/{entry['evader']}: 8 evaders over 4 games")
+            for key in ("evaders_captured", "evader_capture_rate", "time_to_each_capture_s", "capture_time_s",
+                        "pursuer_path_m", "evader_path_m", "collision_runs"):
+                check(key in entry, f"summary.json {key}")
+        check("evaders" in r.stdout, "team table on stdout")
+
+    # A policy to misuse: an evader saved by a tiny peg-paper run.
+    base = os.path.join(work, "base")
+    r = run([paper, "--out", base, "--algorithms", "peg3d", "--no-plots", *quick])
+    check(r.returncode == 0, f"peg-paper: {r.stderr[-2000:]}")
+    evader_policy = os.path.join(base, "policies", "S1_peg3d_evader.json")
+
+    maps = os.path.join(work, "maps")
+    os.makedirs(maps)
+    write(os.path.join(maps, "tight.yaml"),
+          "arena: {size: [10, 10, 10]}\nobstacles:\n  - {kind: sphere, center: [5, 5, 5], radius: 1}\n"
+          "scenarios:\n  - name: tight\n    pursuer: {position: [5, 5, 6.1]}\n    evader: {position: [9, 9, 9]}\n")
+    write(os.path.join(maps, "climb.yaml"),
+          "arena: {size: [10, 10, 10]}\nscenarios:\n  - name: ../../x\n"
+          "    pursuer: {position: [1, 1, 1]}\n    evader: {position: [9, 9, 9]}\n")
+    write(os.path.join(maps, "bad_policy.json"), '{"format": "peg3d-policy", "version": 1, "role": "pursuer"')
+    write(os.path.join(maps, "bad_config.json"), '{"pursuer": {"speeed": 2.0}}')
+    bad = os.path.join(work, "bad")
+    cases = [
+        (matchup, ["--pursuer-policy", os.path.join(maps, "bad_policy.json")], "bad_policy.json"),
+        (matchup, ["--pursuer-policy", evader_policy], "S1_peg3d_evader.json"),
+        (matchup, ["--map", os.path.join(maps, "tight.yaml")], "tight.yaml:6"),
+        (paper, ["--map", os.path.join(maps, "tight.yaml")], "tight.yaml:6"),
+        (paper, ["--map", os.path.join(maps, "climb.yaml")], "climb.yaml:3"),
+        (matchup, ["--config", os.path.join(maps, "bad_config.json")], "pursuer.speeed"),
+        (matchup, ["--set", "pursuer.policy=flee"], "pursuer.policy"),
+        (matchup, ["--pursuers", "facl,flee"], "--pursuers"),
+        (paper, ["--algorithms", "peg3d,peg3d"], "listed twice"),
+    ]
+    for binary, args, named in cases:
+        shutil.rmtree(bad, ignore_errors=True)
+        r = run([binary, "--out", bad, *quick, *args])
+        what = f"{os.path.basename(binary)} {' '.join(args)}"
+        check(r.returncode == 2, f"{what}: status {r.returncode}, expected 2 ({r.stderr[-500:]})")
+        check(r.stderr.startswith("error:") and named in r.stderr, f"{what}: message names {named!r}: {r.stderr[:300]!r}")
+        check(not os.path.exists(bad), f"{what}: nothing written")
+    r = run([os.path.join(bin_dir, "peg-map"), "check", os.path.join(maps, "tight.yaml"), "--no-cache"])
+    check(r.returncode == 2 and "tight.yaml:6" in r.stderr, f"peg-map check reports the start that does not fit: {r.stderr}")
+    check(not os.path.exists(os.path.join(work, "x")) and not os.path.exists(os.path.join(source, "x")),
+          "a scenario named ../../x wrote nothing outside --out")
+
+    # Figures into a folder whose name a shell would split and unquote.
+    odd = os.path.join(work, "it's a \"folder\" $HOME")
+    r = run([paper, "--out", odd, "--algorithms", "peg3d", *quick])
+    check(r.returncode == 0 and "warning" not in r.stderr, f"plots into an odd --out: {r.stderr[-500:]}")
+    for fig in ("trajectories.png", "comparison.png"):
+        check(os.path.exists(os.path.join(odd, fig)), f"{fig} drawn into {odd}")
+
+    # No path into the source tree; a copy of the build's bin/ and share/ runs from anywhere.
+    for name in ("peg-paper", "peg-matchup", "peg-generalize", "peg-map"):
+        check(os.path.realpath(source).encode() not in open(os.path.join(bin_dir, name), "rb").read(),
+              f"{name} holds no path into the source tree")
+    copy = os.path.join(work, "install")
+    shutil.copytree(os.path.join(bin_dir, "..", "share"), os.path.join(copy, "share"))
+    os.makedirs(os.path.join(copy, "bin"))
+    shutil.copy2(paper, os.path.join(copy, "bin", "peg-paper"))
+    elsewhere = os.path.join(work, "elsewhere")
+    os.makedirs(elsewhere)
+    env = {k: v for k, v in os.environ.items() if k != "PEG3D_DATA_DIR"}
+    r = run([os.path.join(copy, "bin", "peg-paper"), "--out", "res", "--algorithms", "peg3d", *quick], cwd=elsewhere, env=env)
+    check(r.returncode == 0, f"a copied peg-paper with its share/ runs from another folder: {r.stderr[-500:]}")
+    check(os.path.exists(os.path.join(elsewhere, "res", "trajectories.png")), "and draws its figures")
+
+    print("ok" if not failures else f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,105 @@
+// Golden determinism, in the manner of Box2D's test_determinism.c: fixed-seed training runs on the shipped
+// maps, hashed over every instant of every episode (positions, headings, commands, rewards) and over the
+// learned tables at the end, compared with hashes kept here. Runs are spread over 1 and 2 threads and must
+// give the same hashes. A deliberate change of results updates the constants in the same commit, saying why.
+#include <gtest/gtest.h>
+
+#include <cinttypes>
+#include <cstdio>
+
+#include "core/hash.hpp"
+#include "core/random.hpp"
+#include "experiment/parallel_runner.hpp"
+#include "game/episode.hpp"
+#include "game/lineup.hpp"
+#include "world/map_spec.hpp"
+
+namespace peg3d::experiment {
+namespace {
+
+// Golden values. Recorded with the code of the commit that added them (results then equal to c35d077's,
+// which was checked byte for byte on peg-paper and peg-matchup outputs).
+constexpr std::uint64_t kPaperHash = 0x5caa0c292ae93960; // maps/paper.yaml, peg3d preset, 4 scenarios x 6 training episodes
+constexpr std::uint64_t kPackHash = 0x67da6ca72cbf2eb7;  // maps/pack.yaml, peg3d preset, 4 team scenarios x 3 training episodes
+
+void hash_trace(Fnv1a& h, const game::Trace& t) {
+  for (int k = 0; k < t.frame_count(); ++k) {
+    h.add_value(t.times[std::size_t(k)]);
+    for (int i = 0; i < t.agents; ++i) {
+      const game::AgentFrame& f = t.at(k, i);
+      h.add_value(f.state.position.x());
+      h.add_value(f.state.position.y());
+      h.add_value(f.state.position.z());
+      h.add_value(f.state.heading.alpha);
+      h.add_value(f.state.heading.theta);
+      h.add_value(f.command.d_alpha);
+      h.add_value(f.command.d_theta);
+      h.add_value(f.reward);
+      h.add_value(f.active);
+    }
+  }
+  for (const auto& c : t.captures) h.add_value(c.step), h.add_value(c.pursuer), h.add_value(c.evader);
+  for (const auto& c : t.collisions) h.add_value(c.step), h.add_value(c.agent), h.add_value(c.obstacle_id);
+}
+
+// One job: a scenario's agents train for `episodes` episodes; the hash of every step and of the tables.
+std::uint64_t train_and_hash(const game::Sim& sim, const world::Scenario& s, std::uint64_t seed, int episodes) {
+  game::Lineup lineup;
+  game::RoleModels pursuers, evaders;
+  game::add_configured(lineup, sim.config(), game::Role::kPursuer, static_cast<int>(s.pursuers.size()),
+                       derive_seed(seed, {1}), &pursuers);
+  game::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(s.evaders.size()),
+                       derive_seed(seed, {2}), &evaders);
+  game::SimState state(sim);
+  game::Trace trace;
+  trace.reserve(sim.max_steps(), s.agents());
+  Fnv1a h;
+  for (int e = 0; e < episodes; ++e) {
+    const game::EpisodeResult r =
+        game::play(sim, state, s, lineup.policies(), true, derive_seed(seed, {3, std::uint64_t(e)}), &trace);
+    hash_trace(h, trace);
+    h.add_value(r.steps);
+    h.add_value(static_cast<int>(r.outcome));
+  }
+  for (const game::RoleModels* models : {&pursuers, &evaders}) {
+    for (const auto& m : models->models) {
+      for (int c = 0; c < m->channels(); ++c) {
+        h.add_span(m->tables(c).actor_table());
+        h.add_span(m->tables(c).critic_table());
+      }
+    }
+  }
+  return h.value();
+}
+
+std::uint64_t sweep_hash(const char* map, int episodes, int threads) {
+  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));
+  const game::Sim sim(arena, game::preset("peg3d"));
+  const auto& scenarios = arena->map().scenarios;
+  std::vector<std::uint64_t> hashes(scenarios.size());
+  run_indexed(scenarios.size(), threads, [&](std::size_t i) {
+    hashes[i] = train_and_hash(sim, scenarios[i], derive_seed(2024, {i}), episodes);
+  });
+  Fnv1a all;
+  for (const std::uint64_t v : hashes) all.add_value(v);
+  return all.value();
+}
+
+TEST(ExperimentDeterminism, PaperMapTrainingMatchesTheGoldenHashOnOneAndTwoThreads) {
+  const std::uint64_t one = sweep_hash("maps/paper.yaml", 6, 1);
+  const std::uint64_t two = sweep_hash("maps/paper.yaml", 6, 2);
+  std::printf("paper hash 0x%016" PRIx64 "\n", one);
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one, kPaperHash) << std::hex << "0x" << one;
+}
+
+TEST(ExperimentDeterminism, TeamTrainingMatchesTheGoldenHashOnOneAndTwoThreads) {
+  const std::uint64_t one = sweep_hash("maps/pack.yaml", 3, 1);
+  const std::uint64_t two = sweep_hash("maps/pack.yaml", 3, 2);
+  std::printf("pack hash 0x%016" PRIx64 "\n", one);
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one, kPackHash) << std::hex << "0x" << one;
+}
+
+}  // namespace
+}  // namespace peg3d::experiment
