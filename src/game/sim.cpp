@@ -317,18 +317,15 @@ void collide_agents(const Sim& sim, SimState& st) {
       const double gap = ab.norm();
       const Vec3 normal = gap > 0.0 ? Vec3(-ab / gap) : Vec3(Vec3::UnitZ());  // from b towards a
       for (const auto& [self, other, n_self] : {std::tuple{i, j, normal}, std::tuple{j, i, Vec3(-normal)}}) {
-        CollisionEvent e;
-        e.step = st.step + 1;
-        e.time = st.time + *t * g.dt;
-        e.agent = self;
-        e.role = st.agents[std::size_t(self)].role;
-        e.kind = world::ObstacleKind::kAgent;
-        e.obstacle_id = other;
-        e.point = (self == i ? pa : pb) - st.agents[std::size_t(self)].config->radius * n_self;
-        e.normal = n_self;
-        e.fraction = *t;
-        e.penetration = *t == 0.0 ? std::max(0.0, reach - gap) : 0.0;
-        record_collision(st, e);
+        world::Contact c;
+        c.agent = self;
+        c.kind = world::ObstacleKind::kAgent;
+        c.obstacle_id = other;
+        c.fraction = *t;
+        c.point = (self == i ? pa : pb) - st.agents[std::size_t(self)].config->radius * n_self;
+        c.normal = n_self;
+        c.penetration = *t == 0.0 ? std::max(0.0, reach - gap) : 0.0;
+        record_collision(st, event_of(st, self, c, g.dt));
       }
     }
   }
