@@ -46,6 +46,9 @@ int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
+  } catch (...) {
+    std::fprintf(stderr, "error: an unexpected failure\n");
+    return 1;
   }
 }
 

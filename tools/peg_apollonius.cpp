@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_common.hpp"
 #include "core/validation.hpp"
 #include "experiment/result_files.hpp"
 #include "geometry/angles.hpp"
@@ -26,13 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("--ve", ve, "evader speed (m/s)")->capture_default_str();
   app.add_option("--ratios", ratios, "extra speed ratios a = vE/vP to show (e.g. 0.5 1 2)");
   app.add_flag("--json", json, "print JSON instead of a table");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-
-  try {
+  return cli::guarded_main(app, argc, argv, [&] {
     const Vec3 p(pursuer[0], pursuer[1], pursuer[2]), e(evader[0], evader[1], evader[2]);
     require_positive("vp", vp);
     require_positive("ve", ve);
@@ -67,8 +62,5 @@ int main(int argc, char** argv) {
                  x[1].get<double>(), x[2].get<double>());
     }
     return 0;
-  } catch (const InvalidParameter& ex) {
-    fmt::print(stderr, "error: {}\n", ex.what());
-    return 2;
-  }
+  });
 }

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <optional>
 #include <string>
 
@@ -26,10 +25,6 @@ namespace {
 
 using peg3d::world::Arena;
 using peg3d::world::BuildOptions;
-using peg3d::world::MapError;
-
-constexpr int kBadInput = 2;
-constexpr int kFailure = 1;
 
 struct Common {
   std::string map;
@@ -122,19 +117,9 @@ int main(int argc, char** argv) {
   std::string octree_out;
   exporter->add_option("--octree", octree_out, "output .bt file")->required();
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kBadInput;
-  }
-
-  try {
+  return peg3d::cli::guarded_main(app, argc, argv, [&] {
     if (distance->parsed() && !(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
-      std::cerr << "error: the query point must be finite\n";
-      return kBadInput;
+      throw peg3d::InputError("the query point must be finite");
     }
     const auto arena = build(common);
     if (check->parsed()) {
@@ -159,12 +144,6 @@ int main(int argc, char** argv) {
       fmt::print("wrote {} ({}, resolution {:g} m, {} occupied voxels)\n", octree_out,
                  mib(double(arena->stats().octree_bytes)), arena->resolution(), arena->stats().occupied_voxels);
     }
-  } catch (const peg3d::InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return kFailure;
-  }
-  return 0;
+    return 0;
+  });
 }

@@ -107,6 +107,19 @@ def main():
     check(not os.path.exists(os.path.join(work, "x")) and not os.path.exists(os.path.join(source, "x")),
           "a scenario named ../../x wrote nothing outside --out")
 
+    # peg-generalize reports a map without a `name` by its file name.
+    write(os.path.join(maps, "nameless.yaml"),
+          "arena: {size: [35, 35, 20]}\nscenarios:\n  - name: n1\n    pursuer: {position: [5, 30, 2]}\n"
+          "    evader: {position: [5, 5, 2]}\n")
+    gen = os.path.join(work, "gen")
+    r = run([os.path.join(bin_dir, "peg-generalize"), "--out", gen, *quick, "--eval-maps",
+             f"maps/paper.yaml,{os.path.join(maps, 'nameless.yaml')}"])
+    check(r.returncode == 0, f"peg-generalize: {r.stderr[-500:]}")
+    if r.returncode == 0:
+        summary = {e["map"]: e for e in json.load(open(os.path.join(gen, "summary.json")))}
+        check(set(summary) == {"paper", "nameless"}, f"generalization maps {sorted(summary)}")
+        check(summary.get("nameless", {}).get("runs") == 4, "the nameless map's 4 games are reported")
+
     # Figures into a folder whose name a shell would split and unquote.
     odd = os.path.join(work, "it's a \"folder\" $HOME")
     r = run([paper, "--out", odd, "--algorithms", "peg3d", *quick])
