@@ -56,7 +56,7 @@ void visit_fields(V& v, C& c) {
 /// at once; update() is the only writer (training owns its tables alone).
 class FaclTables {
  public:
-  /// actions >= 1 actor outputs. Throws InvalidParameter on a bad configuration.
+  /// 1 or 2 actor outputs (one per steering angle). Throws InvalidParameter on a bad configuration.
   FaclTables(RuleBase rules, int actions, const FaclConfig& config);
 
   const RuleBase& rules() const { return rules_; }

@@ -59,7 +59,7 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
 }
 
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u) {
-  const AgentConfig& c = *in.config;
+  const AgentConfig& c = in.config;
   const double margin = c.steering.polar_margin;
   const Heading requested = bounded_steer(in.self.heading, u, c.steering, in.dt);
   Vec3 d = direction(requested);
@@ -74,7 +74,7 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u) {
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
     // to; deciding it from the request would flip sides every step.
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);
-    changed |= guard_along_faces(*allowed, d, in.self.position, in.arena.shrunk(c.radius));
+    changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds);
   }
   if (!changed) return requested;
   // Turn towards the constrained direction within the same steering bound.

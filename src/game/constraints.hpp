@@ -45,16 +45,17 @@ std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position,
 /// axis). Returns whether d changed.
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box);
 
-/// Everything one agent's constrained heading depends on, at the start of a step.
+/// Everything one agent's constrained heading depends on, at the start of a step. It refers to the caller's
+/// data (built once per agent and step in the hot loop, so nothing is copied).
 struct ConstraintInputs {
-  const AgentConfig* config = nullptr;
-  Role role = Role::kPursuer;
-  double dt = 0.1;                 ///< s
-  KinematicState self;             ///< position and heading now
-  Vec3 opponent = Vec3::Zero();    ///< the opponent's position now (for the motion space)
-  double opponent_speed = 0.0;     ///< m/s
-  ObstacleSense field;             ///< the map's nearest obstacle (arena faces excluded)
-  Box arena;                       ///< the arena box (not shrunk)
+  const AgentConfig& config;
+  Role role;
+  double dt;                    ///< s
+  const KinematicState& self;   ///< position and heading now
+  const Vec3& opponent;         ///< the opponent's position now (for the motion space)
+  double opponent_speed;        ///< m/s
+  const ObstacleSense& field;   ///< the map's nearest obstacle (arena faces excluded)
+  const Box& bounds;            ///< the arena shrunk by the agent's radius (where its centre may go)
 };
 
 /// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),

@@ -63,16 +63,17 @@ FaclPolicy::FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed)
     : FaclPolicy(std::make_shared<FaclModel>(config, role), seed) {}
 
 FaclPolicy::FaclPolicy(std::shared_ptr<FaclModel> model, std::uint64_t seed) : model_(model), trainable_(model.get()) {
-  init_scratch(seed);
+  init_lanes(seed);
 }
 
-FaclPolicy::FaclPolicy(std::shared_ptr<const FaclModel> model) : model_(std::move(model)) { init_scratch(0); }
+FaclPolicy::FaclPolicy(std::shared_ptr<const FaclModel> model) : model_(std::move(model)) { init_lanes(0); }
 
-void FaclPolicy::init_scratch(std::uint64_t seed) {
-  scratch_.resize(std::size_t(model_->channels()));
-  exploration_.reserve(std::size_t(model_->channels()));
+void FaclPolicy::init_lanes(std::uint64_t seed) {
+  lanes_.reserve(std::size_t(model_->channels()));
   for (int c = 0; c < model_->channels(); ++c) {
-    exploration_.emplace_back(model_->config().facl.exploration_variance, derive_seed(seed, {std::uint64_t(c)}));
+    lanes_.push_back(Lane{&model_->tables(c), trainable_ != nullptr ? &trainable_->tables(c) : nullptr,
+                          model_->outputs(c), model_->tables(c).actions(), c,
+                          fuzzy::Exploration(model_->config().facl.exploration_variance, derive_seed(seed, {std::uint64_t(c)}))});
   }
 }
 
@@ -86,18 +87,16 @@ Steering FaclPolicy::act(const AgentView& view) {
   double steering[2] = {0.0, 0.0};
   const Features f = features_of(view.percept);
   const bool reuse = have_fired_ && f == fired_features_;
-  for (int c = 0; c < model_->channels(); ++c) {
-    Scratch& s = scratch_[std::size_t(c)];
-    const fuzzy::FaclTables& tables = model_->tables(c);
-    if (!reuse) model_->fire(c, f, s.now());
-    const std::size_t n = std::size_t(tables.actions());
+  for (Lane& l : lanes_) {
+    if (!reuse) model_->fire(l.channel, f, l.now());
+    const std::size_t n = std::size_t(l.actions);
     if (learning_) {
-      exploration_[std::size_t(c)].act(tables, s.now(), {s.u.data(), n}, {s.u_explored.data(), n});
+      l.exploration.act(*l.tables, l.now(), {l.u.data(), n}, {l.u_explored.data(), n});
     } else {
-      tables.act(s.now(), {s.u.data(), n});
-      s.u_explored = s.u;
+      l.tables->act(l.now(), {l.u.data(), n});
+      l.u_explored = l.u;
     }
-    for (std::size_t j = 0; j < n; ++j) steering[model_->outputs(c)[j]] = s.u_explored[j];
+    for (std::size_t j = 0; j < n; ++j) steering[l.outputs[j]] = l.u_explored[j];
   }
   have_fired_ = false;
   return {steering[0], steering[1]};
@@ -106,16 +105,14 @@ Steering FaclPolicy::act(const AgentView& view) {
 void FaclPolicy::learn(double reward, const AgentView& next, bool terminal) {
   assert(learning_ && trainable_ != nullptr);
   const Features f = features_of(next.percept);
-  for (int c = 0; c < model_->channels(); ++c) {
-    Scratch& s = scratch_[std::size_t(c)];
-    fuzzy::FaclTables& tables = trainable_->tables(c);
-    const std::size_t n = std::size_t(tables.actions());
+  for (Lane& l : lanes_) {
+    const std::size_t n = std::size_t(l.actions);
     if (terminal) {
-      tables.update(s.now(), {s.u.data(), n}, {s.u_explored.data(), n}, reward, nullptr);
+      l.trainable->update(l.now(), {l.u.data(), n}, {l.u_explored.data(), n}, reward, nullptr);
     } else {
-      model_->fire(c, f, s.next());
-      tables.update(s.now(), {s.u.data(), n}, {s.u_explored.data(), n}, reward, &s.next());
-      s.current = 1 - s.current;  // the successor's firing is the next act()'s current state
+      model_->fire(l.channel, f, l.next());
+      l.trainable->update(l.now(), {l.u.data(), n}, {l.u_explored.data(), n}, reward, &l.next());
+      l.current = 1 - l.current;  // the successor's firing is the next act()'s current state
     }
   }
   fired_features_ = f;

@@ -79,20 +79,26 @@ class FaclPolicy final : public Policy {
   std::shared_ptr<const FaclModel> shared_model() const { return model_; }
 
  private:
-  struct Scratch {
-    std::array<fuzzy::FiredRules, 2> fired;  ///< current and successor state; `current` says which is which
+  /// One channel as this agent runs it: where its tables are, and its own scratch and noise.
+  struct Lane {
+    const fuzzy::FaclTables* tables;  ///< the model's (read while acting)
+    fuzzy::FaclTables* trainable;     ///< the same tables when this policy may update them, else null
+    std::array<int, 2> outputs;       ///< steering component of each output
+    int actions;
+    int channel;
+    fuzzy::Exploration exploration;
+    std::array<fuzzy::FiredRules, 2> fired{};  ///< current and successor state; `current` says which is which
     int current = 0;
     std::array<double, 2> u{}, u_explored{};
     fuzzy::FiredRules& now() { return fired[std::size_t(current)]; }
     fuzzy::FiredRules& next() { return fired[std::size_t(1 - current)]; }
   };
 
-  void init_scratch(std::uint64_t seed);
+  void init_lanes(std::uint64_t seed);
 
   std::shared_ptr<const FaclModel> model_;
   FaclModel* trainable_ = nullptr;  ///< the same model when this policy may update it
-  std::vector<Scratch> scratch_;    ///< per channel
-  std::vector<fuzzy::Exploration> exploration_;  ///< per channel
+  std::vector<Lane> lanes_;         ///< per channel
   bool learning_ = false;
   // learn() fires the successor state; act() on the same features reuses that firing instead of repeating it.
   Features fired_features_{};

@@ -220,6 +220,7 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
     a.role = i < p ? Role::kPursuer : Role::kEvader;
     a.rank = i < p ? i : i - p;
     a.config = &g.agent(a.role, a.rank);
+    a.bounds = sim.arena().bounds().shrunk(a.config->radius);
     a.body = i;
     a.kinematics.position = st.scratch.positions[std::size_t(i)];
     st.collider.set_agent_radius(i, a.config->radius);
@@ -337,7 +338,6 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   assert(!st.done);
   assert(static_cast<int>(commands.size()) == st.agent_count());
   const GameConfig& g = sim.config();
-  const world::Arena& arena = sim.arena();
   const int n = st.agent_count();
   StepEvents& ev = st.events;
   ev.collisions.clear();
@@ -348,18 +348,22 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   for (int i = 0; i < n; ++i) {
     const AgentState& a = st.agents[std::size_t(i)];
     AgentEvents& e = ev.agents[std::size_t(i)];
-    e = AgentEvents{};
     e.command = commands[std::size_t(i)];
     e.opponent = a.opponent;
     e.acted = a.active;
-    if (!a.active) continue;
+    e.collided = e.captured = e.terminal = false;
+    e.captures = 0;
+    if (!a.active) {
+      e.reward = RewardTerms{};
+      continue;
+    }
     const AgentState& o = st.agents[std::size_t(a.opponent)];
     st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
-    const ConstraintInputs in{a.config, a.role, g.dt, a.kinematics, o.kinematics.position, o.config->speed, a.view.field,
-                              arena.bounds()};
+    const ConstraintInputs in{*a.config,     a.role,       g.dt, a.kinematics, o.kinematics.position, o.config->speed,
+                              a.view.field, a.bounds};
     const Heading h = constrained_heading(in, e.command);
-    st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, a.config->speed, g.dt, arena.bounds().shrunk(a.config->radius));
+    st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, a.config->speed, g.dt, a.bounds);
   }
 
   // 2. Swept collisions with the map's obstacles, in index order: a hit stops the agent at the contact.
@@ -410,10 +414,12 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   }
 
   // 6. New observations: every agent that took part in the step (a captured evader gets its final view).
+  //    With one agent per role the opponents never change.
+  const bool one_on_one = n == 2;
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];
     if (!ev.agents[std::size_t(i)].acted) continue;
-    if (!ev.agents[std::size_t(i)].captured) a.opponent = choose_opponent(st, i, rule_of(g, a.role));
+    if (!one_on_one && !ev.agents[std::size_t(i)].captured) a.opponent = choose_opponent(st, i, rule_of(g, a.role));
     perceive_agent(sim, st, i);
   }
 

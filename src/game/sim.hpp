@@ -67,6 +67,7 @@ struct AgentState {
   int rank = 0;                       ///< index among the agents of its role
   const AgentConfig* config = nullptr;  ///< its settings (owned by the Sim)
   KinematicState kinematics;
+  Box bounds;                         ///< the arena shrunk by its radius: where its centre may go
   bool active = true;                 ///< in the game; an evader leaves it when captured
   int opponent = -1;                  ///< index of the agent it plays against now
   /// What it may use to decide now: its percept relative to `opponent`, the map's nearest obstacle (arena

@@ -82,13 +82,11 @@ TEST(Constraints, AgainstAFaceTheGuardTurnsTheMotionAlongIt) {
 
 TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
   AgentConfig c = agent_preset("peg3d", Role::kPursuer);
-  ConstraintInputs in;
-  in.config = &c;
-  in.role = Role::kPursuer;
-  in.self = {Vec3(5, 5, 5), Heading{0.0, kPi / 2}};  // flying along +x
-  in.opponent = Vec3(15, 5, 5);                      // straight ahead
-  in.opponent_speed = 1.0;
-  in.arena = Box{Vec3::Zero(), Vec3(35, 35, 20)};
+  const KinematicState self{Vec3(5, 5, 5), Heading{0.0, kPi / 2}};  // flying along +x
+  const Vec3 opponent(15, 5, 5);                                     // straight ahead
+  ObstacleSense field;                                               // nothing near
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const ConstraintInputs in{c, Role::kPursuer, 0.1, self, opponent, 1.0, field, bounds};
   // Nothing in the way: the request, bounded.
   const Heading plain = constrained_heading(in, {0.3, 0.0});
   EXPECT_DOUBLE_EQ(plain.alpha, 0.3);
@@ -97,7 +95,7 @@ TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
   EXPECT_LE(std::abs(back.alpha), kPi / 4 + 1e-12);
   // An obstacle 0.5 m ahead (inside stop_distance): straight ahead is what the motion space wants, but the
   // guard forbids approaching it at all.
-  in.field = ObstacleSense{0.5, Vec3(5.5, 5, 5), true};
+  field = ObstacleSense{0.5, Vec3(5.5, 5, 5), true};
   // The allowed half-space lies a quarter turn away; the agent turns towards it as far as one step allows.
   const Heading guarded = constrained_heading(in, {0.0, 0.0});
   EXPECT_NEAR(std::abs(guarded.alpha), kPi / 4, 1e-9);
