@@ -2,7 +2,9 @@
 //   peg-map check MAP.yaml                       what the map holds, build time and memory; checks every start
 //                                                against the agents of the default game configuration
 //   peg-map distance MAP.yaml X Y Z              distance to the nearest obstacle and its position
-//   peg-map export MAP.yaml --octree OUT.bt      the octree as an OctoMap .bt file (view with octovis)
+//   peg-map export MAP.yaml --octree OUT.bt [--time T]   the octree as an OctoMap .bt file (view with
+//                                                octovis), with the moving obstacles where they are at T s
+//   peg-map movers MAP.yaml --seconds T [--every K]   every mover's pose over time, as CSV
 // Bad input prints "error: FILE:LINE: message" on stderr and exits with status 2, writing nothing.
 
 #include <cmath>
@@ -19,6 +21,7 @@
 #include "cli_common.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
+#include "world/mover_timeline.hpp"
 #include "world/map_spec.hpp"
 
 namespace {
@@ -80,6 +83,13 @@ void print_check(const Arena& arena) {
   fmt::print("obstacles  {} spheres, {} cylinders, {} meshes ({} triangles)\n", s.spheres, s.cylinders, s.meshes,
              s.triangles);
   fmt::print("scenarios  {}: {}\n", m.scenarios.size(), names);
+  if (!m.movers.empty()) {
+    int dynamic = 0;
+    for (const auto& mv : m.movers) dynamic += !mv.kinematic();
+    fmt::print("movers     {} ({} scripted, {} dynamic); physics {} Hz, gravity {}, faces {}\n", m.movers.size(),
+               m.movers.size() - dynamic, dynamic, m.physics.rate_hz, vec(m.physics.gravity),
+               m.physics.faces_are_physical ? "physical" : "not physical");
+  }
   fmt::print("octree     resolution {:g} m, {} occupied voxels, {} as .bt\n", s.resolution, s.occupied_voxels,
              mib(double(s.octree_bytes)));
   fmt::print("distance   {} x {} x {} = {} cells, cap {:g} m, {} kept ({} B/cell)\n", s.field_dims[0], s.field_dims[1],
@@ -115,7 +125,19 @@ int main(int argc, char** argv) {
   CLI::App* exporter = app.add_subcommand("export", "write the octree of MAP as an OctoMap .bt file");
   add_common(*exporter, common);
   std::string octree_out;
+  std::optional<double> export_time;
   exporter->add_option("--octree", octree_out, "output .bt file")->required();
+  exporter->add_option("--time", export_time, "mark the moving obstacles where they are at this time (s)")
+      ->check(CLI::NonNegativeNumber);
+
+  CLI::App* movers_cmd = app.add_subcommand("movers", "every moving obstacle's pose over time, as CSV on stdout");
+  add_common(*movers_cmd, common);
+  double seconds = 10.0;
+  int every = 24;
+  movers_cmd->add_option("--seconds", seconds, "how long (s)")->capture_default_str()->check(CLI::Range(0.0, 3600.0));
+  movers_cmd->add_option("--every", every, "print every K-th physics substep (24 at 240 Hz: every 0.1 s)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 
   return peg3d::cli::guarded_main(app, argc, argv, [&] {
     if (distance->parsed() && !(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
@@ -140,9 +162,28 @@ int main(int argc, char** argv) {
         fmt::print("distance {:g} m (cap): no obstacle within occupancy.max_distance\n", n.distance);
       }
     } else if (exporter->parsed()) {
-      arena->save_octree(octree_out);
+      if (export_time) {
+        arena->save_octree(octree_out, *export_time);
+      } else {
+        arena->save_octree(octree_out);
+      }
       fmt::print("wrote {} ({}, resolution {:g} m, {} occupied voxels)\n", octree_out,
                  mib(double(arena->stats().octree_bytes)), arena->resolution(), arena->stats().occupied_voxels);
+    }
+    if (movers_cmd->parsed()) {
+      const auto timeline = arena->movers_until(seconds);
+      fmt::print("t,id,kind,x,y,z,qw,qx,qy,qz\n");
+      if (!timeline) return 0;
+      const long substeps = static_cast<long>(std::llround(seconds * timeline->rate_hz()));
+      for (long k = 0; k <= substeps; k += every) {
+        const double t = static_cast<double>(k) / timeline->rate_hz();
+        for (int m = 0; m < timeline->count(); ++m) {
+          const peg3d::Pose p = timeline->pose(m, t);
+          fmt::print("{},{},{},{},{},{},{},{},{},{}\n", t, m, peg3d::to_string(timeline->mover(m).shape.kind),
+                     p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
+                     p.orientation.y(), p.orientation.z());
+        }
+      }
     }
     return 0;
   });

@@ -64,7 +64,7 @@ void Trace::reserve(int max_steps, int agent_count) {
   roles.reserve(std::size_t(agent_count));
   times.reserve(frames_needed);
   frames.reserve(frames_needed * std::size_t(agent_count));
-  collisions.reserve(frames_needed * std::size_t(agent_count) * 2);
+  collisions.reserve(frames_needed * std::size_t(agent_count) * 3);
   captures.reserve(std::size_t(agent_count));
 }
 

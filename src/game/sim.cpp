@@ -10,6 +10,7 @@
 #include "core/validation.hpp"
 #include "game/constraints.hpp"
 #include "geometry/sphere_sweep.hpp"
+#include "world/movers.hpp"
 
 namespace peg3d::game {
 
@@ -76,6 +77,17 @@ void check_overlaps(const Sim& sim, world::CollisionWorld& world, const world::S
                                    s.name, to_string(role), radius, world::to_string(c->kind), c->obstacle_id,
                                    c->penetration));
     }
+    if (const world::MoverTimeline* movers = sim.movers()) {
+      for (int m = 0; m < movers->count(); ++m) {
+        const double gap = signed_distance(movers->mover(m).shape, movers->pose(m, 0.0), positions[std::size_t(i)]) - radius;
+        if (gap < 0.0) {
+          throw StartError(file, a.line, a.field.empty() ? "scenario " + s.name : a.field,
+                           fmt::format("scenario '{}': the {} (radius {} m) starts overlapping {} (penetration {:.3f} m)",
+                                       s.name, to_string(role), radius,
+                                       world::describe_mover(movers->mover(m), m), -gap));
+        }
+      }
+    }
     for (int j = 0; j < i; ++j) {
       const Role other = j < p ? Role::kPursuer : Role::kEvader;
       if (!pair_collides(g.team.agent_collisions, role, other)) continue;
@@ -121,6 +133,11 @@ void perceive_agent(const Sim& sim, SimState& st, int i) {
   // The map's shapes only: whether the arena's faces count is the agent's observation setting, not the map's.
   const world::NearestObstacle n = sim.arena().nearest_shape(a.kinematics.position);
   v.field = {n.distance, n.point, n.found};
+  if (const world::MoverTimeline* movers = sim.movers()) {
+    // Moving obstacles where they are now, exactly; the nearer of them and the static field counts.
+    const world::MoverPoint m = movers->nearest(a.kinematics.position, st.time, n.distance);
+    if (m.mover >= 0) v.field = {m.distance, m.point, true};
+  }
   v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());
 }
@@ -155,6 +172,16 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     : arena_(std::move(arena)), config_(std::make_shared<const GameConfig>(std::move(config))) {
   config_->validate();
   max_steps_ = config_->max_steps();
+  const world::MapSpec& map = arena_->map();
+  if (!map.movers.empty()) {
+    const double substeps = config_->dt * map.physics.rate_hz;
+    if (std::abs(substeps - std::round(substeps)) > 1e-9 * std::max(1.0, substeps) || std::round(substeps) < 1.0) {
+      throw world::MapError(map.source, map.physics.line, "physics.rate_hz",
+                            fmt::format("{} Hz does not divide the game step dt = {} s into whole substeps",
+                                        map.physics.rate_hz, config_->dt));
+    }
+    movers_ = arena_->movers_until(config_->time_limit + config_->dt);
+  }
   if (arena_->map().scenarios.empty()) return;
   world::CollisionWorld world(arena_);
   std::vector<Vec3> positions;
@@ -198,7 +225,7 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   st.scratch.positions.resize(static_cast<std::size_t>(n));
   st.events.agents.assign(static_cast<std::size_t>(n), AgentEvents{});
   st.events.collisions.clear();
-  st.events.collisions.reserve(static_cast<std::size_t>(2 * n));
+  st.events.collisions.reserve(static_cast<std::size_t>(3 * n));
   st.events.captures.clear();
   st.events.captures.reserve(static_cast<std::size_t>(n));
   st.events.terminal = st.events.truncated = false;
@@ -280,11 +307,55 @@ CollisionEvent event_of(const SimState& st, int i, const world::Contact& c, doub
 }
 
 void record_collision(SimState& st, const CollisionEvent& e) {
-  st.events.collisions.push_back(e);  // capacity 2n: at most one obstacle and one agent contact per agent
+  // Capacity 3n: at most a static or mover contact, a mover contact after a static stop, and an agent contact
+  // per agent.
+  st.events.collisions.push_back(e);
   st.events.agents[std::size_t(e.agent)].collided = true;
   ++st.agents[std::size_t(e.agent)].collisions;
   ++st.collisions;
   if (!st.first_collision) st.first_collision = e;
+}
+
+world::Contact contact_of(int agent, const world::MoverContact& m) {
+  world::Contact c;
+  c.agent = agent;
+  c.kind = world::ObstacleKind::kMover;
+  c.obstacle_id = m.mover;
+  c.fraction = m.fraction;
+  c.point = m.point;
+  c.normal = m.normal;
+  c.penetration = m.penetration;
+  return c;
+}
+
+// Agent i moved (or tried to move) from `from` to `to` this step and the static sweep found `hit` (the
+// collider holds its stop). The movers may touch it first; or, stopped by a static obstacle, it stands there
+// for the rest of the step, where a mover may still run into it.
+void collide_movers(const Sim& sim, SimState& st, int i, const Vec3& from, const Vec3& to,
+                    const std::optional<world::Contact>& hit) {
+  const double dt = sim.config().dt;
+  const world::MoverTimeline& movers = *sim.movers();
+  AgentState& a = st.agents[std::size_t(i)];
+  KinematicState& k = st.scratch.next[std::size_t(i)];
+  const double radius = a.config->radius;
+  const auto m = movers.first_contact(from, to, radius, st.time, dt);
+  if (m && (!hit || m->fraction < hit->fraction)) {
+    const Vec3 delta = to - from;
+    const double length = delta.norm();
+    k.position = length > 0.0 ? Vec3(from + std::max(0.0, m->fraction - kAgentBackoff / length) * delta) : from;
+    st.collider.place_agent(a.body, k.position);
+    record_collision(st, event_of(st, i, contact_of(i, *m), dt));
+    return;
+  }
+  if (!hit) return;
+  k.position = st.collider.agent_position(a.body);  // stopped at the time of impact
+  record_collision(st, event_of(st, i, *hit, dt));
+  if (hit->fraction >= 1.0) return;
+  const double rest = 1.0 - hit->fraction;
+  if (auto late = movers.first_contact(k.position, k.position, radius, st.time + hit->fraction * dt, rest * dt)) {
+    late->fraction = hit->fraction + late->fraction * rest;
+    record_collision(st, event_of(st, i, contact_of(i, *late), dt));
+  }
 }
 
 // Sweeps every colliding pair of agents over their segments of this step (after the obstacles stopped
@@ -367,11 +438,16 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   }
 
   // 2. Swept collisions with the map's obstacles, in index order: a hit stops the agent at the contact.
+  const world::MoverTimeline* movers = sim.movers();
   for (int i = 0; i < n; ++i) {
     const AgentState& a = st.agents[std::size_t(i)];
     if (!a.active) continue;
     KinematicState& k = st.scratch.next[std::size_t(i)];
-    if (const auto c = st.collider.move_agent(a.body, k.position)) {
+    const Vec3 from = a.kinematics.position, to = k.position;
+    const auto c = st.collider.move_agent(a.body, k.position);
+    if (movers != nullptr) {
+      collide_movers(sim, st, i, from, to, c);
+    } else if (c) {
       k.position = st.collider.agent_position(a.body);  // stopped at the time of impact
       record_collision(st, event_of(st, i, *c, g.dt));
     }

@@ -27,6 +27,7 @@
 #include "game/reward.hpp"
 #include "world/arena.hpp"
 #include "world/collision_world.hpp"
+#include "world/mover_timeline.hpp"
 
 namespace peg3d::game {
 
@@ -108,7 +109,7 @@ const char* to_string(Outcome o);
 /// What one step did. Lives in the SimState and is overwritten by the next step.
 struct StepEvents {
   std::vector<AgentEvents> agents;         ///< one per agent
-  std::vector<CollisionEvent> collisions;  ///< in the order detected (agents in index order)
+  std::vector<CollisionEvent> collisions;  ///< in the order detected (agents in index order); up to 3 per agent
   std::vector<CaptureEvent> captures;      ///< in evader index order
   bool terminal = false;   ///< the game ended: every evader captured or a terminating collision
   bool truncated = false;  ///< the time limit ended it (not a terminal state of the game: learners bootstrap)
@@ -154,13 +155,17 @@ class SimState {
 class Sim {
  public:
   /// Validates the configuration (InvalidParameter) and checks every scenario of the arena's map against it
-  /// once, before any run (StartError), so that no run can fail on its start.
+  /// once, before any run (StartError), so that no run can fail on its start. On a map with moving obstacles it
+  /// also gets their motion for the whole episode from the arena (simulated once per map) and checks that the
+  /// game step is a whole number of physics substeps (MapError naming physics.rate_hz).
   Sim(std::shared_ptr<const world::Arena> arena, GameConfig config);
 
   const GameConfig& config() const { return *config_; }
   const world::Arena& arena() const { return *arena_; }
   const std::shared_ptr<const world::Arena>& arena_ptr() const { return arena_; }
   int max_steps() const { return max_steps_; }
+  /// Where the map's moving obstacles are over the whole episode (null when the map has none).
+  const world::MoverTimeline* movers() const { return movers_.get(); }
 
   /// Throws StartError when an agent of `scenario`, with its configured radius and kept inside the arena,
   /// starts overlapping an obstacle or (when agents collide) another agent; InvalidParameter when the
@@ -171,6 +176,7 @@ class Sim {
   std::shared_ptr<const world::Arena> arena_;
   std::shared_ptr<const GameConfig> config_;  // shared by copies: agents' config pointers stay valid
   int max_steps_ = 0;
+  std::shared_ptr<const world::MoverTimeline> movers_;
 };
 
 /// Puts `state` at the start of `scenario`: positions kept radius inside the arena, headings from the scenario

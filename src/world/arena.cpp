@@ -13,6 +13,7 @@
 
 #include "world/field_builder.hpp"
 #include "world/map_rules.hpp"
+#include "world/mover_timeline.hpp"
 #include "world/obstacle_geometry.hpp"
 #include "world/voxel_grid.hpp"
 
@@ -30,6 +31,8 @@ const char* to_string(ObstacleKind kind) {
       return "boundary";
     case ObstacleKind::kAgent:
       return "agent";
+    case ObstacleKind::kMover:
+      return "mover";
   }
   return "?";
 }
@@ -202,6 +205,8 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
     st.triangles += arena->meshes_.back().triangle_count();
   }
 
+  validate_movers(spec, arena->meshes_);
+
   const VoxelGrid grid = VoxelGrid::around(spec.bounds, spec.resolution);
   st.field_dims = grid.size;
   st.field_cells = grid.cell_count();
@@ -259,6 +264,25 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
   st.octree_bytes = arena->octree_bt_.size();
   st.build_seconds = seconds_since(t0);
   return arena;
+}
+
+std::shared_ptr<const MoverTimeline> Arena::movers_until(double seconds) const {
+  if (spec_.movers.empty()) return nullptr;
+  const std::lock_guard lock(movers_mutex_);
+  // Simulating further from the same start reproduces the shorter run's substeps exactly, so a longer timeline
+  // serves every shorter request.
+  if (!movers_ || movers_->duration() < seconds) movers_ = std::make_shared<const MoverTimeline>(spec_, meshes_, seconds);
+  return movers_;
+}
+
+void Arena::save_octree(const std::filesystem::path& bt_file, double t) const {
+  const auto movers = movers_until(t);
+  if (!movers) return save_octree(bt_file);
+  std::vector<std::pair<Shape, Pose>> shapes;
+  for (int m = 0; m < movers->count(); ++m) shapes.emplace_back(movers->mover(m).shape, movers->pose(m, t));
+  std::error_code ignored;
+  if (bt_file.has_parent_path()) std::filesystem::create_directories(bt_file.parent_path(), ignored);
+  write_file_atomically(bt_file, {std::string_view(octree_with_shapes(octree_bt_, field_.grid(), shapes))});
 }
 
 bool Arena::below_solid_terrain(const Vec3& p) const {

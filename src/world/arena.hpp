@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,10 +20,12 @@
 
 namespace peg3d::world {
 
+class MoverTimeline;
+
 /// What an obstacle is; kBoundary is a face of the arena box (octree and distance field only, never a
 /// collision: the game keeps agents inside the box); kAgent is another agent (when the game lets agents
-/// collide).
-enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary, kAgent };
+/// collide); kMover is a moving obstacle (MapSpec::movers, by index).
+enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary, kAgent, kMover };
 
 /// Name of a kind: "sphere", "cylinder", "mesh", "boundary".
 const char* to_string(ObstacleKind kind);
@@ -86,6 +89,11 @@ class Arena {
   /// lies; arena faces are left out (they are not collisions). The collision early-out rests on it.
   double clearance_lower_bound(const Vec3& p) const { return field_.clearance_lower_bound(p); }
 
+  /// Where the map's moving obstacles are from t = 0 to at least `seconds`: scripted movers exactly, dynamic
+  /// bodies as Bullet simulates them (world/mover_timeline.hpp). Simulated on the first request of a duration
+  /// and kept: later requests, from any thread, share it read-only. Null for a map without movers.
+  std::shared_ptr<const MoverTimeline> movers_until(double seconds) const;
+
   /// True when p lies under a terrain mesh marked solid_below (exact: a vertical ray through its triangles).
   /// Bullet sees only a terrain's surface, so this is how a start buried under a height field is caught.
   bool below_solid_terrain(const Vec3& p) const;
@@ -93,6 +101,8 @@ class Arena {
   /// Writes the octree as an OctoMap .bt file (view it with octovis). Written to a temporary file then
   /// renamed, so a crash never leaves half a file. Throws std::runtime_error if it cannot be written.
   void save_octree(const std::filesystem::path& bt_file) const;
+  /// Likewise, with the moving obstacles' cells marked where they are at time t (s).
+  void save_octree(const std::filesystem::path& bt_file, double t) const;
 
   /// The octree in OctoMap's binary format (.bt file contents).
   const std::string& octree_data() const { return octree_bt_; }
@@ -105,6 +115,8 @@ class Arena {
   std::vector<TriangleMesh> meshes_;
   DistanceField field_;
   std::string octree_bt_;
+  mutable std::mutex movers_mutex_;                        // guards movers_
+  mutable std::shared_ptr<const MoverTimeline> movers_;   // the longest timeline simulated so far
 };
 
 /// The default cache folder: $PEG3D_CACHE_DIR, else $XDG_CACHE_HOME/peg3d, else ~/.cache/peg3d.

@@ -45,6 +45,41 @@ std::size_t estimate_build_bytes(const VoxelGrid& grid) {
   return edt + cells * (1 + sizeof(DistanceField::Cell));
 }
 
+namespace {
+
+std::string serialize(octomap::OcTree& tree) {
+  // OctoMap's .bt layout: a text header, then the tree's data. Written here rather than with writeBinary(),
+  // whose Debian build prints " done." on stderr for every tree.
+  tree.updateInnerOccupancy();
+  tree.toMaxLikelihood();
+  tree.prune();
+  std::ostringstream bt;
+  bt << fmt::format("# Octomap OcTree binary file\n# written by peg3d\n#\nid {}\nsize {}\nres {}\ndata\n",
+                    tree.getTreeType(), tree.size(), tree.getResolution());
+  tree.writeBinaryData(bt);
+  if (!bt) throw std::runtime_error("cannot serialize the octree");
+  return std::move(bt).str();
+}
+
+}  // namespace
+
+std::string octree_with_shapes(const std::string& octree_bt, const VoxelGrid& g,
+                               const std::vector<std::pair<Shape, Pose>>& shapes) {
+  std::istringstream in(octree_bt);
+  octomap::OcTree tree(g.resolution);
+  if (!tree.readBinary(in)) throw std::runtime_error("cannot read the world's octree");
+  const float occupied = tree.getClampingThresMaxLog();
+  for (const auto& [shape, pose] : shapes) {
+    for_each_shape_cell(g, shape, pose, [&](int i, int j, int k) {
+      const octomap::OcTreeKey key(static_cast<octomap::key_type>(g.first[0] + i + kKeyOffset),
+                                   static_cast<octomap::key_type>(g.first[1] + j + kKeyOffset),
+                                   static_cast<octomap::key_type>(g.first[2] + k + kKeyOffset));
+      tree.setNodeValue(key, occupied, /*lazy_eval=*/true);
+    });
+  }
+  return serialize(tree);
+}
+
 FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance, const Box& arena, ArenaFaces faces) {
   const VoxelGrid& g = occupancy.grid();
   FieldBuild out;
@@ -124,17 +159,7 @@ FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance,
     ++out.occupied_voxels;
   });
 
-  // OctoMap's .bt layout: a text header, then the tree's data. Written here rather than with writeBinary(),
-  // whose Debian build prints " done." on stderr for every tree.
-  tree.updateInnerOccupancy();
-  tree.toMaxLikelihood();
-  tree.prune();
-  std::ostringstream bt;
-  bt << fmt::format("# Octomap OcTree binary file\n# written by peg3d\n#\nid {}\nsize {}\nres {}\ndata\n",
-                    tree.getTreeType(), tree.size(), tree.getResolution());
-  tree.writeBinaryData(bt);
-  if (!bt) throw std::runtime_error("cannot serialize the octree");
-  out.octree_bt = std::move(bt).str();
+  out.octree_bt = serialize(tree);
   out.octree_seconds += seconds_since(t0);
   return out;
 }

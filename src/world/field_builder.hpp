@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "world/distance_field.hpp"
 #include "world/voxel_grid.hpp"
@@ -27,6 +29,11 @@ std::size_t estimate_build_bytes(const VoxelGrid& grid);
 /// into the compact DistanceField, which adds the chosen arena faces as exact planes. The tree then also gets
 /// the faces' padding layers, so the exported octree shows every obstacle (all as fully occupied leaves,
 /// pruned).
+/// The octree of a built world (OctoMap .bt contents) with the cells of posed shapes marked occupied too (the
+/// movers at some instant), as .bt contents.
+std::string octree_with_shapes(const std::string& octree_bt, const VoxelGrid& grid,
+                               const std::vector<std::pair<Shape, Pose>>& shapes);
+
 FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance, const Box& arena = {},
                                 ArenaFaces faces = {});
 

@@ -14,6 +14,7 @@
 
 #include "world/map_rules.hpp"
 #include "world/map_spec.hpp"
+#include "world/movers.hpp"
 #include "world/random_obstacles.hpp"
 #include "world/triangle_mesh.hpp"
 
@@ -237,6 +238,32 @@ class Loader {
     return n;
   }
 
+  /// The node of a field below a mapping, given relative to it ("path.speed", "size[1]"); the mapping itself
+  /// when the field is empty or not there (so an error always has a line).
+  Node node_of(const Fields& f, const std::string& relative) const {
+    Node node = f.node();
+    std::size_t start = 0;
+    while (start < relative.size()) {
+      const std::size_t dot = std::min(relative.find('.', start), relative.size());
+      std::string part = relative.substr(start, dot - start);
+      int index = -1;
+      if (const std::size_t b = part.find('['); b != std::string::npos) {
+        index = std::atoi(part.c_str() + b + 1);
+        part = part.substr(0, b);
+      }
+      if (!part.empty()) {
+        if (!node.IsMap() || !node[part]) return f.node();
+        node = node[part];
+      }
+      if (index >= 0) {
+        if (!node.IsSequence() || index >= static_cast<int>(node.size())) return f.node();
+        node = node[static_cast<std::size_t>(index)];
+      }
+      start = dot + 1;
+    }
+    return node;
+  }
+
   void read_arena(const Node& n, MapSpec& spec);
   void read_occupancy(const Node* n, MapSpec& spec);
   AgentStart read_agent(const Node& n, const std::string& field);
@@ -244,6 +271,8 @@ class Loader {
   void read_obstacle(const Node& n, const std::string& field, MapSpec& spec);
   void read_terrain(const Node& n, const std::string& field, MapSpec& spec);
   void read_generator(const Node& n, const std::string& field, MapSpec& spec);
+  void read_physics(const Node& n, MapSpec& spec);
+  void read_mover(const Node& n, const std::string& field, MapSpec& spec);
   void check_starts(const MapSpec& spec) const;
   void require_in_arena(const Node& n, const std::string& field, const Vec3& p, const MapSpec& spec) const;
 
@@ -397,6 +426,87 @@ void Loader::read_terrain(const Node& n, const std::string& field, MapSpec& spec
   spec.meshes.push_back(t);
 }
 
+void Loader::read_physics(const Node& n, MapSpec& spec) {
+  const Fields f(*this, n, "physics");
+  f.allow({"gravity", "rate_hz", "faces_are_physical"});
+  spec.physics.line = line_of(n);
+  if (const Node* v = f.find("gravity")) spec.physics.gravity = vec3(*v, f.field("gravity"));
+  if (const Node* v = f.find("rate_hz")) {
+    const long long r = integer(*v, f.field("rate_hz"));
+    spec.physics.rate_hz = static_cast<int>(std::clamp<long long>(r, -1, 1000000));
+  }
+  if (const Node* v = f.find("faces_are_physical")) spec.physics.faces_are_physical = boolean(*v, f.field("faces_are_physical"));
+  if (const Problem p = check_physics(spec.physics)) fail(f.need(p.field), f.field(p.field), p.message);
+}
+
+void Loader::read_mover(const Node& n, const std::string& field, MapSpec& spec) {
+  const Fields f(*this, n, field);
+  MoverSpec m;
+  m.line = line_of(n);
+  const Node& kind_node = f.need("kind");
+  const std::string kind = text(kind_node, f.field("kind"));
+  std::vector<std::string_view> allowed{"kind", "rotation_deg", "path", "orbit", "dynamic"};
+  if (kind == "sphere") {
+    m.shape.kind = Shape::Kind::kSphere;
+    allowed.push_back("radius");
+    m.shape.radius = number(f.need("radius"), f.field("radius"));
+  } else if (kind == "cylinder") {
+    m.shape.kind = Shape::Kind::kCylinder;
+    allowed.insert(allowed.end(), {"radius", "height"});
+    m.shape.radius = number(f.need("radius"), f.field("radius"));
+    m.shape.height = number(f.need("height"), f.field("height"));
+  } else if (kind == "box") {
+    m.shape.kind = Shape::Kind::kBox;
+    allowed.push_back("size");
+    m.shape.size = vec3(f.need("size"), f.field("size"));
+  } else {
+    fail(kind_node, f.field("kind"), fmt::format("unknown mover kind '{}' (allowed: sphere, cylinder, box)", kind));
+  }
+  f.allow(allowed);
+  if (const Node* v = f.find("rotation_deg")) m.rotation_deg = vec3(*v, f.field("rotation_deg"));
+  const Node* motions[] = {f.find("path"), f.find("orbit"), f.find("dynamic")};
+  if ((motions[0] != nullptr) + (motions[1] != nullptr) + (motions[2] != nullptr) != 1) {
+    fail(n, field, "needs exactly one motion: path, orbit or dynamic");
+  }
+  if (const Node* p = motions[0]) {
+    m.motion = MoverSpec::Motion::kPath;
+    const Fields pf(*this, *p, f.field("path"));
+    pf.allow({"waypoints", "speed", "mode"});
+    const Node& list = sequence(pf.need("waypoints"), pf.field("waypoints"));
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      m.path.waypoints.push_back(vec3(list[i], fmt::format("{}[{}]", pf.field("waypoints"), i)));
+    }
+    m.path.speed = number(pf.need("speed"), pf.field("speed"));
+    if (const Node* v = pf.find("mode")) {
+      const std::string mode = text(*v, pf.field("mode"));
+      if (mode != "loop" && mode != "back-and-forth") fail(*v, pf.field("mode"), fmt::format("'{}' is not loop or back-and-forth", mode));
+      m.path.loop = mode == "loop";
+    }
+  } else if (const Node* o = motions[1]) {
+    m.motion = MoverSpec::Motion::kOrbit;
+    const Fields of(*this, *o, f.field("orbit"));
+    of.allow({"center", "radius", "period", "axis", "phase_deg"});
+    m.orbit.center = vec3(of.need("center"), of.field("center"));
+    m.orbit.radius = number(of.need("radius"), of.field("radius"));
+    m.orbit.period = number(of.need("period"), of.field("period"));
+    if (const Node* v = of.find("axis")) m.orbit.axis = vec3(*v, of.field("axis"));
+    if (const Node* v = of.find("phase_deg")) m.orbit.phase = number(*v, of.field("phase_deg")) * kPi / 180.0;
+  } else {
+    m.motion = MoverSpec::Motion::kDynamic;
+    const Fields df(*this, *motions[2], f.field("dynamic"));
+    df.allow({"position", "mass", "velocity", "angular_velocity", "friction", "rolling_friction", "restitution"});
+    m.start = vec3(df.need("position"), df.field("position"));
+    m.dynamic.mass = number(df.need("mass"), df.field("mass"));
+    if (const Node* v = df.find("velocity")) m.dynamic.velocity = vec3(*v, df.field("velocity"));
+    if (const Node* v = df.find("angular_velocity")) m.dynamic.angular_velocity = vec3(*v, df.field("angular_velocity"));
+    if (const Node* v = df.find("friction")) m.dynamic.friction = number(*v, df.field("friction"));
+    if (const Node* v = df.find("rolling_friction")) m.dynamic.rolling_friction = number(*v, df.field("rolling_friction"));
+    if (const Node* v = df.find("restitution")) m.dynamic.restitution = number(*v, df.field("restitution"));
+  }
+  if (const Problem p = check_mover(m, spec.bounds)) fail(node_of(f, p.field), field + "." + p.field, p.message);
+  spec.movers.push_back(std::move(m));
+}
+
 void Loader::read_generator(const Node& n, const std::string& field, MapSpec& spec) {
   const Fields f(*this, n, field);
   const Node& kind_node = f.need("kind");
@@ -448,7 +558,13 @@ void Loader::read_generator(const Node& n, const std::string& field, MapSpec& sp
   }
   std::vector<Vec3> starts;
   for (const StartRef& s : starts_) starts.push_back(s.position);
-  const RandomObstacles placed = place_random_obstacles(g, starts, spec.spheres, spec.cylinders);
+  // Random obstacles keep their clearance from the movers' whole routes too, as from balls of the movers' reach
+  // along them, so no scripted mover ever runs through one and no dynamic body starts inside one.
+  std::vector<SphereObstacle> keep_clear = spec.spheres;
+  for (const MoverSpec& m : spec.movers) {
+    for (const Vec3& c : route_samples(m, 0.5)) keep_clear.push_back({c, m.shape.bounding_radius()});
+  }
+  RandomObstacles placed = place_random_obstacles(g, starts, keep_clear, spec.cylinders);
   if (placed.placed() < g.count) {
     fail(count_node, f.field("count"),
          fmt::format("placed only {} of {} obstacles ({} draws each); lower the count or the clearances, or enlarge "
@@ -483,7 +599,8 @@ MapSpec Loader::load() {
   MapSpec spec;
   spec.source = file_;
   const Fields top(*this, root, "");
-  top.allow({"version", "name", "arena", "occupancy", "obstacles", "terrain", "random_obstacles", "start", "scenarios"});
+  top.allow({"version", "name", "arena", "occupancy", "physics", "obstacles", "terrain", "movers", "random_obstacles",
+             "start", "scenarios"});
   if (const Node* v = top.find("version")) {
     const long long version = integer(*v, "version");
     if (version != kFormatVersion) fail(*v, "version", fmt::format("unsupported map format version {} (this build reads {})", version, kFormatVersion));
@@ -518,9 +635,19 @@ MapSpec Loader::load() {
     for (std::size_t i = 0; i < list->size(); ++i) read_terrain((*list)[i], fmt::format("terrain[{}]", i), spec);
   }
   check_starts(spec);
+  if (const Node* n = top.find("physics")) read_physics(*n, spec);
+  if (const Node* list = top.find("movers")) {
+    sequence(*list, "movers");
+    for (std::size_t i = 0; i < list->size(); ++i) read_mover((*list)[i], fmt::format("movers[{}]", i), spec);
+  }
   if (const Node* list = top.find("random_obstacles")) {
     sequence(*list, "random_obstacles");
     for (std::size_t i = 0; i < list->size(); ++i) read_generator((*list)[i], fmt::format("random_obstacles[{}]", i), spec);
+  }
+  if (!spec.movers.empty()) {
+    std::vector<TriangleMesh> meshes;
+    for (const TerrainMesh& t : spec.meshes) meshes.push_back(*t.imported);
+    validate_movers(spec, meshes);
   }
   return spec;
 }

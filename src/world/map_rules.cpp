@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "world/movers.hpp"
+#include "world/obstacle_geometry.hpp"
+
 namespace peg3d::world {
 namespace {
 
@@ -98,6 +101,142 @@ Problem check_scenario_name(std::string_view name) {
                           name)};
 }
 
+Problem check_physics(const PhysicsSpec& physics) {
+  if (physics.rate_hz < 1 || physics.rate_hz > 100000) {
+    return {"rate_hz", fmt::format("must lie in [1, 100000], got {}", physics.rate_hz)};
+  }
+  return finite("gravity", physics.gravity);
+}
+
+Pose start_pose(const MoverSpec& m) {
+  if (m.kinematic()) return scripted_pose(m, 0.0);
+  return {m.start, orientation_deg(m.rotation_deg)};
+}
+
+Problem check_mover(const MoverSpec& m, const Box& arena) {
+  switch (m.shape.kind) {
+    case Shape::Kind::kSphere:
+      if (auto p = positive("radius", m.shape.radius)) return p;
+      break;
+    case Shape::Kind::kCylinder:
+      if (auto p = positive("radius", m.shape.radius)) return p;
+      if (auto p = positive("height", m.shape.height)) return p;
+      break;
+    case Shape::Kind::kBox:
+      for (int i = 0; i < 3; ++i) {
+        if (auto p = positive("size", m.shape.size[i])) return {fmt::format("size[{}]", i), p.message};
+      }
+      break;
+  }
+  if (auto p = finite("rotation_deg", m.rotation_deg)) return p;
+  const double reach = m.shape.bounding_radius();
+  const Box inside = arena.shrunk(reach);
+  const auto keeps_inside = [&](const char* field, const Vec3& c) -> Problem {
+    if (inside.contains(c)) return {};
+    return {field, fmt::format("{} is closer than the mover's reach ({} m) to the arena's faces [{} .. {}]", vec_text(c),
+                               reach, vec_text(arena.lo), vec_text(arena.hi))};
+  };
+  switch (m.motion) {
+    case MoverSpec::Motion::kPath: {
+      const auto& w = m.path.waypoints;
+      if (w.size() < 2) return {"path.waypoints", fmt::format("needs at least 2 waypoints, got {}", w.size())};
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        const std::string field = fmt::format("path.waypoints[{}]", i);
+        if (!w[i].allFinite()) return {field, "must be finite"};
+        // The arena box shrunk by the reach is convex: straight segments between inside waypoints stay inside.
+        if (auto p = keeps_inside("", w[i])) return {field, p.message};
+        if (i > 0 && (w[i] - w[i - 1]).norm() == 0.0) return {field, "repeats the waypoint before it"};
+      }
+      return positive("path.speed", m.path.speed);
+    }
+    case MoverSpec::Motion::kOrbit: {
+      const OrbitMotion& o = m.orbit;
+      if (auto p = finite("orbit.center", o.center)) return p;
+      if (auto p = positive("orbit.radius", o.radius)) return p;
+      if (auto p = positive("orbit.period", o.period)) return p;
+      if (!o.axis.allFinite() || o.axis.norm() == 0.0) return {"orbit.axis", "must be a non-zero, finite direction"};
+      if (!std::isfinite(o.phase)) return {"orbit.phase_deg", "must be finite"};
+      // The circle's extent along world axis i is radius * sqrt(1 - a_i^2) about the centre.
+      const Vec3 a = o.axis.normalized();
+      for (int i = 0; i < 3; ++i) {
+        const double e = o.radius * std::sqrt(std::max(0.0, 1.0 - a[i] * a[i]));
+        if (o.center[i] - e < inside.lo[i] - 1e-12 || o.center[i] + e > inside.hi[i] + 1e-12) {
+          return {"orbit", fmt::format("the orbit leaves the arena: it spans [{}, {}] m on {} and the mover reaches {} m "
+                                       "beyond its centre",
+                                       o.center[i] - e, o.center[i] + e, "xyz"[i], reach)};
+        }
+      }
+      return {};
+    }
+    case MoverSpec::Motion::kDynamic: {
+      const DynamicMotion& d = m.dynamic;
+      if (!m.start.allFinite()) return {"dynamic.position", "must be finite"};
+      if (auto p = keeps_inside("dynamic.position", m.start)) return p;
+      if (auto p = positive("dynamic.mass", d.mass)) return p;
+      if (auto p = finite("dynamic.velocity", d.velocity)) return p;
+      if (auto p = finite("dynamic.angular_velocity", d.angular_velocity)) return p;
+      if (!std::isfinite(d.friction) || d.friction < 0.0) return {"dynamic.friction", fmt::format("must be >= 0, got {}", d.friction)};
+      if (!std::isfinite(d.rolling_friction) || d.rolling_friction < 0.0) {
+        return {"dynamic.rolling_friction", fmt::format("must be >= 0, got {}", d.rolling_friction)};
+      }
+      if (!std::isfinite(d.restitution) || d.restitution < 0.0 || d.restitution > 1.0) {
+        return {"dynamic.restitution", fmt::format("must lie in [0, 1], got {}", d.restitution)};
+      }
+      return {};
+    }
+  }
+  return {};
+}
+
+Problem check_mover_start(const MoverSpec& m, const MapSpec& spec, const std::vector<TriangleMesh>& meshes) {
+  const Pose pose = start_pose(m);
+  for (std::size_t i = 0; i < spec.spheres.size(); ++i) {
+    const SphereObstacle& s = spec.spheres[i];
+    if (nearest_on_shape(m.shape, pose, s.center).distance < s.radius) {
+      return {"", fmt::format("starts overlapping sphere obstacle {} at {}", i, vec_text(s.center))};
+    }
+  }
+  for (std::size_t i = 0; i < spec.cylinders.size(); ++i) {
+    const CylinderObstacle& c = spec.cylinders[i];
+    // The cylinder against the mover's bounding ball: conservative for boxes and cylinders.
+    const Shape cyl{Shape::Kind::kCylinder, c.radius, c.height, Vec3::Ones()};
+    const Pose at{c.base + Vec3(0, 0, 0.5 * c.height), Quat::Identity()};
+    const double reach = m.shape.kind == Shape::Kind::kSphere ? m.shape.radius : m.shape.bounding_radius();
+    if (nearest_on_shape(cyl, at, pose.position).distance < reach) {
+      return {"", fmt::format("starts overlapping cylinder obstacle {} at {}", i, vec_text(c.base))};
+    }
+  }
+  for (std::size_t i = 0; i < spec.meshes.size() && i < meshes.size(); ++i) {
+    if (spec.meshes[i].solid_below && is_below_surface(meshes[i], pose.position)) {
+      return {"", fmt::format("starts under the solid terrain {}", i)};
+    }
+  }
+  return {};
+}
+
+Problem check_mover_clear_of_start(const MoverSpec& m, const Vec3& start) {
+  if (nearest_on_shape(m.shape, start_pose(m), start).distance > 0.0) return {};
+  return {"", fmt::format("holds the agent start {} at t = 0", vec_text(start))};
+}
+
+void validate_movers(const MapSpec& spec, const std::vector<TriangleMesh>& meshes) {
+  for (std::size_t i = 0; i < spec.movers.size(); ++i) {
+    const MoverSpec& m = spec.movers[i];
+    const std::string field = fmt::format("movers[{}]", i);
+    if (const Problem p = check_mover_start(m, spec, meshes)) throw MapError(spec.source, m.line, field, p.message);
+    for (const Scenario& s : spec.scenarios) {
+      for (const auto* list : {&s.pursuers, &s.evaders}) {
+        for (const AgentStart& a : *list) {
+          if (const Problem p = check_mover_clear_of_start(m, a.position)) {
+            throw MapError(spec.source, m.line, field,
+                           p.message + (a.field.empty() ? std::string() : " (" + a.field + ")"));
+          }
+        }
+      }
+    }
+  }
+}
+
 void validate_map(const MapSpec& spec) {
   const auto fail = [&](const std::string& where, const Problem& p, int line = 0) {
     const std::string field = p.field.empty() ? where : (where.empty() ? p.field : where + "." + p.field);
@@ -111,6 +250,9 @@ void validate_map(const MapSpec& spec) {
     if (auto p = check_cylinder(spec.cylinders[i], spec.bounds)) fail(fmt::format("cylinders[{}]", i), p);
   for (std::size_t i = 0; i < spec.meshes.size(); ++i)
     if (auto p = check_placement(spec.meshes[i])) fail(fmt::format("terrain[{}]", i), p, spec.meshes[i].line);
+  if (auto p = check_physics(spec.physics)) fail("physics", p, spec.physics.line);
+  for (std::size_t i = 0; i < spec.movers.size(); ++i)
+    if (auto p = check_mover(spec.movers[i], spec.bounds)) fail(fmt::format("movers[{}]", i), p, spec.movers[i].line);
   for (std::size_t k = 0; k < spec.scenarios.size(); ++k) {
     const Scenario& s = spec.scenarios[k];
     const std::string where = fmt::format("scenarios[{}]", k);

@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "geometry/angles.hpp"
+#include "geometry/pose.hpp"
 #include "geometry/vector.hpp"
 
 namespace peg3d::world {
@@ -46,6 +47,58 @@ struct TerrainMesh {
   /// it again); null for entries written in code.
   std::shared_ptr<const TriangleMesh> imported;
 };
+
+/// A scripted route: the mover's centre runs along the waypoints at a constant speed, starting at the first.
+struct PathMotion {
+  std::vector<Vec3> waypoints;  ///< m, at least 2, consecutive ones distinct
+  double speed = 1.0;           ///< m/s, > 0
+  bool loop = true;             ///< after the last waypoint: back to the first (loop) or back the same way
+};
+
+/// A scripted circle: the centre turns about `axis` through `center` at constant speed.
+struct OrbitMotion {
+  Vec3 center = Vec3::Zero();  ///< m
+  double radius = 1.0;         ///< m, > 0
+  double period = 10.0;        ///< s, one turn, > 0 (counter-clockwise seen from the tip of `axis`)
+  Vec3 axis = Vec3::UnitZ();   ///< unit
+  double phase = 0.0;          ///< rad at t = 0, measured from +x projected on the orbit's plane (+y if the axis is x)
+};
+
+/// A body Bullet moves: it falls, bounces, rolls and is pushed by scripted movers.
+struct DynamicMotion {
+  double mass = 1.0;                      ///< kg, > 0 (a solid body of uniform density)
+  Vec3 velocity = Vec3::Zero();           ///< m/s at t = 0
+  Vec3 angular_velocity = Vec3::Zero();   ///< rad/s at t = 0, world frame
+  double friction = 0.5;                  ///< Coulomb friction coefficient, >= 0
+  double rolling_friction = 0.0;          ///< >= 0 (0: rolls without losing energy)
+  double restitution = 0.0;               ///< bounce, in [0, 1]
+};
+
+/// A moving obstacle: a sphere, upright cylinder or box that follows a path or an orbit exactly (kinematic:
+/// it pushes dynamic bodies and nothing pushes it) or is a dynamic body of the physics.
+struct MoverSpec {
+  enum class Motion { kPath, kOrbit, kDynamic };
+  Shape shape;
+  Motion motion = Motion::kPath;
+  PathMotion path;
+  OrbitMotion orbit;
+  DynamicMotion dynamic;
+  Vec3 start = Vec3::Zero();          ///< m, where a dynamic body starts (paths start at their first waypoint)
+  Vec3 rotation_deg = Vec3::Zero();   ///< orientation (kept by paths and orbits; the start of dynamic bodies)
+  int line = 0;                       ///< line of the entry in the map file (0: unknown)
+
+  bool kinematic() const { return motion != Motion::kDynamic; }
+};
+
+/// How moving obstacles are simulated.
+struct PhysicsSpec {
+  Vec3 gravity = Vec3(0, 0, -9.81);  ///< m/s^2
+  int rate_hz = 240;                 ///< physics substeps per second; the game step must be a whole number of them
+  bool faces_are_physical = true;    ///< the arena's six faces are static planes for dynamic bodies
+  int line = 0;                      ///< line of `physics` in the map file (0: unknown)
+};
+
+const char* to_string(MoverSpec::Motion m);
 
 /// Where an agent starts; the heading is optional (the game chooses one when absent).
 struct AgentStart {
@@ -86,6 +139,8 @@ struct MapSpec {
   std::vector<SphereObstacle> spheres;
   std::vector<CylinderObstacle> cylinders;
   std::vector<TerrainMesh> meshes;
+  std::vector<MoverSpec> movers;    ///< moving obstacles (index = obstacle id of kMover contacts)
+  PhysicsSpec physics;
   std::vector<Scenario> scenarios;  ///< at least one; a single `start:` becomes a scenario named "default"
 
   /// The scenario called `name`, or nullptr.

@@ -63,6 +63,10 @@ void Occupancy::add_sphere(const SphereObstacle& s) {
   }
 }
 
+void Occupancy::add_shape(const Shape& shape, const Pose& pose) {
+  for_each_shape_cell(grid_, shape, pose, [&](int i, int j, int k) { set(i, j, k); });
+}
+
 void Occupancy::add_cylinder(const CylinderObstacle& c) {
   std::array<int, 3> lo, hi;
   const Vec3 a(c.base.x() - c.radius, c.base.y() - c.radius, c.base.z());

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/pose.hpp"
 #include "geometry/vector.hpp"
 #include "world/map_spec.hpp"
 #include "world/triangle_mesh.hpp"
@@ -53,6 +54,9 @@ class Occupancy {
   /// The mesh's triangles; with solid_below also every cell under the mesh's highest surface cell of each
   /// column, down to the grid's bottom.
   void add_mesh(const TriangleMesh& mesh, bool solid_below);
+  /// A posed convex shape (a mover at some instant): every cell whose centre lies within half a cell diagonal of
+  /// the shape (conservative: every point of the shape is in a marked cell).
+  void add_shape(const Shape& shape, const Pose& pose);
   /// The padding layer outside the chosen faces of the arena (see for_each_boundary_cell).
   void add_boundary(bool floor, bool ceiling, bool walls);
 
@@ -80,6 +84,27 @@ void for_each_boundary_cell(const VoxelGrid& grid, bool floor, bool ceiling, boo
       const bool wall_column = walls && (i == 0 || i == nx - 1 || j == 0 || j == ny - 1);
       for (int k = 0; k < nz; ++k) {
         if (wall_column || (floor && k == 0) || (ceiling && k == nz - 1)) f(i, j, k);
+      }
+    }
+  }
+}
+
+/// Calls f(i, j, k) for each grid cell whose centre lies within half a cell diagonal of the posed shape
+/// (Occupancy::add_shape's cells).
+template <class F>
+void for_each_shape_cell(const VoxelGrid& grid, const Shape& shape, const Pose& pose, F&& f) {
+  const double h = 0.5 * std::sqrt(3.0) * grid.resolution;
+  const double reach = shape.bounding_radius() + h;
+  std::array<int, 3> lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::max(0, grid.axis_cell(pose.position[a] - reach, a));
+    hi[a] = std::min(grid.size[a] - 1, grid.axis_cell(pose.position[a] + reach, a));
+    if (lo[a] > hi[a]) return;
+  }
+  for (int i = lo[0]; i <= hi[0]; ++i) {
+    for (int j = lo[1]; j <= hi[1]; ++j) {
+      for (int k = lo[2]; k <= hi[2]; ++k) {
+        if (nearest_on_shape(shape, pose, grid.cell_center(i, j, k)).distance <= h) f(i, j, k);
       }
     }
   }

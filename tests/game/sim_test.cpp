@@ -12,6 +12,7 @@
 #include "game/scripted_policies.hpp"
 #include "test_arena.hpp"
 #include "world/map_spec.hpp"
+#include "world/mover_timeline.hpp"
 
 namespace peg3d::game {
 namespace {
@@ -263,6 +264,118 @@ TEST(Sim, StartsAreKeptARadiusInsideTheArena) {
   reset(sim, st, s, 0);
   EXPECT_EQ(st.agents[0].kinematics.position, Vec3(0.25, 5, 5));
   EXPECT_EQ(st.agents[1].kinematics.position, Vec3(30, 30, 19.75));
+}
+
+// A standing evader (speed 0) on a mover's line: the mover's ball of radius 1 comes along x at 5 m/s from
+// x = 3 and touches the evader's 0.25 m sphere at x = 12 when its centre reaches 10.75, at t = 7.75 / 5 = 1.55 s.
+std::shared_ptr<const world::Arena> crossing_arena(double evader_y) {
+  world::MapSpec m;
+  m.name = "crossing";
+  m.bounds = {Vec3::Zero(), Vec3(35, 35, 20)};
+  m.resolution = 0.25;
+  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  world::MoverSpec mover;
+  mover.shape = {Shape::Kind::kSphere, 1.0, 1.0, Vec3::Ones()};
+  mover.motion = world::MoverSpec::Motion::kPath;
+  mover.path = {{Vec3(3, 10, 10), Vec3(33, 10, 10)}, 5.0, false};
+  m.movers.push_back(mover);
+  m.scenarios.push_back(scenario("crossing", {12, 30, 10}, {12, evader_y, 10}));
+  return world::Arena::build(m);
+}
+
+GameConfig standing_evader() {
+  GameConfig c = preset("peg3d");
+  c.pursuer.policy = PolicyKind::kPurePursuit;
+  c.pursuer.speed = 0.01;  // far away and slow: the game lasts until the mover arrives
+  c.evader.policy = PolicyKind::kFlee;
+  c.evader.speed = 0.0;
+  c.evader.guard.enabled = false;
+  return c;
+}
+
+TEST(Sim, AnAgentInAMoversWayIsHitWhenTheMoverArrives) {
+  const auto arena = crossing_arena(10.0);
+  const Sim sim(arena, standing_evader());
+  Trace trace;
+  const EpisodeResult r = testing::play_once(sim, arena->map().scenarios[0], 1, &trace);
+  EXPECT_EQ(r.outcome, Outcome::kEvaderCollision);
+  ASSERT_TRUE(r.first_collision.has_value());
+  EXPECT_EQ(r.first_collision->agent, 1);
+  EXPECT_EQ(r.first_collision->kind, world::ObstacleKind::kMover);
+  EXPECT_EQ(r.first_collision->obstacle_id, 0);
+  EXPECT_NEAR(r.first_collision->time, 1.55, 1e-4);
+  EXPECT_EQ(r.first_collision->step, 16);
+  EXPECT_NEAR(r.first_collision->point.x(), 11.75, 1e-3);
+}
+
+TEST(Sim, AnAgentAHairOutsideTheMoversReachIsNotHit) {
+  const auto arena = crossing_arena(10.0 + 1.25 + 1e-3);
+  GameConfig c = standing_evader();
+  c.time_limit = 8.0;  // the mover passes x = 12 at 1.8 s and leaves by 6 s
+  const Sim sim(arena, c);
+  const EpisodeResult r = testing::play_once(sim, arena->map().scenarios[0], 1);
+  EXPECT_EQ(r.outcome, Outcome::kTimeout);
+  EXPECT_EQ(r.collisions, 0);
+}
+
+TEST(Sim, AgentsSenseMoversWhereTheyAreNow) {
+  // Every step of an episode on the patrol map: the distance an agent senses (its field, arena faces left
+  // out) is within one voxel diagonal of the exact distance to the nearest sphere or mover at that instant.
+  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/patrol.yaml"));
+  GameConfig c = preset("peg3d");
+  c.pursuer.policy = PolicyKind::kPurePursuit;
+  c.evader.policy = PolicyKind::kFlee;
+  c.collision = CollisionMode::kPenalize;
+  const Sim sim(arena, c);
+  SimState st(sim);
+  Lineup l = testing::lineup_for(c, arena->map().scenarios[1]);
+  reset(sim, st, arena->map().scenarios[1], 3);
+  const double diagonal = std::sqrt(3.0) * arena->resolution();
+  const double cap = arena->max_distance();
+  int near_movers = 0, steps = 0;
+  std::vector<Steering> commands(2);
+  while (!st.done) {
+    for (int i = 0; i < 2; ++i) {
+      const Vec3 p = st.agents[std::size_t(i)].kinematics.position;
+      double exact = cap;
+      for (const auto& s : arena->map().spheres) exact = std::min(exact, std::max(0.0, (p - s.center).norm() - s.radius));
+      double mover = cap;
+      for (int m = 0; m < sim.movers()->count(); ++m) {
+        mover = std::min(mover, nearest_on_shape(sim.movers()->mover(m).shape, sim.movers()->pose(m, st.time), p).distance);
+      }
+      near_movers += mover < std::min(exact, cap);
+      exact = std::min(exact, mover);
+      EXPECT_NEAR(observe(st, i).field.distance, exact, diagonal) << "t = " << st.time << ", agent " << i;
+      commands[std::size_t(i)] = l[i].act(observe(st, i));
+    }
+    step(sim, st, commands);
+    ++steps;
+  }
+  EXPECT_GT(steps, 100);
+  EXPECT_GT(near_movers, 0);  // movers were the nearest obstacle at some steps
+}
+
+TEST(Sim, TheGameStepMustBeAWholeNumberOfPhysicsSubsteps) {
+  const auto arena = crossing_arena(10.0);
+  GameConfig c = standing_evader();
+  c.dt = 0.1 + 1.0 / 480.0;  // 24.5 substeps of 1/240 s
+  try {
+    Sim sim(arena, c);
+    ADD_FAILURE() << "accepted";
+  } catch (const world::MapError& e) {
+    EXPECT_EQ(e.field(), "physics.rate_hz") << e.what();
+  }
+  c.dt = 0.05;  // 12 substeps
+  EXPECT_NO_THROW(Sim(arena, c));
+}
+
+TEST(Sim, AStartInsideAMoverIsRefused) {
+  world::MapSpec m = crossing_arena(10.0)->map();
+  m.scenarios[0].evaders[0].position = Vec3(3.5, 10, 10);  // inside the ball at its start (3, 10, 10)
+  EXPECT_THROW(world::Arena::build(m), world::MapError);   // the map holds a start inside a mover
+  m.scenarios[0].evaders[0].position = Vec3(3, 11.1, 10);    // outside the ball, but within the agent's radius
+  const auto arena = world::Arena::build(m);
+  EXPECT_THROW(Sim(arena, standing_evader()), StartError);
 }
 
 }  // namespace

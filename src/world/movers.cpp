@@ -1,0 +1,92 @@
+#include "world/movers.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "geometry/angles.hpp"
+
+namespace peg3d::world {
+
+const char* to_string(MoverSpec::Motion m) {
+  switch (m) {
+    case MoverSpec::Motion::kPath: return "path";
+    case MoverSpec::Motion::kOrbit: return "orbit";
+    case MoverSpec::Motion::kDynamic: return "dynamic";
+  }
+  return "?";
+}
+
+Quat orientation_deg(const Vec3& r) {
+  const double k = kPi / 180.0;
+  return Quat(Eigen::AngleAxisd(r.z() * k, Vec3::UnitZ()) * Eigen::AngleAxisd(r.y() * k, Vec3::UnitY()) *
+              Eigen::AngleAxisd(r.x() * k, Vec3::UnitX()));
+}
+
+Vec3 path_position(const PathMotion& path, double t) {
+  const auto& w = path.waypoints;
+  const std::size_t n = w.size();
+  // Segments in travel order: 0..n-2 forward, then the closing one (loop) or the same ones backwards.
+  double open = 0.0;
+  for (std::size_t i = 0; i + 1 < n; ++i) open += (w[i + 1] - w[i]).norm();
+  const double closing = (w.front() - w.back()).norm();
+  const double cycle = path.loop ? open + closing : 2.0 * open;
+  double s = std::fmod(path.speed * std::max(t, 0.0), cycle);
+  if (!path.loop && s > open) s = cycle - s;  // on the way back: the same point as going out
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double len = (w[i + 1] - w[i]).norm();
+    if (s <= len) return w[i] + (s / len) * (w[i + 1] - w[i]);
+    s -= len;
+  }
+  // The closing segment of a loop.
+  return closing > 0.0 ? Vec3(w.back() + (std::min(s, closing) / closing) * (w.front() - w.back())) : w.front();
+}
+
+Vec3 orbit_position(const OrbitMotion& o, double t) {
+  const Vec3 a = o.axis.normalized();
+  const Vec3 ref = std::abs(a.x()) > 1.0 - 1e-12 ? Vec3::UnitY() : Vec3::UnitX();
+  const Vec3 u = (ref - ref.dot(a) * a).normalized();
+  const Vec3 v = a.cross(u);
+  const double w = o.phase + 2.0 * kPi * t / o.period;
+  return o.center + o.radius * (std::cos(w) * u + std::sin(w) * v);
+}
+
+Pose scripted_pose(const MoverSpec& m, double t) {
+  Pose p;
+  p.orientation = orientation_deg(m.rotation_deg);
+  p.position = m.motion == MoverSpec::Motion::kOrbit ? orbit_position(m.orbit, t) : path_position(m.path, t);
+  return p;
+}
+
+double scripted_speed(const MoverSpec& m) {
+  return m.motion == MoverSpec::Motion::kOrbit ? 2.0 * kPi * m.orbit.radius / m.orbit.period : m.path.speed;
+}
+
+std::vector<Vec3> route_samples(const MoverSpec& m, double spacing) {
+  std::vector<Vec3> out;
+  if (m.motion == MoverSpec::Motion::kDynamic) return {m.start};
+  if (m.motion == MoverSpec::Motion::kOrbit) {
+    const int n = std::max(8, static_cast<int>(std::ceil(2.0 * kPi * m.orbit.radius / spacing)));
+    for (int i = 0; i < n; ++i) out.push_back(orbit_position(m.orbit, m.orbit.period * i / n));
+    return out;
+  }
+  const auto& w = m.path.waypoints;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const Vec3& a = w[i];
+    const bool last = i + 1 == w.size();
+    if (last && !m.path.loop) {
+      out.push_back(a);
+      break;
+    }
+    const Vec3& b = last ? w.front() : w[i + 1];
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / spacing)));
+    for (int k = 0; k < n; ++k) out.push_back(a + (double(k) / n) * (b - a));
+  }
+  return out;
+}
+
+std::string describe_mover(const MoverSpec& m, int id) {
+  return fmt::format("{} mover {} ({})", to_string(m.shape.kind), id, to_string(m.motion));
+}
+
+}  // namespace peg3d::world

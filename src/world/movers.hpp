@@ -1,0 +1,38 @@
+#pragma once
+// Scripted motion of moving obstacles: where a path or orbit mover is at any time, exactly. (Dynamic bodies
+// are simulated: world/mover_timeline.hpp.)
+
+#include <string>
+#include <vector>
+
+#include "geometry/pose.hpp"
+#include "world/map_spec.hpp"
+
+namespace peg3d::world {
+
+/// Orientation from rotations about the fixed world axes, x first, then y, then z (degrees), as for terrain.
+Quat orientation_deg(const Vec3& rotation_deg);
+
+/// The centre of a path mover at time t (s, >= 0): arc length speed * t along the waypoints, wrapping to the
+/// first waypoint (loop) or turning back at the last and the first (back and forth).
+Vec3 path_position(const PathMotion& path, double t);
+
+/// The centre of an orbit mover at time t (s): center + radius (cos w u + sin w v), w = phase + 2 pi t / period,
+/// u the unit direction of +x projected on the orbit's plane (+y when the axis is along x), v = axis x u.
+Vec3 orbit_position(const OrbitMotion& orbit, double t);
+
+/// The pose of a path or orbit mover at time t; its orientation stays as given.
+Pose scripted_pose(const MoverSpec& mover, double t);
+
+/// An upper bound on how fast a path or orbit mover's centre moves, m/s.
+double scripted_speed(const MoverSpec& mover);
+
+/// Points along a scripted mover's whole route, at most `spacing` m apart (paths: every segment; orbits: the
+/// circle); for a dynamic body its start only.
+std::vector<Vec3> route_samples(const MoverSpec& mover, double spacing);
+
+/// The world's obstacle kind of movers' contacts is ObstacleKind::kMover; this names a mover in messages:
+/// "sphere mover 3 (path)".
+std::string describe_mover(const MoverSpec& mover, int id);
+
+}  // namespace peg3d::world
