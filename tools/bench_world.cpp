@@ -4,6 +4,10 @@
 //   BM_MoveTwoAgents/<early_out>    one game step's collision work: move_agent for two agents (radius 0.25 m,
 //                                   0.11 and 0.10 m per step as in the paper), with or without the
 //                                   distance-field early-out
+//   BM_MoverSensing/<method>/<movers>  one game step of sensing among moving obstacles for two agents near them:
+//                                   method 0 exact (static field + each mover's exact distance), 1 octree
+//                                   (movers' voxels marked and dynamicEDT3D updated incrementally); counters
+//                                   mean_error_m and max_error_m against the exact distance
 // Run: build/bin/peg-bench-world [--benchmark_filter=...]
 
 #include <map>
@@ -18,6 +22,8 @@
 #include "world/arena.hpp"
 #include "world/collision_world.hpp"
 #include "world/map_spec.hpp"
+#include "world/mover_timeline.hpp"
+#include "world/moving_field.hpp"
 
 namespace {
 
@@ -110,6 +116,97 @@ void BM_MoveTwoAgents(benchmark::State& state) {
   state.counters["sweeps/step"] = double(world.sweep_count()) / double(state.iterations());
 }
 BENCHMARK(BM_MoveTwoAgents)->Arg(1)->Arg(0);
+
+// The paper's arena (no static obstacles, faces not obstacles) with n balls and boxes on random orbits.
+std::shared_ptr<const Arena> mover_arena(int n) {
+  static std::map<int, std::shared_ptr<const Arena>> built;
+  auto& a = built[n];
+  if (a) return a;
+  MapSpec m;
+  m.name = "movers";
+  m.bounds = {Vec3::Zero(), Vec3(35, 35, 20)};
+  m.resolution = 0.2;
+  m.max_distance = 5.0;
+  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  Rng rng{static_cast<std::uint64_t>(n)};
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    MoverSpec mv;
+    mv.shape = i % 2 == 0 ? Shape{Shape::Kind::kSphere, 0.5 + 0.5 * u(rng), 1.0, Vec3::Ones()}
+                          : Shape{Shape::Kind::kBox, 1.0, 1.0, Vec3(0.8 + u(rng), 0.8 + u(rng), 0.8 + u(rng))};
+    mv.motion = MoverSpec::Motion::kOrbit;
+    mv.orbit.radius = 2.0 + 4.0 * u(rng);
+    mv.orbit.center = Vec3(8.5 + 18.0 * u(rng), 8.5 + 18.0 * u(rng), 3.0 + 14.0 * u(rng));
+    mv.orbit.axis = Vec3(0.3 * (u(rng) - 0.5), 0.3 * (u(rng) - 0.5), 1.0);
+    mv.orbit.period = 10.0 + 20.0 * u(rng);
+    mv.orbit.phase = 6.28 * u(rng);
+    mv.orbit.center.z() = std::clamp(mv.orbit.center.z(), 2.5 + mv.orbit.radius * 0.15, 17.5 - mv.orbit.radius * 0.15);
+    m.movers.push_back(mv);
+  }
+  a = Arena::build(m);
+  return a;
+}
+
+// Distance from p to the nearest mover at time t: the exact answer.
+double exact_distance(const MoverTimeline& t, const Vec3& p, double time) {
+  double best = 1e9;
+  for (int m = 0; m < t.count(); ++m) best = std::min(best, nearest_on_shape(t.mover(m).shape, t.pose(m, time), p).distance);
+  return best;
+}
+
+void BM_MoverSensing(benchmark::State& state) {
+  const bool octree = state.range(0) == 1;
+  const int n = static_cast<int>(state.range(1));
+  const auto arena = mover_arena(n);
+  const auto timeline = arena->movers_until(200.0);
+  std::unique_ptr<MovingOccupancyField> field;
+  if (octree) field = std::make_unique<MovingOccupancyField>(*arena);
+  Rng rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), gap(0.3, 3.0);
+  double t = 0.0, error_sum = 0.0, error_max = 0.0;
+  long queries = 0;
+  for (auto _ : state) {
+    t += 0.1;
+    if (t > 199.0) t = 0.1;
+    // Two query points 0.3-3 m from the surface of random movers (the agents near them).
+    state.PauseTiming();
+    Vec3 q[2];
+    for (auto& p : q) {
+      const int m = static_cast<int>((u(rng) + 1.0) * 0.5 * n) % n;
+      const Pose at = timeline->pose(m, t);
+      const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+      p = arena->bounds().shrunk(0.3).clamp(at.position + (timeline->mover(m).shape.bounding_radius() + gap(rng)) * dir);
+    }
+    state.ResumeTiming();
+    double sensed[2];
+    if (octree) {
+      field->set_time(*timeline, t);
+      for (int i = 0; i < 2; ++i) sensed[i] = field->nearest(q[i]).distance;
+    } else {
+      for (int i = 0; i < 2; ++i) {
+        const NearestObstacle s = arena->nearest_shape(q[i]);
+        const MoverPoint mp = timeline->nearest(q[i], t, s.distance);
+        sensed[i] = mp.mover >= 0 ? mp.distance : s.distance;
+      }
+    }
+    state.PauseTiming();
+    for (int i = 0; i < 2; ++i) {
+      const double exact = std::min(exact_distance(*timeline, q[i], t), arena->max_distance());
+      const double e = std::abs(sensed[i] - exact);
+      error_sum += e;
+      error_max = std::max(error_max, e);
+      ++queries;
+    }
+    state.ResumeTiming();
+  }
+  state.counters["mean_error_m"] = queries ? error_sum / queries : 0.0;
+  state.counters["max_error_m"] = error_max;
+  state.SetItemsProcessed(state.iterations());
+}
+// The octree's incremental EDT is slow: fewer steps measured for it (every step is one game step, 0.1 s apart).
+BENCHMARK(BM_MoverSensing)->ArgsProduct({{0}, {1, 10, 100}})->Unit(benchmark::kMicrosecond)->Iterations(500);
+BENCHMARK(BM_MoverSensing)->ArgsProduct({{1}, {1, 10}})->Unit(benchmark::kMicrosecond)->Iterations(20);
+BENCHMARK(BM_MoverSensing)->Args({1, 100})->Unit(benchmark::kMicrosecond)->Iterations(3);
 
 }  // namespace
 

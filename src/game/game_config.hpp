@@ -131,6 +131,14 @@ enum class CaptureReward {
 inline constexpr config::EnumNames<CaptureReward, 2> kCaptureRewardNames{
     {{CaptureReward::kIndividual, "individual"}, {CaptureReward::kTeam, "team"}}};
 
+/// How agents sense moving obstacles (docs/maps.md compares the two).
+enum class MoverSensing {
+  kExact,   ///< the static distance field, and each mover's exact distance at the current time (the default)
+  kOctree,  ///< an octree with the movers' voxels marked and dynamicEDT3D updated incrementally every step
+};
+inline constexpr config::EnumNames<MoverSensing, 2> kMoverSensingNames{
+    {{MoverSensing::kExact, "exact"}, {MoverSensing::kOctree, "octree"}}};
+
 struct ObservationConfig {
   AngleInputs angles = AngleInputs::kAzimuthElevation;
   EvaderReference evader_reference = EvaderReference::kAwayFromPursuer;
@@ -195,6 +203,7 @@ struct GameConfig {
   double capture_distance = 1.0;  ///< m, d_s, > 0 (paper 1)
   CollisionMode collision = CollisionMode::kTerminate;
   InitialHeading initial_heading = InitialHeading::kChase;
+  MoverSensing mover_sensing = MoverSensing::kExact;
   AgentConfig pursuer;  ///< every pursuer without an entry in `pursuers`
   AgentConfig evader;   ///< every evader without an entry in `evaders`
   /// Per-agent settings: the k-th pursuer of a scenario plays pursuers[k] when the list has it. In a
@@ -315,6 +324,9 @@ void visit_fields(V& v, C& c) {
   v.number("capture_distance", c.capture_distance, Range::positive(), "m", "d_s: capture at d_PE <= d_s (paper 1)");
   v.choice("collision", c.collision, kCollisionModeNames, "whether hitting an obstacle ends the episode");
   v.choice("initial_heading", c.initial_heading, kInitialHeadingNames, "headings of starts that give none");
+  v.choice("mover_sensing", c.mover_sensing, kMoverSensingNames,
+           "how agents sense moving obstacles: exact distances beside the static field, or an incrementally updated "
+           "octree EDT (rebuilt at every reset: slow)");
   v.section("pursuer", c.pursuer, "every pursuer without its own entry in pursuers");
   v.section("evader", c.evader, "every evader without its own entry in evaders");
   v.sections("pursuers", c.pursuers, c.pursuer, "per-pursuer settings, by index in the scenario");

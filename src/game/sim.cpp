@@ -131,9 +131,10 @@ void perceive_agent(const Sim& sim, SimState& st, int i) {
   v.dt = sim.config().dt;
   v.arena = sim.arena().bounds();
   // The map's shapes only: whether the arena's faces count is the agent's observation setting, not the map's.
-  const world::NearestObstacle n = sim.arena().nearest_shape(a.kinematics.position);
+  const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(a.kinematics.position)
+                                                   : sim.arena().nearest_shape(a.kinematics.position);
   v.field = {n.distance, n.point, n.found};
-  if (const world::MoverTimeline* movers = sim.movers()) {
+  if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
     // Moving obstacles where they are now, exactly; the nearer of them and the static field counts.
     const world::MoverPoint m = movers->nearest(a.kinematics.position, st.time, n.distance);
     if (m.mover >= 0) v.field = {m.distance, m.point, true};
@@ -280,6 +281,10 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
 
   for (int i = 0; i < n; ++i) st.collider.place_agent(i, st.agents[std::size_t(i)].kinematics.position);
   check_overlaps(sim, st.collider, scenario, st.scratch.positions);
+  if (sim.movers() != nullptr && g.mover_sensing == MoverSensing::kOctree) {
+    st.moving_field = std::make_unique<world::MovingOccupancyField>(sim.arena());
+    st.moving_field->set_time(*sim.movers(), 0.0);
+  }
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];
     a.opponent = choose_opponent(st, i, rule_of(g, a.role));
@@ -488,6 +493,8 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     ea.captured_at = st.time;
     --st.free_evaders;
   }
+
+  if (st.moving_field) st.moving_field->set_time(*sim.movers(), st.time);
 
   // 6. New observations: every agent that took part in the step (a captured evader gets its final view).
   //    With one agent per role the opponents never change.

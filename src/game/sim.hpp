@@ -28,6 +28,7 @@
 #include "world/arena.hpp"
 #include "world/collision_world.hpp"
 #include "world/mover_timeline.hpp"
+#include "world/moving_field.hpp"
 
 namespace peg3d::game {
 
@@ -135,6 +136,9 @@ class SimState {
   int collisions = 0;              ///< collision events so far
   Rng rng;                         ///< the run's engine (random initial headings)
   world::CollisionWorld collider;  ///< per-run collision scratch over the Sim's arena (agent i is body i)
+  /// With mover_sensing = octree on a map with movers: the octree and EDT that follow the movers (rebuilt by
+  /// every reset, so a run does not depend on the runs before it).
+  std::unique_ptr<world::MovingOccupancyField> moving_field;
   StepEvents events;               ///< what the last step did
 
   /// Per-step working storage, sized by reset().

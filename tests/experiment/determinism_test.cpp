@@ -21,6 +21,8 @@ namespace {
 // which was checked byte for byte on peg-paper and peg-matchup outputs).
 constexpr std::uint64_t kPaperHash = 0x5caa0c292ae93960; // maps/paper.yaml, peg3d preset, 4 scenarios x 6 training episodes
 constexpr std::uint64_t kPackHash = 0x67da6ca72cbf2eb7;  // maps/pack.yaml, peg3d preset, 4 team scenarios x 3 training episodes
+constexpr std::uint64_t kPatrolHash = 0x6cdf6e6e2841d07a; // maps/patrol.yaml (scripted movers), 4 scenarios x 2 episodes
+constexpr std::uint64_t kRockfallHash = 0x8af5bf5b734fe63b; // maps/rockfall.yaml (Bullet's boulders), 3 scenarios x 2 episodes
 
 void hash_trace(Fnv1a& h, const game::Trace& t) {
   for (int k = 0; k < t.frame_count(); ++k) {
@@ -99,6 +101,15 @@ TEST(ExperimentDeterminism, TeamTrainingMatchesTheGoldenHashOnOneAndTwoThreads) 
   std::printf("pack hash 0x%016" PRIx64 "\n", one);
   EXPECT_EQ(one, two);
   EXPECT_EQ(one, kPackHash) << std::hex << "0x" << one;
+}
+
+TEST(ExperimentDeterminism, MovingObstacleMapsMatchTheGoldenHashesOnOneAndTwoThreads) {
+  const std::uint64_t patrol = sweep_hash("maps/patrol.yaml", 2, 1), rockfall = sweep_hash("maps/rockfall.yaml", 2, 1);
+  std::printf("patrol hash 0x%016" PRIx64 ", rockfall hash 0x%016" PRIx64 "\n", patrol, rockfall);
+  EXPECT_EQ(sweep_hash("maps/patrol.yaml", 2, 2), patrol);
+  EXPECT_EQ(sweep_hash("maps/rockfall.yaml", 2, 2), rockfall);
+  EXPECT_EQ(patrol, kPatrolHash) << std::hex << "0x" << patrol;
+  EXPECT_EQ(rockfall, kRockfallHash) << std::hex << "0x" << rockfall;
 }
 
 }  // namespace

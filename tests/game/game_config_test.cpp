@@ -25,7 +25,7 @@ nlohmann::json changed(const std::string& key, const nlohmann::json& old) {
            {"facl", "random"}, {"per-step", "per-second"}, {"azimuth", "azimuth-elevation"},
            {"toward-pursuer", "away-from-pursuer"}, {"joint", "per-angle"}, {"potential-field", "distance-only"},
            {"negate", "mirror"}, {"terminate", "penalize"}, {"chase", "facing"}, {"nearest", "assigned"},
-           {"none", "all"}, {"individual", "team"}}) {
+           {"none", "all"}, {"individual", "team"}, {"exact", "octree"}}) {
     for (std::size_t i = 0; i < candidates.size(); ++i)
       if (candidates[i] == text) return candidates[1 - i];
   }
@@ -55,7 +55,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 32 + 9);  // 32 per agent, 5 game fields and 4 team fields
+  EXPECT_EQ(leaves, 2 * 32 + 10);  // 32 per agent, 6 game fields and 4 team fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {

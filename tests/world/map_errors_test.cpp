@@ -79,14 +79,18 @@ TEST(WorldMapErrors, MissingMapFileIsReportedWithoutLine) {
 TEST(WorldMapErrors, CorpusCoversEveryKindOfError) {
   // The list: syntax, unknown key, missing field, wrong type, non-positive size, NaN, obstacle or start
   // outside, mesh missing / empty / malformed / without triangles / non-finite; scenario names that could
-  // name a file outside the results folder, and malformed teams. (A start inside an obstacle is the game's
+  // name a file outside the results folder, malformed teams, and movers that cannot be (no mass, no period,
+  // leaving the arena, starting in an obstacle or on a start, NaN). (A start inside an obstacle is the game's
   // check, with its agents' radii: tests/data/maps/bad-starts/ and game/sim_test.cpp.)
   const auto names = broken_maps();
   for (const char* required : {"syntax_error", "unknown_key", "missing_radius", "wrong_type_size", "zero_size",
                                "negative_radius", "nan_center", "sphere_outside", "start_outside",
                                "mesh_missing", "mesh_empty", "mesh_malformed", "mesh_no_triangles",
                                "mesh_nan_vertex", "scenario_name_climbs_out", "scenario_name_hidden",
-                               "team_both_forms", "team_empty_list", "team_not_a_list", "team_missing_evaders"}) {
+                               "team_both_forms", "team_empty_list", "team_not_a_list", "team_missing_evaders",
+                               "mover_zero_mass", "mover_zero_period", "mover_path_leaves_arena",
+                               "mover_orbit_leaves_arena", "mover_inside_obstacle", "mover_on_a_start",
+                               "mover_nan_velocity", "physics_bad_rate"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
   }
 }
