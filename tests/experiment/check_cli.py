@@ -107,6 +107,18 @@ def main():
     check(not os.path.exists(os.path.join(work, "x")) and not os.path.exists(os.path.join(source, "x")),
           "a scenario named ../../x wrote nothing outside --out")
 
+    # peg-map movers: every mover every K-th substep, as CSV; export --time marks the movers.
+    r = run([os.path.join(bin_dir, "peg-map"), "movers", "maps/patrol.yaml", "--seconds", "2", "--every", "48"])
+    lines = r.stdout.splitlines()
+    check(r.returncode == 0 and lines[0] == "t,id,kind,x,y,z,qw,qx,qy,qz", f"peg-map movers header: {r.stderr[-300:]}")
+    check(len(lines) == 1 + 11 * 5, f"peg-map movers: {len(lines) - 1} rows for 5 movers at 11 instants")
+    bt0, bt12 = os.path.join(work, "patrol.bt"), os.path.join(work, "patrol_12s.bt")
+    r0 = run([os.path.join(bin_dir, "peg-map"), "export", "maps/patrol.yaml", "--octree", bt0])
+    r12 = run([os.path.join(bin_dir, "peg-map"), "export", "maps/patrol.yaml", "--octree", bt12, "--time", "12"])
+    check(r0.returncode == 0 and r12.returncode == 0, "peg-map export with and without --time")
+    if r0.returncode == 0 and r12.returncode == 0:
+        check(os.path.getsize(bt12) > os.path.getsize(bt0), "the octree at 12 s holds the movers' voxels too")
+
     # peg-generalize reports a map without a `name` by its file name.
     write(os.path.join(maps, "nameless.yaml"),
           "arena: {size: [35, 35, 20]}\nscenarios:\n  - name: n1\n    pursuer: {position: [5, 30, 2]}\n"

@@ -48,6 +48,11 @@ TEST(GameNoAllocation, OneAgainstOneTrainingAndEvaluation) {
   for (const char* name : {"peg3d", "paper", "baseline"}) expect_no_allocation("maps/paper.yaml", name, AgentCollisions::kNone);
 }
 
+TEST(GameNoAllocation, MovingObstacleMapsTrainingAndEvaluation) {
+  expect_no_allocation("maps/patrol.yaml", "peg3d", AgentCollisions::kNone);
+  expect_no_allocation("maps/rockfall.yaml", "peg3d", AgentCollisions::kNone);
+}
+
 TEST(GameNoAllocation, TeamsTrainingAndEvaluation) {
   expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kNone);
   expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kAll);
