@@ -133,4 +133,36 @@ EpisodeResult play(const Sim& sim, SimState& st, const world::Scenario& scenario
   return summarize(st);
 }
 
+Steering TimedCommands::act(const AgentView& view) {
+  Steering u;
+  // Half a step of slack, so a command written for t = 1.0 applies at the step starting at 1.0 s whatever the
+  // rounding of k * dt.
+  for (const TimedCommand& c : commands_) {
+    if (c.time > view.time + 0.5 * view.dt) break;
+    u = c.command;
+  }
+  return u;
+}
+
+Steering WaypointFollower::act(const AgentView& view) {
+  const double reach = std::max(view.self_speed * view.dt, 1e-9);
+  while (next_ < waypoints_.size()) {
+    const bool timed_next = next_ + 1 < waypoints_.size() && waypoints_[next_ + 1].time >= 0.0;
+    if (timed_next && view.time + 0.5 * view.dt >= waypoints_[next_ + 1].time) {
+      ++next_;  // the next waypoint's time has come
+      continue;
+    }
+    if (!timed_next && next_ + 1 < waypoints_.size() && (waypoints_[next_].point - view.self.position).norm() <= reach) {
+      ++next_;  // reached: on to the next
+      continue;
+    }
+    break;
+  }
+  if (next_ >= waypoints_.size()) return {};
+  const Vec3 d = waypoints_[next_].point - view.self.position;
+  if (d.norm() <= 1e-12) return {};
+  const AngleErrors e = angle_errors(view.self.heading, d);
+  return {e.azimuth, e.elevation};
+}
+
 }  // namespace peg3d::game

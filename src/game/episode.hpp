@@ -116,4 +116,41 @@ class CommandScript final : public Policy {
   std::size_t next_ = 0;
 };
 
+/// A steering command that holds from a time on.
+struct TimedCommand {
+  double time = 0.0;  ///< s, from when it applies (until the next command's time)
+  Steering command;   ///< rad per step, as any policy requests it
+};
+
+/// A policy that plays piecewise-constant steering commands by game time: at each step the last command whose
+/// time has come (none yet: no turn).
+class TimedCommands final : public Policy {
+ public:
+  /// `commands` sorted by time.
+  explicit TimedCommands(std::vector<TimedCommand> commands) : commands_(std::move(commands)) {}
+  Steering act(const AgentView& view) override;
+
+ private:
+  std::vector<TimedCommand> commands_;
+};
+
+/// A point to fly to; with a time, it becomes the target at that time, else once the one before is reached.
+struct Waypoint {
+  Vec3 point = Vec3::Zero();
+  double time = -1.0;  ///< s; < 0: when the agent has come within one step of the previous waypoint
+};
+
+/// A policy that flies its agent at its speed towards one waypoint after the other (turning as fast as the
+/// steering bound allows); after the last it holds its heading.
+class WaypointFollower final : public Policy {
+ public:
+  explicit WaypointFollower(std::vector<Waypoint> waypoints) : waypoints_(std::move(waypoints)) {}
+  void begin_episode(const AgentView&, bool) override { next_ = 0; }
+  Steering act(const AgentView& view) override;
+
+ private:
+  std::vector<Waypoint> waypoints_;
+  std::size_t next_ = 0;
+};
+
 }  // namespace peg3d::game

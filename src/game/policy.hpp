@@ -22,6 +22,7 @@ struct AgentView {
   double self_speed = 0.0;   ///< m/s
   double other_speed = 0.0;  ///< m/s
   double dt = 0.1;           ///< s
+  double time = 0.0;         ///< s, the game time of this view
   Percept percept;
   ObstacleSense field;       ///< the map's nearest obstacle as the distance field reports it (no boundary)
   Box arena;                 ///< the arena box (the agent's centre stays radius inside it)

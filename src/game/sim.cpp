@@ -129,6 +129,7 @@ void perceive_agent(const Sim& sim, SimState& st, int i) {
   v.self_speed = a.config->speed;
   v.other_speed = o.config->speed;
   v.dt = sim.config().dt;
+  v.time = st.time;
   v.arena = sim.arena().bounds();
   // The map's shapes only: whether the arena's faces count is the agent's observation setting, not the map's.
   const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(a.kinematics.position)

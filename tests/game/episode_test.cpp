@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "game/policy.hpp"
+#include "game/scripted_policies.hpp"
 #include "geometry/motion_cone.hpp"
 #include "test_arena.hpp"
 
@@ -132,6 +133,72 @@ TEST(Episode, TraceRecordsEveryInstantAndTheEvents) {
   EXPECT_EQ(trace.captures[0].step, r.steps);
   EXPECT_TRUE(trace.collisions.empty());
   EXPECT_EQ(trace.at(0, 0).state.position, Vec3(5, 17.5, 10));
+}
+
+AgentView view_at(double time, const Vec3& position = Vec3::Zero(), double speed = 1.1) {
+  AgentView v;
+  v.time = time;
+  v.dt = 0.1;
+  v.self.position = position;
+  v.self_speed = speed;
+  return v;
+}
+
+TEST(TimedCommands, EachCommandHoldsFromItsTimeUntilTheNext) {
+  TimedCommands p({{1.0, {0.1, 0.0}}, {2.0, {0.0, -0.05}}});
+  EXPECT_EQ(p.act(view_at(0.0)).d_alpha, 0.0);  // nothing yet: no turn
+  EXPECT_EQ(p.act(view_at(0.9)).d_alpha, 0.0);
+  // k * dt rounds either way of 1.0: the command applies at the step that starts at 1 s all the same.
+  EXPECT_EQ(p.act(view_at(10 * 0.1 - 1e-12)).d_alpha, 0.1);
+  EXPECT_EQ(p.act(view_at(1.5)).d_alpha, 0.1);
+  const Steering late = p.act(view_at(7.0));
+  EXPECT_EQ(late.d_alpha, 0.0);
+  EXPECT_EQ(late.d_theta, -0.05);
+}
+
+TEST(WaypointFollower, TurnsTowardsTheWaypointThenTheNextOnceReached) {
+  WaypointFollower p({{{0, 10, 0}}, {{10, 10, 0}}});
+  p.begin_episode(view_at(0.0), false);
+  // Heading along +x, waypoint along +y: a quarter turn to the left, level.
+  Steering u = p.act(view_at(0.0));
+  EXPECT_NEAR(u.d_alpha, kPi / 2, 1e-12);
+  EXPECT_NEAR(u.d_theta, 0.0, 1e-12);
+  // Within one step (0.11 m) of the first: on to the second, straight ahead along +x.
+  u = p.act(view_at(9.0, {0, 9.95, 0}));
+  EXPECT_NEAR(u.d_alpha, 0.0, 1e-2);
+  // A new episode starts from the first again.
+  p.begin_episode(view_at(0.0), false);
+  EXPECT_NEAR(p.act(view_at(0.0)).d_alpha, kPi / 2, 1e-12);
+}
+
+TEST(WaypointFollower, ATimedWaypointBecomesTheTargetAtItsTime) {
+  WaypointFollower p({{{0, 10, 0}}, {{0, -10, 0}, 3.0}});
+  p.begin_episode(view_at(0.0), false);
+  EXPECT_NEAR(p.act(view_at(2.9)).d_alpha, kPi / 2, 1e-12);   // the first, not yet reached
+  EXPECT_NEAR(p.act(view_at(3.0)).d_alpha, -kPi / 2, 1e-12);  // its time has come, reached or not
+}
+
+TEST(WaypointFollower, FliesThroughItsWaypointsInAnEpisode) {
+  const auto s = scenario("open", {5, 5, 10}, {33, 33, 18});
+  GameConfig c = preset("peg3d");
+  c.evader.speed = 0.0;
+  c.pursuer.motion_space = false;
+  c.pursuer.guard.enabled = false;
+  c.time_limit = 30.0;
+  const Sim sim(make_arena(kSize, {}, {s}), c);
+  const std::vector<Vec3> points = {{10, 5, 10}, {10, 12, 12}, {4, 12, 12}};
+  WaypointFollower pursuer({{points[0]}, {points[1]}, {points[2]}});
+  FleeLineOfSight evader;
+  Policy* policies[] = {&pursuer, &evader};
+  SimState state(sim);
+  Trace trace;
+  play(sim, state, s, policies, false, 1, &trace);
+  // Each waypoint is passed within one step's travel (0.11 m) plus the turning the bound allows on the way.
+  for (const Vec3& w : points) {
+    double nearest = 1e9;
+    for (int f = 0; f < trace.frame_count(); ++f) nearest = std::min(nearest, (trace.at(f, 0).state.position - w).norm());
+    EXPECT_LT(nearest, 0.12) << w.transpose();
+  }
 }
 
 }  // namespace
