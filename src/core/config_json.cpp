@@ -20,14 +20,16 @@ const nlohmann::json* JsonReader::take(const char* key) {
   return &*it;
 }
 
+int ReadOptions::line_of(const std::string& field) const { return text.empty() ? 0 : json_line_of(text, field); }
+
 void JsonReader::fail(const char* key, const std::string& message) const {
-  throw ConfigError(options_.file, 0, field(key), message);
+  throw ConfigError(options_.file, options_.line_of(field(key)), field(key), message);
 }
 
 void JsonReader::number(const char* key, double& v, Range, const char*, const char*) {
   const nlohmann::json* j = take(key);
   if (j == nullptr) return;
-  if (!j->is_number()) fail(key, "expects a number, got " + j->dump());
+  if (!j->is_number()) fail(key, "expects a number, got " + brief(*j));
   v = j->get<double>();
 }
 
@@ -38,7 +40,7 @@ void JsonReader::integer(const char* key, int& v, long long, long long, const ch
   if (j->is_number_integer() || j->is_number_unsigned()) {
     if (j->is_number_unsigned() ? j->get<std::uint64_t>() > static_cast<std::uint64_t>(kMax)
                                 : (j->get<std::int64_t>() > kMax || j->get<std::int64_t>() < kMin)) {
-      fail(key, "expects an integer that fits an int, got " + j->dump());
+      fail(key, "expects an integer that fits an int, got " + brief(*j));
     }
     v = j->get<int>();
     return;
@@ -51,13 +53,13 @@ void JsonReader::integer(const char* key, int& v, long long, long long, const ch
       return;
     }
   }
-  fail(key, "expects an integer, got " + j->dump());
+  fail(key, "expects an integer, got " + brief(*j));
 }
 
 void JsonReader::flag(const char* key, bool& v, const char*) {
   const nlohmann::json* j = take(key);
   if (j == nullptr) return;
-  if (!j->is_boolean()) fail(key, "expects true or false, got " + j->dump());
+  if (!j->is_boolean()) fail(key, "expects true or false, got " + brief(*j));
   v = j->get<bool>();
 }
 
@@ -66,7 +68,11 @@ void JsonReader::finish() const {
     if (std::find(taken_.begin(), taken_.end(), item.key()) != taken_.end()) continue;
     std::string valid;
     for (const auto& k : taken_) valid += (valid.empty() ? "" : ", ") + k;
-    throw ConfigError(options_.file, 0, prefix_ + item.key(), "unknown key (valid keys here: " + valid + ")");
+    // A key is the user's text: a megabyte of it is named by its first 40 characters.
+    const std::string& key = item.key();
+    const std::string shown = key.size() <= 40 ? key : key.substr(0, 37) + "...";
+    throw ConfigError(options_.file, options_.line_of(prefix_ + key), prefix_ + shown,
+                      "unknown key (valid keys here: " + valid + ")");
   }
 }
 

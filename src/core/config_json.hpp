@@ -15,6 +15,7 @@
 
 #include "core/config_fields.hpp"
 #include "core/error.hpp"
+#include "core/input_files.hpp"
 
 namespace peg3d::config {
 
@@ -31,6 +32,9 @@ class ConfigError : public InputError {
 struct ReadOptions {
   std::filesystem::path file;  ///< named in error messages (empty: none)
   bool complete = false;       ///< every field must be present (saved documents); else absent ones keep c's value
+  std::string_view text = {};  ///< the document's source text, for the line of an error (empty: no line)
+  /// The line of `field` in `text` (0 when unknown).
+  int line_of(const std::string& field) const;
 };
 
 /// Writes each field of a table into a JSON object.
@@ -79,17 +83,17 @@ class JsonReader {
   void choice(const char* key, E& v, const EnumNames<E, N>& names, const char*) {
     const nlohmann::json* j = take(key);
     if (j == nullptr) return;
-    if (!j->is_string()) fail(key, "expects one of: " + enum_choices(names) + "; got " + j->dump());
+    if (!j->is_string()) fail(key, "expects one of: " + enum_choices(names) + "; got " + brief(*j));
     const auto& text = j->get_ref<const std::string&>();
     const E* value = enum_value(names, text);
-    if (value == nullptr) fail(key, "\"" + text + "\" is not one of: " + enum_choices(names));
+    if (value == nullptr) fail(key, brief(*j) + " is not one of: " + enum_choices(names));
     v = *value;
   }
   template <class S>
   void section(const char* key, S& v, const char*) {
     const nlohmann::json* j = take(key);
     if (j == nullptr) return;
-    if (!j->is_object()) fail(key, "expects a section {...}, got " + j->dump());
+    if (!j->is_object()) fail(key, "expects a section {...}, got " + brief(*j));
     JsonReader sub(*j, field(key) + ".", options_);
     visit_fields(sub, v);
     sub.finish();
@@ -98,11 +102,11 @@ class JsonReader {
   void sections(const char* key, std::vector<S>& v, const S& element_default, const char*) {
     const nlohmann::json* j = take(key);
     if (j == nullptr) return;
-    if (!j->is_array()) fail(key, "expects a list [...], got " + j->dump());
+    if (!j->is_array()) fail(key, "expects a list [...], got " + brief(*j));
     std::vector<S> out;
     for (std::size_t i = 0; i < j->size(); ++i) {
       const std::string element = field(key) + "." + std::to_string(i);
-      if (!(*j)[i].is_object()) throw ConfigError(options_.file, 0, element, "expects a section {...}");
+      if (!(*j)[i].is_object()) throw ConfigError(options_.file, options_.line_of(element), element, "expects a section {...}");
       S item = element_default;
       // Elements start from the default and change what they list, so they are never "complete".
       ReadOptions partial = options_;
@@ -144,7 +148,7 @@ nlohmann::json to_json(const T& c) {
 /// and (with options.complete) missing fields. Values are not range-checked: call config::validate.
 template <class T>
 void from_json(const nlohmann::json& j, T& c, const ReadOptions& options = {}) {
-  if (!j.is_object()) throw ConfigError(options.file, 0, "", "expects a JSON object {...}, got " + j.dump());
+  if (!j.is_object()) throw ConfigError(options.file, 0, "", "expects a JSON object {...}, got " + brief(j));
   JsonReader r(j, "", options);
   visit_fields(r, c);
   r.finish();

@@ -13,16 +13,22 @@ std::string format_input_error(const std::filesystem::path& file, int line, cons
   return out + message;
 }
 
-InputError::InputError(const std::string& message) : std::runtime_error(message) {}
+std::string shown(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  return text.size() <= kMax ? std::string(text) : std::string(text.substr(0, kMax - 3)) + "...";
+}
+
+InputError::InputError(const std::string& message) : std::runtime_error(message), message_(message) {}
 
 InputError::InputError(std::filesystem::path file, int line, std::string field, const std::string& message)
     : std::runtime_error(format_input_error(file, line, field, message)),
+      message_(message),
       file_(std::move(file)),
       line_(line),
       field_(std::move(field)) {}
 
 InputError::InputError(Preformatted, const std::string& message, std::filesystem::path file, int line,
                        std::string field)
-    : std::runtime_error(message), file_(std::move(file)), line_(line), field_(std::move(field)) {}
+    : std::runtime_error(message), message_(message), file_(std::move(file)), line_(line), field_(std::move(field)) {}
 
 }  // namespace peg3d

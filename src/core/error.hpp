@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace peg3d {
 
@@ -25,12 +26,19 @@ class InputError : public std::runtime_error {
   int line() const noexcept { return line_; }
   /// Dotted path of the offending field, e.g. "obstacles[2].radius"; empty when there is none.
   const std::string& field() const noexcept { return field_; }
+  /// The problem alone, without the place (for a preformatted error: the whole text).
+  const std::string& message() const noexcept { return message_; }
 
  private:
+  std::string message_;
   std::filesystem::path file_;
   int line_ = 0;
   std::string field_;
 };
+
+/// A piece of the user's text as a message quotes it: at most 40 characters ("..." marks a cut), so a
+/// megabyte-long key or name cannot flood a terminal.
+std::string shown(std::string_view text);
 
 /// "FILE:LINE: FIELD: message" with the empty parts left out (the format of InputError::what()).
 std::string format_input_error(const std::filesystem::path& file, int line, const std::string& field,

@@ -9,6 +9,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
+#include "core/input_files.hpp"
+#include "core/yaml_input.hpp"
 #include "core/random.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/result_files.hpp"
@@ -49,7 +51,7 @@ std::vector<double> numbers_of(const std::filesystem::path& file, int line, std:
     char* end = nullptr;
     const double v = std::strtod(word.c_str(), &end);
     if (end == word.c_str() || *end != '\0' || !std::isfinite(v)) {
-      throw InputError(file, line, "", fmt::format("'{}' is not a finite number", word));
+      throw InputError(file, line, "", fmt::format("'{}' is not a finite number", shown(word)));
     }
     out.push_back(v);
   }
@@ -57,8 +59,7 @@ std::vector<double> numbers_of(const std::filesystem::path& file, int line, std:
 }
 
 std::vector<std::vector<double>> rows_of(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, 0, "", "cannot open motion file");
+  std::stringstream in(read_input_file(file, "motion file"));
   std::vector<std::vector<double>> rows;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -135,21 +136,12 @@ CollisionCase load_case(const std::filesystem::path& path) {
     c.name = path.stem().string();
   }
   const std::filesystem::path dir = std::filesystem::absolute(c.file).parent_path();
-  std::ifstream in(c.file);
-  if (!in) throw InputError(c.file, 0, "", "cannot open the case (a folder with case.yaml, or a .yaml file)");
-  std::stringstream text;
-  text << in.rdbuf();
-  YAML::Node root;
-  try {
-    root = YAML::Load(text.str());
-  } catch (const YAML::Exception& e) {
-    throw InputError(c.file, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
-  }
+  const YAML::Node root = parse_yaml_text(read_input_file(c.file, "case file (a folder with case.yaml, or a .yaml file)"), c.file);
   if (!root.IsMap()) throw InputError(c.file, 1, "", "expects a mapping (map: ..., agents: ...)");
   for (const auto& kv : root) {
     const std::string key = kv.first.Scalar();
     if (key != "map" && key != "scenario" && key != "config" && key != "set" && key != "seed" && key != "agents") {
-      fail(c.file, kv.first, key, "unknown key (allowed: map, scenario, config, set, seed, agents)");
+      fail(c.file, kv.first, shown(key), "unknown key (allowed: map, scenario, config, set, seed, agents)");
     }
   }
   if (!root["map"]) throw InputError(c.file, 1, "map", "missing required field");
@@ -200,7 +192,7 @@ CollisionCase load_case(const std::filesystem::path& path) {
         d.kind = AgentDriver::Kind::kScripted;
         const std::string name = scalar(c.file, value, field + ".scripted");
         const auto* kind = config::enum_value(game::kPolicyNames, name);
-        if (kind == nullptr || *kind == game::PolicyKind::kFacl) fail(c.file, value, field + ".scripted", "'" + name + "' is not a scripted policy");
+        if (kind == nullptr || *kind == game::PolicyKind::kFacl) fail(c.file, value, field + ".scripted", "'" + shown(name) + "' is not a scripted policy");
         d.scripted = *kind;
       } else {
         fail(c.file, spec.begin()->first, field + "." + how, "unknown driver (allowed: commands, waypoints, policy, scripted)");
@@ -232,7 +224,7 @@ CollisionLog run_case(const CollisionCase& c, bool use_cache) {
   const game::Sim sim(arena, config);
   const auto& scenarios = arena->map().scenarios;
   const world::Scenario* scenario = c.scenario.empty() ? &scenarios.front() : arena->map().find_scenario(c.scenario);
-  if (scenario == nullptr) throw InputError(c.file, c.scenario_line, "scenario", "'" + c.scenario + "' is not a scenario of " + c.map.string());
+  if (scenario == nullptr) throw InputError(c.file, c.scenario_line, "scenario", "'" + shown(c.scenario) + "' is not a scenario of " + c.map.string());
 
   // Every driver names an agent of the scenario.
   const int n = scenario->agents(), p = static_cast<int>(scenario->pursuers.size());

@@ -8,6 +8,7 @@
 
 #include "core/config_json.hpp"
 #include "core/config_overrides.hpp"
+#include "core/input_files.hpp"
 #include "core/random.hpp"
 #include "experiment/parallel_runner.hpp"
 #include "experiment/progress_reporter.hpp"
@@ -41,20 +42,14 @@ game::GameConfig load_game_config(const std::string& source) {
   if (file.extension() != ".json") {
     throw InputError(fmt::format("--config {}: neither a preset (peg3d, paper, baseline) nor a .json file", source));
   }
-  std::ifstream in(file);
-  if (!in) throw InputError(file, 0, "", "cannot open configuration file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file, 0, "", std::string("not JSON: ") + e.what());
-  }
+  const std::string text = read_input_file(file, "configuration file");
+  const nlohmann::json j = parse_json_text(text, file);
   game::GameConfig c = game::preset("peg3d");
-  config::from_json(j, c, {file, false});
+  config::from_json(j, c, {file, false, text});
   try {
     c.validate();
   } catch (const InvalidParameter& e) {
-    throw InputError(InputError::Preformatted{}, format_input_error(file, 0, "", e.what()), file, 0, e.parameter());
+    throw InputError(file, json_line_of(text, e.parameter()), e.parameter(), e.message());
   }
   return c;
 }

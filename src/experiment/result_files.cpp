@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
+#include "core/input_files.hpp"
 #include "experiment/csv_writer.hpp"
 #include "game/facl_policy.hpp"
 #include "game/policy_io.hpp"
@@ -224,15 +225,15 @@ void save_policy(const std::filesystem::path& file, const game::FaclModel& model
 }
 
 std::shared_ptr<game::FaclModel> load_policy(const std::filesystem::path& file, game::Role role) {
-  std::ifstream in(file);
-  if (!in) throw game::PolicyFormatError(file, 0, "", "cannot open policy file");
+  std::string text;
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw game::PolicyFormatError(file, 0, "", std::string("not JSON: ") + e.what());
+    text = read_input_file(file, "policy file");
+    doc = parse_json_text(text, file);
+  } catch (const InputError& e) {
+    throw game::PolicyFormatError(file, e.line(), e.field(), e.message());
   }
-  return game::policy_from_json(doc, file, role);
+  return game::policy_from_json(doc, file, role, text);
 }
 
 }  // namespace peg3d::experiment

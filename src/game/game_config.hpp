@@ -231,6 +231,16 @@ GameConfig preset(const std::string& name);
 /// The preset's settings for one agent (the pursuer's or the evader's side of that preset).
 AgentConfig agent_preset(const std::string& name, Role role);
 
+/// The most rules one FACL channel may have (2^20: 24 MB of tables); bounds what a config or policy can allocate.
+inline constexpr long long kMaxFaclRules = 1LL << 20;
+/// Rules of each FACL channel: sets^inputs, inputs 4 (azimuth, or one channel per angle) or 6 (joint azimuth-elevation).
+constexpr long long facl_rules(const AgentConfig& c) {
+  const bool six = c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
+  long long rules = 1;
+  for (int i = 0; i < (six ? 6 : 4); ++i) rules *= c.observation.sets;
+  return rules;
+}
+
 // ---- Field tables (core/config_fields.hpp) ----
 
 template <class V, class C>
@@ -293,6 +303,9 @@ void visit_fields(V& v, C& c) {
   v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
             "structure", "per-angle", "needs observation.angles = azimuth-elevation");
+  // sets^inputs rules, each a row of the actor and critic: without a bound, 64 sets over 6 inputs asks for 10^11.
+  v.require(facl_rules(c) <= kMaxFaclRules, "observation.sets", c.observation.sets,
+            "gives more than 2^20 FACL rules per channel (sets^inputs: 4 inputs, or 6 with azimuth-elevation joint)");
 }
 
 template <class V, class C>

@@ -45,7 +45,7 @@ void read_table(const nlohmann::json& channel, const char* key, std::span<double
                             fmt::format("has {} entries, this configuration needs {}", j.size(), out.size()));
   }
   for (std::size_t i = 0; i < out.size(); ++i) {
-    if (!j[i].is_number()) throw PolicyFormatError(file, 0, fmt::format("{}[{}]", field, i), "expects a number, got " + j[i].dump());
+    if (!j[i].is_number()) throw PolicyFormatError(file, 0, fmt::format("{}[{}]", field, i), "expects a number, got " + brief(j[i]));
     out[i] = j[i].get<double>();
     if (!std::isfinite(out[i])) throw PolicyFormatError(file, 0, fmt::format("{}[{}]", field, i), "must be finite");
   }
@@ -53,19 +53,21 @@ void read_table(const nlohmann::json& channel, const char* key, std::span<double
 
 }  // namespace
 
-std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std::filesystem::path& file,
-                                            std::optional<Role> expected_role) {
+namespace {
+
+std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::filesystem::path& file,
+                                       std::optional<Role> expected_role) {
   if (!doc.is_object() || !doc.contains("format") || doc["format"] != kPolicyFormat) {
     throw PolicyFormatError(file, 0, "format", fmt::format("not a peg3d policy (expected \"format\": \"{}\")", kPolicyFormat));
   }
   const nlohmann::json& version = member(doc, "version", file, "version");
   if (!version.is_number_integer() || version.get<long long>() != kPolicyVersion) {
     throw PolicyFormatError(file, 0, "version",
-                            fmt::format("policy version {} is not supported (this build reads {})", version.dump(), kPolicyVersion));
+                            fmt::format("policy version {} is not supported (this build reads {})", brief(version), kPolicyVersion));
   }
   const nlohmann::json& role_node = member(doc, "role", file, "role");
   if (role_node != "pursuer" && role_node != "evader") {
-    throw PolicyFormatError(file, 0, "role", "must be \"pursuer\" or \"evader\", got " + role_node.dump());
+    throw PolicyFormatError(file, 0, "role", "must be \"pursuer\" or \"evader\", got " + brief(role_node));
   }
   const Role role = role_node == "pursuer" ? Role::kPursuer : Role::kEvader;
   if (expected_role && *expected_role != role) {
@@ -75,13 +77,12 @@ std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std
   }
   // The configuration's own messages name its field; prefix the file and "config".
   const auto config_error = [&](const InputError& e) {
-    return PolicyFormatError(InputError::Preformatted{}, format_input_error(file, 0, "config", e.what()), file, 0,
-                             "config." + e.field());
+    return PolicyFormatError(file, 0, e.field().empty() ? "config" : "config." + e.field(), e.message());
   };
   AgentConfig config;
   std::shared_ptr<FaclModel> model;
   try {
-    config::from_json(member(doc, "config", file, "config"), config, {{}, /*complete=*/true});
+    config::from_json(member(doc, "config", file, "config"), config, {{}, /*complete=*/true, {}});
     config::validate(config);
     if (config.policy != PolicyKind::kFacl) throw InvalidParameter("policy", to_string(config.policy), "must be facl");
     model = std::make_shared<FaclModel>(config, role);
@@ -103,12 +104,25 @@ std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std
     const nlohmann::json& actions = member(ch, "actions", file, field + ".actions");
     if (rules != t.rules().rules() || actions != t.actions()) {
       throw PolicyFormatError(file, 0, field, fmt::format("has {} rules and {} actions, this configuration needs {} and {}",
-                                                          rules.dump(), actions.dump(), t.rules().rules(), t.actions()));
+                                                          brief(rules), brief(actions), t.rules().rules(), t.actions()));
     }
     read_table(ch, "actor", t.actor_table(), file, field + ".actor");
     read_table(ch, "critic", t.critic_table(), file, field + ".critic");
   }
   return model;
+}
+
+}  // namespace
+
+std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std::filesystem::path& file,
+                                            std::optional<Role> expected_role, std::string_view text) {
+  try {
+    return read_policy(doc, file, expected_role);
+  } catch (const PolicyFormatError& e) {
+    // The tables are read without their text: find the field's line only now that something is wrong.
+    if (e.line() != 0 || text.empty() || e.field().empty()) throw;
+    throw PolicyFormatError(file, json_line_of(text, e.field()), e.field(), e.message());
+  }
 }
 
 }  // namespace peg3d::game

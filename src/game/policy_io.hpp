@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -30,8 +31,10 @@ nlohmann::json policy_to_json(const FaclModel& model);
 
 /// Rebuilds a model from its document. Throws PolicyFormatError (naming `file`) on a wrong format, an
 /// unsupported version, a configuration with missing, unknown or invalid fields, tables of the wrong shape
-/// or with non-finite values, and, when `expected_role` is given, a policy saved for the other role.
+/// or with non-finite values, and, when `expected_role` is given, a policy saved for the other role. With the
+/// document's source `text`, errors name the line of the field at fault.
 std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& document, const std::filesystem::path& file = {},
-                                            std::optional<Role> expected_role = std::nullopt);
+                                            std::optional<Role> expected_role = std::nullopt,
+                                            std::string_view text = {});
 
 }  // namespace peg3d::game

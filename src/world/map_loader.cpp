@@ -12,6 +12,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "core/input_files.hpp"
+#include "core/yaml_input.hpp"
 #include "world/map_rules.hpp"
 #include "world/map_spec.hpp"
 #include "world/movers.hpp"
@@ -48,7 +50,7 @@ std::string describe(const Node& n) {
     case YAML::NodeType::Map:
       return "a mapping";
     case YAML::NodeType::Scalar:
-      return fmt::format("\"{}\"", n.Scalar());
+      return fmt::format("\"{}\"", shown(n.Scalar()));
     default:
       return "an undefined value";
   }
@@ -106,7 +108,7 @@ class Loader {
         const std::string name = key.Scalar();
         for (const auto& e : entries_) {
           if (e.name == name) {
-            loader.fail(key, field(name), fmt::format("duplicate key (first given at line {})", line_of(e.key)));
+            loader.fail(key, field(shown(name)), fmt::format("duplicate key (first given at line {})", line_of(e.key)));
           }
         }
         // An empty value ("radius:") carries the mark of the next token: report it at its key instead.
@@ -126,7 +128,7 @@ class Loader {
           if (d < best_distance) best_distance = d, best = a;
         }
         const std::string hint = best.empty() ? "" : fmt::format("; did you mean '{}'?", best);
-        loader_.fail(e.key, field(e.name), fmt::format("unknown key (allowed: {}){}", join(allowed), hint));
+        loader_.fail(e.key, field(shown(e.name)), fmt::format("unknown key (allowed: {}){}", join(allowed), hint));
       }
     }
 
@@ -172,7 +174,7 @@ class Loader {
     if (!n.IsScalar() || n.Tag() == "!") fail(n, field, fmt::format("expected a number, got {}", describe(n)));
     double v = 0.0;
     if (!YAML::convert<double>::decode(n, v)) fail(n, field, fmt::format("expected a number, got {}", describe(n)));
-    if (!std::isfinite(v)) fail(n, field, fmt::format("must be a finite number, got {}", n.Scalar()));
+    if (!std::isfinite(v)) fail(n, field, fmt::format("must be a finite number, got {}", shown(n.Scalar())));
     return v;
   }
   double positive(const Node& n, const std::string& field) const {
@@ -392,7 +394,7 @@ void Loader::read_obstacle(const Node& n, const std::string& field, MapSpec& spe
     if (const Problem p = check_cylinder(c, spec.bounds)) fail(f.need(p.field), f.field(p.field), p.message);
     spec.cylinders.push_back(c);
   } else {
-    fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", kind));
+    fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", shown(kind)));
   }
 }
 
@@ -460,7 +462,7 @@ void Loader::read_mover(const Node& n, const std::string& field, MapSpec& spec) 
     allowed.push_back("size");
     m.shape.size = vec3(f.need("size"), f.field("size"));
   } else {
-    fail(kind_node, f.field("kind"), fmt::format("unknown mover kind '{}' (allowed: sphere, cylinder, box)", kind));
+    fail(kind_node, f.field("kind"), fmt::format("unknown mover kind '{}' (allowed: sphere, cylinder, box)", shown(kind)));
   }
   f.allow(allowed);
   if (const Node* v = f.find("rotation_deg")) m.rotation_deg = vec3(*v, f.field("rotation_deg"));
@@ -479,7 +481,7 @@ void Loader::read_mover(const Node& n, const std::string& field, MapSpec& spec) 
     m.path.speed = number(pf.need("speed"), pf.field("speed"));
     if (const Node* v = pf.find("mode")) {
       const std::string mode = text(*v, pf.field("mode"));
-      if (mode != "loop" && mode != "back-and-forth") fail(*v, pf.field("mode"), fmt::format("'{}' is not loop or back-and-forth", mode));
+      if (mode != "loop" && mode != "back-and-forth") fail(*v, pf.field("mode"), fmt::format("'{}' is not loop or back-and-forth", shown(mode)));
       m.path.loop = mode == "loop";
     }
   } else if (const Node* o = motions[1]) {
@@ -521,7 +523,7 @@ void Loader::read_generator(const Node& n, const std::string& field, MapSpec& sp
              "max_attempts"});
     std::tie(g.height_min, g.height_max) = positive_range(f.need("height"), f.field("height"));
   } else {
-    fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", kind));
+    fail(kind_node, f.field("kind"), fmt::format("unknown obstacle kind '{}' (allowed: sphere, cylinder)", shown(kind)));
   }
   const Node& count_node = f.need("count");
   const long long count = integer(count_node, f.field("count"));
@@ -584,15 +586,13 @@ void Loader::check_starts(const MapSpec& spec) const {
 }
 
 MapSpec Loader::load() {
-  std::ifstream in(file_, std::ios::binary);
-  if (!in) fail(0, "", "cannot open map file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
   Node root;
   try {
-    root = YAML::Load(buffer.str());
-  } catch (const YAML::ParserException& e) {
-    fail(e.mark.line >= 0 ? e.mark.line + 1 : 0, "", fmt::format("YAML syntax error: {}", e.msg));
+    root = parse_yaml_text(read_input_file(file_, "map file"), file_);
+  } catch (const MapError&) {
+    throw;
+  } catch (const InputError& e) {
+    fail(e.line(), e.field(), e.message());
   }
   if (!root.IsDefined() || root.IsNull()) fail(1, "", "the map file is empty");
 
@@ -621,7 +621,7 @@ MapSpec Loader::load() {
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string field = fmt::format("scenarios[{}]", i);
       Scenario s = read_scenario(list[i], field, "");
-      if (spec.find_scenario(s.name) != nullptr) fail(list[i], field + ".name", fmt::format("duplicate scenario name '{}'", s.name));
+      if (spec.find_scenario(s.name) != nullptr) fail(list[i], field + ".name", fmt::format("duplicate scenario name '{}'", shown(s.name)));
       spec.scenarios.push_back(std::move(s));
     }
   }

@@ -98,7 +98,7 @@ Problem check_scenario_name(std::string_view name) {
   if (is_safe_name(name)) return {};
   return {"", fmt::format("'{}' cannot name a scenario: use 1 to 64 letters, digits, '-', '_' and '.', not starting with "
                           "'.' (scenario names name result files)",
-                          name)};
+                          shown(name))};
 }
 
 Problem check_physics(const PhysicsSpec& physics) {
@@ -258,7 +258,7 @@ void validate_map(const MapSpec& spec) {
     const std::string where = fmt::format("scenarios[{}]", k);
     if (auto p = check_scenario_name(s.name)) fail(where + ".name", p, s.line);
     for (std::size_t j = 0; j < k; ++j)
-      if (spec.scenarios[j].name == s.name) fail(where + ".name", {"", fmt::format("duplicate scenario name '{}'", s.name)}, s.line);
+      if (spec.scenarios[j].name == s.name) fail(where + ".name", {"", fmt::format("duplicate scenario name '{}'", shown(s.name))}, s.line);
     if (s.pursuers.empty()) fail(where + ".pursuers", {"", "needs at least one pursuer"}, s.line);
     if (s.evaders.empty()) fail(where + ".evaders", {"", "needs at least one evader"}, s.line);
     for (const auto* list : {&s.pursuers, &s.evaders}) {

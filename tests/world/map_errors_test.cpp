@@ -55,6 +55,7 @@ TEST_P(WorldBrokenMap, ErrorNamesFileLineAndField) {
     EXPECT_EQ(e.field(), want.field) << what;
     const std::string prefix = file.string() + ":" + std::to_string(want.line) + ": ";
     EXPECT_EQ(what.rfind(prefix, 0), 0u) << what;
+    EXPECT_LT(what.size(), file.string().size() + 300) << "quotes the user's text briefly: " << what.substr(0, 500);
     if (!want.field.empty()) {
       EXPECT_NE(what.find(want.field + ": "), std::string::npos) << what;
     }
@@ -72,7 +73,7 @@ TEST(WorldMapErrors, MissingMapFileIsReportedWithoutLine) {
     FAIL();
   } catch (const MapError& e) {
     EXPECT_EQ(e.line(), 0);
-    EXPECT_EQ(std::string(e.what()), file.string() + ": cannot open map file");
+    EXPECT_EQ(std::string(e.what()), file.string() + ": map file not found");
   }
 }
 
