@@ -107,6 +107,144 @@ def write_ridge(path):
     write_obj(path, vertices, faces, "ridge: flat strips and a knife-edge ridge at x = 10, z = 4 (make_test_meshes.py)")
 
 
+# ---- The hostile corpus (tests/data/meshes/hostile/): every accepted format empty, truncated, garbage, with
+# absurd declared counts, non-finite and huge coordinates, degenerate triangles and out-of-range indices, and
+# the glTF attacks on the importer (node cycles, a 100-deep chain, buffers naming /dev/zero or ../). Each line
+# of expect.txt names a file and a fragment of the MeshError import_mesh must throw for it.
+
+def tri_ply(rows, faces, fmt="ascii", count_vertex=None, count_face=None):
+    head = ["ply", f"format {fmt} 1.0", f"element vertex {count_vertex if count_vertex is not None else len(rows)}",
+            "property float x", "property float y", "property float z",
+            f"element face {count_face if count_face is not None else len(faces)}",
+            "property list uchar int vertex_indices", "end_header"]
+    body = [" ".join(str(c) for c in r) for r in rows] + [" ".join(str(i) for i in (len(f),) + tuple(f)) for f in faces]
+    return ("\n".join(head + body) + "\n").encode()
+
+
+def tri_off(rows, faces, nv=None, nf=None):
+    lines = ["OFF", f"{nv if nv is not None else len(rows)} {nf if nf is not None else len(faces)} 0"]
+    lines += [" ".join(str(c) for c in r) for r in rows] + [" ".join(str(i) for i in (len(f),) + tuple(f)) for f in faces]
+    return ("\n".join(lines) + "\n").encode()
+
+
+def tri_stl_binary(triangles, declared=None):
+    out = b"peg3d hostile".ljust(80, b" ") + struct.pack("<I", declared if declared is not None else len(triangles))
+    for t in triangles:
+        out += struct.pack("<3f", 0, 0, 1) + b"".join(struct.pack("<3f", *v) for v in t) + b"\0\0"
+    return out
+
+
+def tri_gltf(positions, indices=None, count=None, nodes=None, uri=None, byte_length=None):
+    pos = b"".join(struct.pack("<3f", *p) for p in positions)
+    idx = b"".join(struct.pack("<H", i) for i in indices) if indices else b""
+    data = pos + idx
+    doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+           "nodes": nodes if nodes is not None else [{"mesh": 0}],
+           "meshes": [{"primitives": [dict({"attributes": {"POSITION": 0}, "mode": 4}, **({"indices": 1} if indices else {}))]}],
+           "buffers": [{"byteLength": byte_length if byte_length is not None else len(data),
+                        "uri": uri if uri is not None else "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+           "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)}] +
+                          ([{"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}] if indices else []),
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": count if count is not None else len(positions),
+                          "type": "VEC3"}] +
+                        ([{"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"}] if indices else [])}
+    return json.dumps(doc).encode()
+
+
+def glb(json_bytes, bin_bytes=b""):
+    json_bytes += b" " * (-len(json_bytes) % 4)
+    bin_bytes += b"\0" * (-len(bin_bytes) % 4)
+    chunks = struct.pack("<I4s", len(json_bytes), b"JSON") + json_bytes
+    if bin_bytes:
+        chunks += struct.pack("<I4s", len(bin_bytes), b"BIN\0") + bin_bytes
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+
+
+def chunk(cid, payload):
+    return struct.pack("<HI", cid, 6 + len(payload)) + payload
+
+
+def tri_3ds(points, faces, declared_vertices=None):
+    verts = struct.pack("<H", declared_vertices if declared_vertices is not None else len(points)) + \
+        b"".join(struct.pack("<3f", *p) for p in points)
+    tris = struct.pack("<H", len(faces)) + b"".join(struct.pack("<4H", *f, 0) for f in faces)
+    mesh = chunk(0x4100, chunk(0x4110, verts) + chunk(0x4120, tris))
+    return chunk(0x4D4D, chunk(0x3D3D, chunk(0x4000, b"hostile\0" + mesh)))
+
+
+def write_hostile(out):
+    out.mkdir(parents=True, exist_ok=True)
+    tri = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    nan = [(0, 0, 0), (1, 0, float("nan")), (0, 1, 0)]
+    huge = [(0, 0, 0), (1e39, 0, 0), (0, 1, 0)]  # beyond float: assimp reads inf
+    same = [(1, 1, 1), (1, 1, 1), (1, 1, 1)]
+    garbage = bytes((i * 73 + 41) % 256 for i in range(600))
+    cube = {e: (out.parent / f"cube.{e}").read_bytes() for e in ("obj", "stl", "ply", "off", "gltf", "3ds")}
+    files = {
+        # every format: empty, garbage, truncated
+        **{f"empty.{e}": b"" for e in ("obj", "stl", "ply", "off", "gltf", "glb", "3ds")},
+        **{f"garbage.{e}": garbage for e in ("obj", "stl", "ply", "off", "gltf", "glb", "3ds")},
+        "truncated.obj": cube["obj"][:cube["obj"].index(b"\nf ")],
+        "truncated.stl": tri_stl_binary([tri, tri])[:-30],
+        "truncated.ply": cube["ply"][:len(cube["ply"]) * 2 // 3],
+        "truncated.off": cube["off"][:len(cube["off"]) // 2],
+        "truncated.gltf": cube["gltf"][:len(cube["gltf"]) // 2],
+        "truncated.glb": glb(tri_gltf(tri))[:60],
+        "truncated.3ds": cube["3ds"][:len(cube["3ds"]) // 2],
+        # absurd declared counts: a few hundred bytes asking for billions of elements
+        "huge_count.ply": tri_ply(tri, [(0, 1, 2)], count_vertex=4000000000, count_face=4000000000),
+        "huge_count_binary.ply": tri_ply([], [], fmt="binary_little_endian", count_vertex=400000000, count_face=1)
+                                 + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + b"\x03" + struct.pack("<3i", 0, 1, 2),
+        "huge_list.ply": tri_ply([], [], fmt="binary_little_endian", count_vertex=3, count_face=1).replace(b"uchar int", b"uint int")
+                         + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<I", 0xFFFFFFF0) + struct.pack("<3i", 0, 1, 2),
+        "huge_count.off": tri_off(tri, [(0, 1, 2)], nv=1000000000, nf=1000000000),
+        "huge_count.stl": tri_stl_binary([tri], declared=0xFFFFFFFF),
+        "huge_count.gltf": tri_gltf(tri, count=4000000000),
+        "huge_buffer.gltf": tri_gltf(tri, byte_length=100000000000),
+        "huge_count.glb": glb(json.dumps({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 1 << 40}]}).encode(), b"\0" * 36),
+        "huge_count.3ds": tri_3ds(tri, [(0, 1, 2)], declared_vertices=65535),
+        "huge_chunk.3ds": struct.pack("<HI", 0x4D4D, 0xFFFFFFFF) + chunk(0x3D3D, b"\0" * 64),
+        # non-finite and huge coordinates
+        "nan.obj": b"v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n",
+        "huge.obj": b"v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n",
+        "nan.ply": tri_ply(nan, [(0, 1, 2)]),
+        "huge.ply": tri_ply(huge, [(0, 1, 2)]),
+        "nan.off": tri_off([(0, 0, 0), (1, 0, "inf"), (0, 1, 0)], [(0, 1, 2)]),
+        "nan.stl": tri_stl_binary([nan]),
+        "huge.stl": b"solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e300 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n",
+        "nan.gltf": tri_gltf(nan),
+        "nan.glb": glb(json.dumps({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+                                   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 4}]}],
+                                   "buffers": [{"byteLength": 36}], "bufferViews": [{"buffer": 0, "byteLength": 36}],
+                                   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}]}).encode(),
+                       b"".join(struct.pack("<3f", *p) for p in nan)),
+        "nan.3ds": tri_3ds(nan, [(0, 1, 2)]),
+        # degenerate triangles: all three corners at one point
+        "degenerate.obj": b"v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n",
+        "degenerate.ply": tri_ply(same, [(0, 1, 2)]),
+        "degenerate.off": tri_off(same, [(0, 1, 2)]),
+        "degenerate.stl": tri_stl_binary([same]),
+        "degenerate.gltf": tri_gltf(same),
+        "degenerate.3ds": tri_3ds(same, [(0, 1, 2)]),
+        # out-of-range indices
+        "bad_index.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4000000000\n",
+        "negative_index.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -9\n",
+        "bad_index.ply": tri_ply(tri, [(0, 1, 99)]),
+        "bad_index.off": tri_off(tri, [(0, 1, 99)]),
+        "bad_index.gltf": tri_gltf(tri, indices=[0, 1, 99]),
+        "bad_index.3ds": tri_3ds(tri, [(0, 1, 99)]),
+        # attacks on the glTF importer's node walk and file access
+        "self_child.gltf": tri_gltf(tri, nodes=[{"mesh": 0, "children": [0]}]),
+        "cycle.gltf": tri_gltf(tri, nodes=[{"mesh": 0, "children": [1]}, {"children": [0]}]),
+        "deep_nodes.gltf": tri_gltf(tri, nodes=[{"mesh": 0, "children": [i + 1]} for i in range(100)] + [{}]),
+        "dev_zero.gltf": tri_gltf(tri, uri="/dev/zero"),
+        "climbs_out.gltf": tri_gltf(tri, uri="../../../../../../etc/hostname"),
+        "unsupported.dae": b"<?xml version=\"1.0\"?><COLLADA></COLLADA>\n",
+    }
+    for name, data in files.items():
+        (out / name).write_bytes(data)
+
+
 def main():
     root = pathlib.Path(__file__).resolve().parent.parent
     out = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else root / "tests" / "data" / "meshes"
@@ -131,6 +269,7 @@ def main():
     (out / "nan_vertex.obj").write_text("# a triangle with a NaN coordinate\nv 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n")
     write_ply(out / "truncated.ply", truncated=True)
     (out / "truncated_header.ply").write_text("ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\n")
+    write_hostile(out / "hostile")
 
 
 if __name__ == "__main__":

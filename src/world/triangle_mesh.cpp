@@ -3,17 +3,22 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
+#include <new>
 #include <fstream>
 #include <limits>
 #include <system_error>
 
 #include <Eigen/Geometry>
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
+#include "core/bounded_child.hpp"
 #include "world/map_spec.hpp"
+#include "world/mesh_file_checks.hpp"
 
 namespace peg3d::world {
 
@@ -29,38 +34,72 @@ Box TriangleMesh::bounds() const {
 
 namespace {
 
-/// assimp 5.2's PLY reader loops forever on a header cut short before "end_header": refuse those up front.
-void check_ply_header(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".ply") return;
-  std::ifstream in(file, std::ios::binary);
-  std::string head(1 << 20, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(in.gcount()));
-  if (head.find("end_header") == std::string::npos) {
-    throw MeshError(fmt::format("mesh file '{}' is malformed: its PLY header has no end_header", file.string()));
+// Lets assimp open the mesh file and the files it names (glTF buffers, OBJ material libraries) only when they
+// are regular files inside the mesh's folder: a mesh from a stranger must not read /dev/zero or ../../secret.
+class FolderIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  explicit FolderIOSystem(std::filesystem::path mesh) : mesh_(std::move(mesh)) {}
+  bool Exists(const char* file) const override { return allowed(file) && Assimp::DefaultIOSystem::Exists(file); }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (!allowed(file) || mode == nullptr || std::strchr(mode, 'w') != nullptr || std::strchr(mode, 'a') != nullptr) {
+      return nullptr;
+    }
+    return Assimp::DefaultIOSystem::Open(file, mode);
   }
+
+ private:
+  bool allowed(const char* file) const { return file != nullptr && is_safe_mesh_reference(mesh_, file); }
+  std::filesystem::path mesh_;
+};
+
+// A mesh as bytes through the child's pipe: vertex and face counts, then the raw arrays.
+std::string serialize(const TriangleMesh& m) {
+  const std::uint64_t counts[2] = {m.vertices.size(), m.faces.size()};
+  std::string out(reinterpret_cast<const char*>(counts), sizeof counts);
+  out.append(reinterpret_cast<const char*>(m.vertices.data()), m.vertices.size() * sizeof(Vec3));
+  out.append(reinterpret_cast<const char*>(m.faces.data()), m.faces.size() * sizeof(std::array<int, 3>));
+  return out;
 }
 
-}  // namespace
+TriangleMesh deserialize(const std::string& bytes, const std::string& name) {
+  std::uint64_t counts[2] = {0, 0};
+  if (bytes.size() >= sizeof counts) std::memcpy(counts, bytes.data(), sizeof counts);
+  if (bytes.size() < sizeof counts || counts[0] > bytes.size() || counts[1] > bytes.size() ||
+      bytes.size() != sizeof counts + counts[0] * sizeof(Vec3) + counts[1] * sizeof(std::array<int, 3>)) {
+    throw MeshError(fmt::format("mesh file '{}' could not be imported: the importer's result was cut short", name));
+  }
+  TriangleMesh m;
+  m.vertices.resize(counts[0]);
+  m.faces.resize(counts[1]);
+  const std::size_t vertex_bytes = counts[0] * sizeof(Vec3);
+  std::memcpy(static_cast<void*>(m.vertices.data()), bytes.data() + sizeof counts, vertex_bytes);
+  std::memcpy(static_cast<void*>(m.faces.data()), bytes.data() + sizeof counts + vertex_bytes,
+              counts[1] * sizeof(std::array<int, 3>));
+  return m;
+}
 
-TriangleMesh import_mesh(const std::filesystem::path& file) {
+void check_file(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw MeshError(fmt::format("mesh file '{}' not found", name));
   if (!std::filesystem::is_regular_file(file, ec)) throw MeshError(fmt::format("mesh file '{}' is not a file", name));
   if (std::filesystem::file_size(file, ec) == 0) throw MeshError(fmt::format("mesh file '{}' is empty", name));
+  check_mesh_declarations(file);
+}
 
-  check_ply_header(file);
-
+TriangleMesh import_checked(const std::filesystem::path& file) {
+  const std::string name = file.string();
   Assimp::Importer importer;
+  importer.SetIOHandler(new FolderIOSystem(file));  // the importer owns it
   // Read with validation only, check the raw data, then post-process: Debian builds assimp with its internal
   // assertions on, and a post-processing step that meets inconsistent data (e.g. a truncated PLY whose mesh
   // claims polygons but holds no faces) aborts the process instead of failing.
   const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure);
   if (scene == nullptr) {
-    throw MeshError(fmt::format("mesh file '{}' cannot be read: {}", name, importer.GetErrorString()));
+    const std::string why = importer.GetErrorString();
+    // assimp reports a failed allocation (under the child's memory cap) as its error string.
+    if (why.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
+    throw MeshError(fmt::format("mesh file '{}' cannot be read: {}", name, why));
   }
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
     throw MeshError(fmt::format("mesh file '{}' is incomplete (malformed or truncated)", name));
@@ -117,6 +156,48 @@ TriangleMesh import_mesh(const std::filesystem::path& file) {
   }
   if (out.faces.empty()) throw MeshError(fmt::format("mesh file '{}' has no triangles", name));
   return out;
+}
+
+}  // namespace
+
+TriangleMesh import_mesh_in_process(const std::filesystem::path& file) {
+  check_file(file);
+  return import_checked(file);
+}
+
+TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimits& limits) {
+  check_file(file);
+  const std::string name = file.string();
+  const ChildResult r = run_bounded(
+      [&] {
+        try {
+          return serialize(import_checked(file));
+        } catch (const MeshError&) {
+          throw;
+        } catch (const std::bad_alloc&) {
+          throw;
+        } catch (const std::exception& e) {
+          throw MeshError(fmt::format("mesh file '{}' cannot be read: {}", name, e.what()));
+        }
+      },
+      {limits.seconds, limits.memory_bytes});
+  switch (r.status) {
+    case ChildResult::Status::kOk:
+      return deserialize(r.output, name);
+    case ChildResult::Status::kFailed:
+      throw MeshError(r.output);
+    case ChildResult::Status::kTimedOut:
+      throw MeshError(fmt::format("mesh file '{}' took more than {} s to import and was given up: it is malformed or too "
+                                  "large",
+                                  name, limits.seconds));
+    case ChildResult::Status::kOutOfMemory:
+      throw MeshError(fmt::format("mesh file '{}' needed more memory than the {} MiB an import may use and was given up: "
+                                  "it is malformed or too large",
+                                  name, limits.memory_bytes >> 20));
+    case ChildResult::Status::kCrashed:
+      break;
+  }
+  throw MeshError(fmt::format("mesh file '{}' crashed the importer ({}): it is malformed", name, r.output));
 }
 
 void transform_mesh(TriangleMesh& mesh, double scale, const Vec3& rotation_deg, const Vec3& translation) {

@@ -1,5 +1,5 @@
 #pragma once
-// Triangle meshes as plain arrays, and their import through assimp (OBJ, STL, PLY, 3DS, OFF, glTF, ...).
+// Triangle meshes as plain arrays, and their bounded import through assimp (OBJ, STL, PLY, OFF, glTF 2, 3DS).
 
 #include <array>
 #include <filesystem>
@@ -31,9 +31,22 @@ class MeshError : public InputError {
   using InputError::InputError;
 };
 
+/// How long and how much memory one mesh import may take before it is given up (see import_mesh).
+struct MeshImportLimits {
+  double seconds = 8.0;                                // s of wall time, > 0
+  std::size_t memory_bytes = std::size_t{768} << 20;  // bytes the import may add to the process, > 0
+};
+
 /// Imports every triangle of a mesh file (all its meshes, node transforms applied) in the file's own units.
+/// Accepts the formats of kAcceptedMeshFormats (world/mesh_file_checks.hpp) only. What the file declares is
+/// checked first (check_mesh_declarations); the import itself runs in a child process bounded by `limits`,
+/// so a file that makes assimp hang, exhaust memory or crash is a MeshError like any other broken file.
 /// Throws MeshError if the file is missing, empty, malformed, holds no triangles, or has a non-finite vertex.
-TriangleMesh import_mesh(const std::filesystem::path& file);
+TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimits& limits = {});
+
+/// import_mesh without the child process and its bounds: the same checks, then assimp in this process. For
+/// the fuzzer (which must see the importer's crashes) and callers that bound their process themselves.
+TriangleMesh import_mesh_in_process(const std::filesystem::path& file);
 
 /// Places a mesh in the world: v' = R * (scale * v) + translation (see TerrainMesh).
 void transform_mesh(TriangleMesh& mesh, double scale, const Vec3& rotation_deg, const Vec3& translation);

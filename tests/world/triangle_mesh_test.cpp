@@ -1,10 +1,14 @@
 // Mesh import through assimp: every supported format, placement transforms, and broken files.
 
+#include <chrono>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "world/mesh_file_checks.hpp"
 #include "world/triangle_mesh.hpp"
 #include "world_test_support.hpp"
 
@@ -72,8 +76,85 @@ TEST(WorldMeshImport, BrokenFilesAreRejectedWithTheReason) {
   expect_mesh_error("garbage.obj", "cannot be read");
   expect_mesh_error("lines_only.obj", "has no triangles");
   expect_mesh_error("nan_vertex.obj", "non-finite vertex");
-  expect_mesh_error("truncated.ply", "has no triangles");
+  expect_mesh_error("truncated.ply", "declares 8 PLY elements");
   expect_mesh_error("truncated_header.ply", "no end_header");
+}
+
+// tests/data/meshes/hostile/ (tools/make_test_meshes.py): every accepted format empty, truncated, garbage, with
+// absurd declared counts, non-finite or huge coordinates, degenerate triangles and out-of-range indices, and
+// the glTF attacks on assimp. expect.txt gives each file's message fragment; each is refused within the
+// import's time bound.
+std::map<std::string, std::string> hostile_expectations() {
+  std::map<std::string, std::string> out;
+  std::ifstream in(testing::mesh_path("hostile") / "expect.txt");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t space = line.find(' ');
+    out[line.substr(0, space)] = line.substr(space + 1);
+  }
+  return out;
+}
+
+TEST(WorldMeshImport, EveryHostileFileIsRefusedWithItsReasonInTime) {
+  const auto expectations = hostile_expectations();
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(testing::mesh_path("hostile"))) {
+    const std::string name = entry.path().filename().string();
+    if (name == "expect.txt") continue;
+    ++files;
+    SCOPED_TRACE(name);
+    const auto want = expectations.find(name);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      const TriangleMesh m = import_mesh(entry.path());
+      ADD_FAILURE() << "imported " << m.triangle_count() << " triangles";
+    } catch (const MeshError& e) {
+      const std::string what = e.what();
+      if (want == expectations.end()) {
+        ADD_FAILURE() << "expect.txt has no line for it; it says: " << what;
+        continue;
+      }
+      EXPECT_NE(what.find(entry.path().string()), std::string::npos) << what;
+      EXPECT_NE(what.find(want->second), std::string::npos) << what;
+      EXPECT_LT(what.size(), entry.path().string().size() + 300) << what;
+    }
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  }
+  EXPECT_EQ(files, expectations.size()) << "expect.txt names a file that is not there";
+}
+
+TEST(WorldMeshImport, AGltfBufferBesideTheFileIsReadAndOneOutsideIsNot) {
+  testing::ScratchDir dir;
+  std::filesystem::create_directories(dir / "mesh");
+  const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  for (const char* name : {"mesh/tri.bin", "tri.bin"}) {
+    std::ofstream(dir / name, std::ios::binary).write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  }
+  const auto gltf = [&](const std::string& uri) {
+    const auto file = dir / "mesh" / "tri.gltf";
+    std::ofstream(file) << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 4}]}],
+      "buffers": [{"byteLength": 36, "uri": ")" << uri << R"("}], "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}]})";
+    return file;
+  };
+  EXPECT_EQ(import_mesh(gltf("tri.bin")).triangle_count(), 1u);
+  EXPECT_THROW(import_mesh(gltf("../tri.bin")), MeshError);
+  EXPECT_TRUE(is_safe_mesh_reference(dir / "mesh" / "tri.gltf", dir / "mesh" / "tri.bin"));
+  EXPECT_FALSE(is_safe_mesh_reference(dir / "mesh" / "tri.gltf", dir / "mesh" / ".." / "tri.bin"));
+  EXPECT_FALSE(is_safe_mesh_reference(dir / "mesh" / "tri.gltf", "/dev/zero"));
+  std::filesystem::create_symlink(dir / "tri.bin", dir / "mesh" / "link.bin");
+  EXPECT_FALSE(is_safe_mesh_reference(dir / "mesh" / "tri.gltf", dir / "mesh" / "link.bin")) << "a link out of the folder";
+}
+
+TEST(WorldMeshImport, InProcessImportGivesTheSameMesh) {
+  for (const std::string ext : {"obj", "stl", "ply", "3ds", "off", "gltf"}) {
+    const TriangleMesh a = import_mesh(testing::mesh_path("cube." + ext));
+    const TriangleMesh b = import_mesh_in_process(testing::mesh_path("cube." + ext));
+    EXPECT_EQ(a.vertices, b.vertices) << ext;
+    EXPECT_EQ(a.faces, b.faces) << ext;
+  }
 }
 
 TEST(WorldMeshImport, TruncatedFilesNeverCrash) {

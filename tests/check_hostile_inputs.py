@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""Every broken or hostile input, through the programs a user runs: exit status 2, a message on stderr that
+starts with "error:" and names the file, within 10 s, peak memory under 1 GB (the import's child included),
+and no output written.
+
+  meshes    tests/data/meshes/hostile/*   each as the terrain of a small map, through peg-matchup
+  maps      tests/data/maps/broken/*.yaml through peg-map check
+  configs   tests/data/configs/broken/*.json through peg-matchup --config
+  policies  broken policy files made here (and a FIFO, a directory, /dev/zero) through peg-matchup
+
+Usage: check_hostile_inputs.py BIN_DIR SOURCE_DIR WORK_DIR
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+failures = []
+LIMIT_SECONDS = 10.0
+LIMIT_KB = 1024 * 1024  # 1 GiB, as ru_maxrss counts
+
+
+def run(cmd, named, out_dir):
+    """Runs cmd and checks the contract for an input error that names `named`."""
+    shutil.rmtree(out_dir, ignore_errors=True)
+    start = time.monotonic()
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
+    try:
+        _, err = p.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        p.communicate()
+        failures.append(f"{named}: still running after 60 s")
+        return
+    seconds = time.monotonic() - start
+    # wait4 has been done by communicate; the rusage of the whole tree comes from RUSAGE_CHILDREN's maximum.
+    err = err.decode(errors="replace")
+    what = f"{os.path.basename(cmd[0])} on {named}"
+    if p.returncode != 2:
+        failures.append(f"{what}: exit status {p.returncode}, expected 2: {err[-400:]}")
+    if not err.startswith("error:") or os.path.basename(named) not in err:
+        failures.append(f"{what}: the message does not name the file: {err[:300]!r}")
+    if seconds > LIMIT_SECONDS:
+        failures.append(f"{what}: took {seconds:.1f} s")
+    if os.path.exists(out_dir):
+        failures.append(f"{what}: wrote {out_dir}")
+
+
+def main():
+    bin_dir, source, work = sys.argv[1:4]
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    matchup, peg_map = os.path.join(bin_dir, "peg-matchup"), os.path.join(bin_dir, "peg-map")
+    out = os.path.join(work, "out")
+    quick = ["--repeats", "1", "--episodes", "2", "--plain-progress", "--no-cache", "--out", out]
+    counts = {}
+
+    hostile = os.path.join(source, "tests", "data", "meshes", "hostile")
+    for name in sorted(os.listdir(hostile)):
+        if name == "expect.txt":
+            continue
+        map_file = os.path.join(work, f"terrain_{name}.yaml")
+        with open(map_file, "w") as f:
+            f.write("arena: {size: [10, 10, 10]}\n"
+                    f"terrain:\n  - file: {os.path.join(hostile, name)}\n"
+                    "start:\n  pursuer: {position: [1, 1, 9]}\n  evader: {position: [9, 9, 9]}\n")
+        run([matchup, "--map", map_file, *quick], name, out)
+        counts["meshes"] = counts.get("meshes", 0) + 1
+
+    broken_maps = os.path.join(source, "tests", "data", "maps", "broken")
+    for name in sorted(os.listdir(broken_maps)):
+        run([peg_map, "check", os.path.join(broken_maps, name), "--no-cache"], name, out)
+        counts["maps"] = counts.get("maps", 0) + 1
+
+    configs = os.path.join(source, "tests", "data", "configs", "broken")
+    for name in sorted(n for n in os.listdir(configs) if n.endswith(".json")):
+        run([matchup, "--config", os.path.join(configs, name), *quick], name, out)
+        counts["configs"] = counts.get("configs", 0) + 1
+
+    policies = os.path.join(work, "policies")
+    os.makedirs(policies)
+    cases = {
+        "deep.json": "[" * 100000 + "]" * 100000,
+        "truncated.json": '{"format": "peg3d-policy", "version": 1, "role": "pursuer"',
+        "wrong_type.json": json.dumps({"format": "peg3d-policy", "version": "one"}),
+        "not_a_policy.json": json.dumps({"hello": "world"}),
+        "huge_string.json": json.dumps({"format": "peg3d-policy", "version": 1, "role": "x" * 1000000}),
+        "nan.json": '{"format": "peg3d-policy", "version": NaN}',
+        "empty.json": "",
+    }
+    for name, text in cases.items():
+        with open(os.path.join(policies, name), "w") as f:
+            f.write(text)
+    fifo = os.path.join(policies, "fifo.json")
+    os.mkfifo(fifo)
+    os.makedirs(os.path.join(policies, "folder.json"))
+    for name in [*cases, "fifo.json", "folder.json"]:
+        run([matchup, "--pursuer-policy", os.path.join(policies, name), *quick], name, out)
+        counts["policies"] = counts.get("policies", 0) + 1
+    run([matchup, "--pursuer-policy", "/dev/zero", *quick], "/dev/zero", out)
+
+    import resource
+    peak_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    if peak_kb > LIMIT_KB:
+        failures.append(f"the largest process (import children included) peaked at {peak_kb / 1024:.0f} MB")
+    print(f"checked {counts}; peak memory of any process {peak_kb / 1024:.0f} MB")
+    for f in failures:
+        print("FAIL:", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,60 @@
+#include "core/bounded_child.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+namespace peg3d {
+namespace {
+
+using Status = ChildResult::Status;
+
+TEST(CoreBoundedChild, ReturnsWhatTheWorkReturned) {
+  const std::string big(3 << 20, 'x');  // more than a pipe holds: the parent must read while the child writes
+  const ChildResult r = run_bounded([&] { return big + "!"; }, {});
+  EXPECT_EQ(r.status, Status::kOk);
+  EXPECT_EQ(r.output, big + "!");
+}
+
+TEST(CoreBoundedChild, AnExceptionIsAFailureWithItsMessage) {
+  const ChildResult r = run_bounded([]() -> std::string { throw std::runtime_error("no triangles"); }, {});
+  EXPECT_EQ(r.status, Status::kFailed);
+  EXPECT_EQ(r.output, "no triangles");
+}
+
+TEST(CoreBoundedChild, AHangIsKilledAtTheDeadline) {
+  const auto start = std::chrono::steady_clock::now();
+  const ChildResult r = run_bounded([]() -> std::string { for (;;) ::pause(); }, {0.3, std::size_t{256} << 20});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, Status::kTimedOut);
+  EXPECT_GE(seconds, 0.3);
+  EXPECT_LT(seconds, 3.0);
+}
+
+TEST(CoreBoundedChild, MemoryBeyondTheLimitStopsTheChild) {
+  // Touch every page so the resident set grows even where the address space is not capped (ASan builds).
+  const ChildResult r = run_bounded(
+      []() -> std::string {
+        std::vector<std::vector<char>> hog;
+        for (;;) {
+          hog.emplace_back(std::size_t{16} << 20);
+          std::memset(hog.back().data(), 1, hog.back().size());
+        }
+      },
+      {20.0, std::size_t{128} << 20});
+  EXPECT_EQ(r.status, Status::kOutOfMemory);
+}
+
+TEST(CoreBoundedChild, ACrashIsReportedWithItsSignal) {
+  const ChildResult r = run_bounded([]() -> std::string { std::raise(SIGSEGV); return ""; }, {});
+  EXPECT_EQ(r.status, Status::kCrashed);
+  EXPECT_EQ(r.output, "SIGSEGV");
+}
+
+}  // namespace
+}  // namespace peg3d
