@@ -12,6 +12,10 @@ if(PEG3D_SANITIZE)
                                                     -fno-sanitize-recover=all)
   target_link_options(peg3d_sanitizers INTERFACE -fsanitize=${_peg3d_san})
 endif()
+# Fuzzing: coverage instrumentation for everything; only the fuzz targets link libFuzzer's main.
+if(PEG3D_FUZZ)
+  target_compile_options(peg3d_sanitizers INTERFACE -fsanitize=fuzzer-no-link)
+endif()
 
 # peg3d_add_executable(name SOURCES ...): a thin executable linking the library.
 function(peg3d_add_executable name)

@@ -57,10 +57,15 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
   std::istringstream lines(head.substr(0, end));
   std::string line;
   bool ascii = true;
+  struct Property {
+    int size = 0;        // bytes of a scalar, or of a list's items
+    int count_size = 0;  // bytes of a list's count; 0 for a scalar
+  };
   struct Element {
     std::string name;
     std::uint64_t count = 0;
     std::uint64_t min_bytes = 0;  // of one element
+    std::vector<Property> properties;
   };
   std::vector<Element> elements;
   const auto type_size = [&](const std::string& t) -> int {
@@ -73,10 +78,20 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
     }
     refuse(file, fmt::format("has a PLY property of unknown type '{}'", shown(t)));
   };
+  bool first = true;
   while (std::getline(lines, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
     std::string key;
     words >> key;
+    // assimp 5.2 loops forever on some header lines it does not know (found by fuzzing): allow only the
+    // format's own keywords, and printable text.
+    const bool printable = std::all_of(line.begin(), line.end(), [](char c) { return c == '\t' || (c >= 0x20 && c < 0x7f); });
+    if (first ? key != "ply" : (!printable || (key != "format" && key != "comment" && key != "obj_info" && key != "element" &&
+                                               key != "property" && !key.empty()))) {
+      refuse(file, fmt::format("is malformed: its PLY header has a line that is not {}", first ? "'ply' first" : "a PLY keyword"));
+    }
+    first = false;
     if (key == "format") {
       std::string f;
       words >> f;
@@ -93,9 +108,10 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
       if (type == "list") {
         std::string count_type, item_type;
         words >> count_type >> item_type;
-        type_size(item_type);
+        elements.back().properties.push_back({type_size(item_type), type_size(count_type)});
         elements.back().min_bytes += ascii ? 2 : std::uint64_t(type_size(count_type));  // an empty list
       } else {
+        elements.back().properties.push_back({type_size(type), 0});
         elements.back().min_bytes += ascii ? 2 : std::uint64_t(type_size(type));  // ascii: a digit and a space
       }
     }
@@ -108,6 +124,56 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
     }
     need += e.count * e.min_bytes;
     if (need > body) refuse(file, fmt::format("declares PLY elements needing at least {} bytes, but its body holds {}", need, body));
+  }
+  // The lists' lengths are in the body: walk it, so no list asks the importer for more items than follow.
+  if (size > (std::uintmax_t{256} << 20) || body_start == std::string::npos) return;
+  const std::string all = read_input_file(file, "mesh file", std::size_t{256} << 20);
+  const bool big_endian = head.find("binary_big_endian") < end;
+  std::size_t at = body_start + 1;
+  const auto list_too_long = [&](const Element& e, std::uint64_t i, std::uint64_t n) {
+    refuse(file, fmt::format("is malformed: PLY element '{}' {} has a list of {} items, more than the file holds", shown(e.name), i, n));
+  };
+  if (ascii) {
+    const auto next_token = [&]() -> std::string_view {
+      while (at < all.size() && std::isspace(static_cast<unsigned char>(all[at]))) ++at;
+      const std::size_t start = at;
+      while (at < all.size() && !std::isspace(static_cast<unsigned char>(all[at]))) ++at;
+      return std::string_view(all).substr(start, at - start);
+    };
+    for (const Element& e : elements) {
+      for (std::uint64_t i = 0; i < e.count; ++i) {
+        for (const Property& p : e.properties) {
+          const std::string_view token = next_token();
+          if (token.empty()) return;  // cut short: the importer says so
+          if (p.count_size == 0) continue;
+          std::uint64_t n = 0;
+          if (!parse_count(std::string(token), n)) return;
+          if (n > (all.size() - at) / 2 + 1) list_too_long(e, i, n);
+          for (std::uint64_t k = 0; k < n; ++k) next_token();
+        }
+      }
+    }
+    return;
+  }
+  for (const Element& e : elements) {
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      for (const Property& p : e.properties) {
+        if (p.count_size == 0) {
+          at += std::size_t(p.size);
+          continue;
+        }
+        if (at + std::size_t(p.count_size) > all.size()) return;
+        std::uint64_t n = 0;
+        for (int k = 0; k < p.count_size; ++k) {
+          const auto byte = static_cast<unsigned char>(all[at + std::size_t(big_endian ? k : p.count_size - 1 - k)]);
+          n = (n << 8) | byte;
+        }
+        at += std::size_t(p.count_size);
+        if (n > (all.size() - at) / std::size_t(p.size)) list_too_long(e, i, n);
+        at += std::size_t(n) * std::size_t(p.size);
+      }
+      if (at > all.size()) return;
+    }
   }
 }
 
