@@ -1,6 +1,23 @@
 #!/usr/bin/env bash
 # Builds everything and runs the whole test suite with CTest; exits non-zero on any failure.
+#   tools/test.sh [CTEST ARGS]             Release build in build/
+#   tools/test.sh --sanitize [CTEST ARGS]  the same suite under AddressSanitizer and UndefinedBehaviorSanitizer,
+#                                          in a build folder of its own (build-sanitize/; asserts on, -O1)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [[ "${1:-}" == "--sanitize" ]]; then
+  shift
+  tools/deps.sh
+  if [[ ! -f build-sanitize/CMakeCache.txt ]]; then
+    # Benchmarks are timed, never checked: the sanitized build leaves them out and builds everything tested.
+    cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+          -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=ON >/dev/null
+  fi
+  cmake --build build-sanitize --parallel "$(nproc)" >&2
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  ctest --test-dir build-sanitize --output-on-failure --parallel "$(nproc)" "$@"
+  exit
+fi
 tools/build.sh
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" "$@"
