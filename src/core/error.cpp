@@ -15,7 +15,12 @@ std::string format_input_error(const std::filesystem::path& file, int line, cons
 
 std::string shown(std::string_view text) {
   constexpr std::size_t kMax = 40;
-  return text.size() <= kMax ? std::string(text) : std::string(text.substr(0, kMax - 3)) + "...";
+  std::string out = text.size() <= kMax ? std::string(text) : std::string(text.substr(0, kMax - 3)) + "...";
+  // Binary garbage must not reach a terminal as control bytes.
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+  }
+  return out;
 }
 
 InputError::InputError(const std::string& message) : std::runtime_error(message), message_(message) {}

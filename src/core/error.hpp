@@ -36,8 +36,8 @@ class InputError : public std::runtime_error {
   std::string field_;
 };
 
-/// A piece of the user's text as a message quotes it: at most 40 characters ("..." marks a cut), so a
-/// megabyte-long key or name cannot flood a terminal.
+/// A piece of the user's text as a message quotes it: at most 40 characters ("..." marks a cut), bytes that
+/// are not printable ASCII as '?', so neither a megabyte-long key nor binary garbage can flood a terminal.
 std::string shown(std::string_view text);
 
 /// "FILE:LINE: FIELD: message" with the empty parts left out (the format of InputError::what()).

@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -45,15 +46,37 @@ bool parse_count(const std::string& word, std::uint64_t& out) {
   return true;
 }
 
+// A decimal number as text formats write them (sign, digits, point, exponent; or nan, inf).
+bool is_number(std::string_view t) {
+  if (t.empty() || t.size() > 64) return false;
+  const std::string text(t);
+  char* end = nullptr;
+  (void)std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+
 // ---- PLY: element counts times the smallest size of one element must fit in the body. ----
 
 void check_ply(const fs::path& file, std::uintmax_t size) {
   const std::string head = read_prefix(file, 1 << 20);
-  // assimp 5.2's PLY reader loops forever on a header cut short before "end_header".
-  const std::size_t end = head.find("end_header");
-  if (end == std::string::npos) refuse(file, "is malformed: its PLY header has no end_header");
-  const std::size_t body_start = head.find('\n', end);
-  const std::uintmax_t body = body_start == std::string::npos ? 0 : size - (body_start + 1);
+  // assimp 5.2's PLY reader loops forever on a header cut short before "end_header", on some lines it does not
+  // know, and on an "end_header" not followed by a line break (the last two found by fuzzing): the header must
+  // be lines of the format's own keywords, ended by a line that is exactly "end_header".
+  std::size_t end = std::string::npos, body_start = std::string::npos;
+  for (std::size_t at = 0; at < head.size();) {
+    const std::size_t eol = head.find('\n', at);
+    if (eol == std::string::npos) break;
+    std::string_view l = std::string_view(head).substr(at, eol - at);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    if (l == "end_header") {
+      end = at;
+      body_start = eol;
+      break;
+    }
+    at = eol + 1;
+  }
+  if (end == std::string::npos) refuse(file, "is malformed: its PLY header has no end_header line");
+  const std::uintmax_t body = size - (body_start + 1);
   std::istringstream lines(head.substr(0, end));
   std::string line;
   bool ascii = true;
@@ -84,11 +107,20 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
     std::istringstream words(line);
     std::string key;
     words >> key;
-    // assimp 5.2 loops forever on some header lines it does not know (found by fuzzing): allow only the
-    // format's own keywords, and printable text.
     const bool printable = std::all_of(line.begin(), line.end(), [](char c) { return c == '\t' || (c >= 0x20 && c < 0x7f); });
-    if (first ? key != "ply" : (!printable || (key != "format" && key != "comment" && key != "obj_info" && key != "element" &&
-                                               key != "property" && !key.empty()))) {
+    std::vector<std::string> all_words;
+    for (std::istringstream again(line); again >> all_words.emplace_back();) {
+    }
+    all_words.pop_back();
+    const std::size_t n = all_words.size();
+    const bool known = first ? line == "ply"
+                             : key == "comment" || key == "obj_info" ||
+                                   (key == "format" && n == 3 && all_words[2] == "1.0" &&
+                                    (all_words[1] == "ascii" || all_words[1] == "binary_little_endian" ||
+                                     all_words[1] == "binary_big_endian")) ||
+                                   (key == "element" && n == 3) ||
+                                   (key == "property" && !elements.empty() && (n == 3 || (n == 5 && all_words[1] == "list")));
+    if (!printable || !known) {
       refuse(file, fmt::format("is malformed: its PLY header has a line that is not {}", first ? "'ply' first" : "a PLY keyword"));
     }
     first = false;
@@ -145,11 +177,21 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
         for (const Property& p : e.properties) {
           const std::string_view token = next_token();
           if (token.empty()) return;  // cut short: the importer says so
+          // assimp crashes on some bytes that are not text inside an ASCII body (found by fuzzing).
+          if (!is_number(token)) {
+            refuse(file, fmt::format("is malformed: PLY element '{}' {} holds '{}', not a number", shown(e.name), i, shown(token)));
+          }
           if (p.count_size == 0) continue;
           std::uint64_t n = 0;
           if (!parse_count(std::string(token), n)) return;
           if (n > (all.size() - at) / 2 + 1) list_too_long(e, i, n);
-          for (std::uint64_t k = 0; k < n; ++k) next_token();
+          for (std::uint64_t k = 0; k < n; ++k) {
+            const std::string_view item = next_token();
+            if (item.empty()) return;
+            if (!is_number(item)) {
+              refuse(file, fmt::format("is malformed: PLY element '{}' {} holds '{}', not a number", shown(e.name), i, shown(item)));
+            }
+          }
         }
       }
     }
