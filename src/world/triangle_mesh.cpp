@@ -98,7 +98,7 @@ TriangleMesh import_checked(const std::filesystem::path& file) {
   if (scene == nullptr) {
     const std::string why = importer.GetErrorString();
     // assimp reports a failed allocation (under the child's memory cap) as its error string.
-    if (why.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
+    if (why == "std::bad_alloc") throw std::bad_alloc();  // the whole message, never text quoted from the file
     throw MeshError(fmt::format("mesh file '{}' cannot be read: {}", name, why));
   }
   if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
@@ -162,7 +162,12 @@ TriangleMesh import_checked(const std::filesystem::path& file) {
 
 TriangleMesh import_mesh_in_process(const std::filesystem::path& file) {
   check_file(file);
-  return import_checked(file);
+  try {
+    return import_checked(file);
+  } catch (const std::bad_alloc&) {
+    throw MeshError(fmt::format("mesh file '{}' needed more memory than there is to import: it is malformed or too large",
+                                file.string()));
+  }
 }
 
 TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimits& limits) {
