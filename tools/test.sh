@@ -10,8 +10,10 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   tools/deps.sh
   if [[ ! -f build-sanitize/CMakeCache.txt ]]; then
     # Benchmarks are timed, never checked: the sanitized build leaves them out and builds everything tested.
+    # Warnings are the Release build's check (-Werror there); GCC 12 at -O1 with ASan warns falsely inside
+    # <regex> (maybe-uninitialized), so here they stay warnings.
     cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-          -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=ON >/dev/null
+          -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF >/dev/null
   fi
   cmake --build build-sanitize --parallel "$(nproc)" >&2
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
