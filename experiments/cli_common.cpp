@@ -1,11 +1,15 @@
 #include "cli_common.hpp"
 
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -14,6 +18,96 @@
 extern char** environ;
 
 namespace peg3d::cli {
+namespace {
+
+// The signal that asked the sweep to stop; written by the handler, so a lock-free atomic (async-signal-safe).
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+
+void on_stop_signal(int sig) { g_stop_signal.store(sig, std::memory_order_relaxed); }
+
+/// An argument as a POSIX shell reads it back: as is when it holds only safe characters, else single-quoted.
+std::string shell_quoted(const std::string& arg) {
+  bool safe = !arg.empty();
+  for (const char c : arg) {
+    safe = safe && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    std::string_view("_-./=:,+@%").find(c) != std::string_view::npos);
+  }
+  if (safe) return arg;
+  std::string quoted = "'";
+  for (const char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+/// The command line that resumes this sweep: argv as given, plus --resume unless it is there already.
+std::string resume_command(int argc, char** argv) {
+  std::string command;
+  bool has_resume = false;
+  for (int i = 0; i < argc; ++i) {
+    has_resume = has_resume || std::string_view(argv[i]) == "--resume";
+    command += (i == 0 ? "" : " ") + shell_quoted(argv[i]);
+  }
+  return has_resume ? command : command + " --resume";
+}
+
+}  // namespace
+
+struct StopOnSignals::Saved {
+  struct sigaction interrupt {};
+  struct sigaction terminate {};
+  bool interrupt_set = false, terminate_set = false;
+};
+
+StopOnSignals::StopOnSignals() : saved_(std::make_unique<Saved>()) {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  for (auto [sig, old, set] : {std::tuple{SIGINT, &saved_->interrupt, &saved_->interrupt_set},
+                                  std::tuple{SIGTERM, &saved_->terminate, &saved_->terminate_set}}) {
+    if (sigaction(sig, nullptr, old) != 0 || old->sa_handler == SIG_IGN) continue;  // ignored: stays so
+    *set = sigaction(sig, &action, nullptr) == 0;
+  }
+}
+
+StopOnSignals::~StopOnSignals() {
+  if (saved_->interrupt_set) sigaction(SIGINT, &saved_->interrupt, nullptr);
+  if (saved_->terminate_set) sigaction(SIGTERM, &saved_->terminate, nullptr);
+}
+
+experiment::StopCheck stop_check() {
+  return [] { return g_stop_signal.load(std::memory_order_relaxed) != 0; };
+}
+
+int stop_signal() { return g_stop_signal.load(std::memory_order_relaxed); }
+
+std::unique_ptr<experiment::RunJournal> open_journal(const SweepOptions& o, std::size_t runs, const nlohmann::json& setup) {
+  const std::filesystem::path file = o.out / experiment::kJournalFileName;
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(std::filesystem::symlink_status(file, ec));
+  if (o.resume) {
+    if (!exists) {
+      throw InputError(fmt::format("--resume: there is no journal {} to resume (a sweep that finished removes its "
+                                   "journal; run without --resume to start one)",
+                                   file.string()));
+    }
+    auto journal = experiment::RunJournal::resume(file, runs, setup);
+    if (journal->dropped_torn_line()) {
+      std::fprintf(stderr, "note: dropped the torn last line of %s (a run being written when the sweep died)\n",
+                   file.string().c_str());
+    }
+    std::fprintf(stderr, "resuming: %zu of %zu runs are in %s; running the other %zu\n", journal->recorded(), runs,
+                 file.string().c_str(), runs - journal->recorded());
+    return journal;
+  }
+  if (exists) {
+    throw InputError(fmt::format("--out {}: holds {}, the journal of an unfinished sweep: pass --resume to finish "
+                                 "it, or choose another --out",
+                                 o.out.string(), file.filename().string()));
+  }
+  prepare_output_dir(o.out);
+  return experiment::RunJournal::create(file, runs, setup);
+}
 
 void add_sweep_options(CLI::App& app, SweepOptions& o) {
   app.add_option("--map", o.map, "map file (YAML, docs/maps.md)")->capture_default_str();
@@ -27,6 +121,9 @@ void add_sweep_options(CLI::App& app, SweepOptions& o) {
   app.add_option("--set", o.sets, "override a configuration field: key=value (repeatable; --list-config shows them)");
   app.add_flag("--no-cache", o.no_cache, "rebuild the world instead of using the on-disk cache");
   app.add_flag("--plain-progress", o.plain_progress, "progress as plain lines even on a terminal");
+  app.add_flag("--resume", o.resume,
+               "finish the interrupted sweep whose journal (runs.journal) is in --out: same flags, only the missing "
+               "runs are run");
 }
 
 int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
@@ -40,6 +137,18 @@ int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()
   }
   try {
     return body();
+  } catch (const experiment::SweepInterrupted& e) {
+    const int sig = stop_signal();
+    const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a stop request";
+    if (e.journal().empty()) {
+      std::fprintf(stderr, "interrupted by %s: %zu of %zu runs had finished; no result files written\n", name, e.kept(),
+                   e.total());
+    } else {
+      std::fprintf(stderr,
+                   "interrupted by %s: kept %zu of %zu runs in %s; no result files written\nresume with: %s\n", name,
+                   e.kept(), e.total(), e.journal().string().c_str(), resume_command(argc, argv).c_str());
+    }
+    return sig > 0 ? 128 + sig : 1;
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

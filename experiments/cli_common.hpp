@@ -1,8 +1,9 @@
 #pragma once
 // What the peg3d programs share: the common flags of the experiment binaries, where the data files (maps,
 // meshes, plot scripts) are, loading a map into an Arena, and turning errors into exit codes: 2 for
-// exactly the errors caused by input (peg3d::InputError: flags, maps, meshes, configurations, policy files),
-// 1 for anything else.
+// exactly the errors caused by input (peg3d::InputError: flags, maps, meshes, configurations, policy files,
+// journals), 1 for anything else, 128 + the signal (130 for SIGINT, 143 for SIGTERM) for a sweep stopped by
+// one. The signal handlers live here, not in the library: they only set a flag the sweeps poll.
 
 #include <cstdint>
 #include <filesystem>
@@ -14,6 +15,8 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.hpp"
+#include "experiment/progress_reporter.hpp"
+#include "experiment/run_journal.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::cli {
@@ -28,13 +31,16 @@ struct SweepOptions {
   std::vector<std::string> sets;
   bool no_cache = false;
   bool plain_progress = false;
+  bool resume = false;  ///< finish the sweep whose journal is in `out`
 };
 
-/// --map --out --seed --episodes --repeats --threads --set --no-cache --plain-progress
+/// --map --out --seed --episodes --repeats --threads --set --no-cache --plain-progress --resume
 void add_sweep_options(CLI::App& app, SweepOptions& o);
 
 /// Parses argv and runs body. Prints "error: ..." on stderr and returns 2 for bad flags and every
-/// peg3d::InputError, 1 for any other failure; otherwise the body's status.
+/// peg3d::InputError, 1 for any other failure; otherwise the body's status. A sweep stopped by a signal
+/// (experiment::SweepInterrupted) prints what was kept and the command that resumes it (argv plus
+/// --resume), and returns 128 + the signal.
 int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
 /// The folder of peg3d's data files: $PEG3D_DATA_DIR when set, else share/peg3d beside the executable's
@@ -51,6 +57,48 @@ std::shared_ptr<const world::Arena> load_arena(const std::filesystem::path& map,
 
 /// Creates the output folder (and parents). Throws InputError when it exists as a file or cannot be made.
 void prepare_output_dir(const std::filesystem::path& dir);
+
+/// The sweep's journal, `out/runs.journal` (experiment/run_journal.hpp). Without --resume: creates `out`
+/// and a new journal; an existing journal is an InputError (pass --resume, or choose another --out: runs of
+/// two sweeps are never mixed). With --resume: reads the journal back (InputError when there is none or it
+/// belongs to another setup) and says on stderr how many runs are done.
+std::unique_ptr<experiment::RunJournal> open_journal(const SweepOptions& o, std::size_t runs, const nlohmann::json& setup);
+
+/// The stop request the sweeps poll: true once SIGINT or SIGTERM arrived while a StopOnSignals was alive.
+experiment::StopCheck stop_check();
+/// The signal that asked to stop (SIGINT, SIGTERM); 0 when none did.
+int stop_signal();
+
+/// While alive, SIGINT and SIGTERM ask the sweep to stop (stop_check) instead of ending the program at once.
+/// The handler only stores the signal. It is installed with SA_RESETHAND, so a second Ctrl-C ends the
+/// program as usual (the journal is safe: a torn last line is dropped on resume). A signal ignored before
+/// (a background job of a script) stays ignored. The previous handlers come back on destruction.
+class StopOnSignals {
+ public:
+  StopOnSignals();
+  ~StopOnSignals();
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+ private:
+  struct Saved;
+  std::unique_ptr<Saved> saved_;
+};
+
+/// Runs a sweep with SIGINT and SIGTERM turned into stop requests, then closes the progress line, also when
+/// the sweep was interrupted (SweepInterrupted goes on to guarded_main).
+template <class Sweep>
+auto run_stoppable(experiment::ProgressReporter& progress, Sweep&& sweep) {
+  const StopOnSignals signals;
+  try {
+    auto result = sweep();
+    progress.finish();
+    return result;
+  } catch (const experiment::SweepInterrupted&) {
+    progress.finish();
+    throw;
+  }
+}
 
 /// Runs `/usr/bin/python3 <data_dir>/tools/<script> <dir>` (an argument vector, no shell); false (with a
 /// warning) when it fails.

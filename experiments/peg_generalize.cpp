@@ -8,6 +8,7 @@
 #include "experiment/paper_experiment.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
+#include "experiment/run_info.hpp"
 
 using namespace peg3d;
 
@@ -40,16 +41,21 @@ int main(int argc, char** argv) {
     const game::Sim train_sim(train, config);
     std::vector<experiment::EvalMap> evals;
     for (std::size_t m = 0; m < arenas.size(); ++m) evals.push_back({names[m], game::Sim(arenas[m], config)});
-    cli::prepare_output_dir(o.out);
 
-    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads};
+    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads, {}};
+    const std::size_t jobs = experiment::generalize_run_count(train_sim, s);
+    // The journal records every finished run; --resume reads it back and runs only the missing ones.
+    const nlohmann::json setup = experiment::generalize_setup(train_sim, evals, s);
+    const auto journal = cli::open_journal(o, jobs, setup);
+    s.control = {journal.get(), cli::stop_check()};
+
     std::size_t eval_count = 0;
     for (const auto& e : arenas) eval_count += e->map().scenarios.size();
-    const std::size_t jobs = train->map().scenarios.size() * o.repeats;
-    experiment::ProgressReporter progress(jobs, jobs * (o.episodes + 1 + eval_count), stderr, o.plain_progress);
+    const std::size_t left = jobs - journal->recorded();
+    experiment::ProgressReporter progress(left, left * (o.episodes + 1 + eval_count), stderr, o.plain_progress);
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>> policies;
-    const auto records = experiment::run_generalization(train_sim, evals, s, &progress, &policies);
-    progress.finish();
+    const auto records = cli::run_stoppable(
+        progress, [&] { return experiment::run_generalization(train_sim, evals, s, &progress, &policies); });
     const auto summary = experiment::summarize_generalization(records, names);
     std::filesystem::create_directories(o.out / "policies");
     for (const auto& [key, model] : policies) {
@@ -57,6 +63,11 @@ int main(int argc, char** argv) {
     }
     experiment::write_generalization_csv(o.out / "generalization.csv", records);
     experiment::write_json(o.out / "summary.json", summary);
+    std::vector<std::pair<std::string, const world::Arena*>> maps{{"train", train.get()}};
+    for (std::size_t m = 0; m < arenas.size(); ++m) maps.emplace_back("eval " + names[m], arenas[m].get());
+    experiment::write_run_info(o.out / "run_info.json", "generalize", maps,
+                               {{"setup", setup}, {"seeds", experiment::generalize_seeds(train_sim, s)}});
+    journal->remove();  // complete: the files above hold every run
     std::printf("trained on %s (%zu scenarios x %d repeats, %d episodes each)\n", o.map.string().c_str(),
                 train->map().scenarios.size(), o.repeats, o.episodes);
     std::fputs(experiment::generalization_table(summary).c_str(), stdout);

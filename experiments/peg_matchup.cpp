@@ -11,6 +11,7 @@
 #include "experiment/paper_experiment.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
+#include "experiment/run_info.hpp"
 
 using namespace peg3d;
 
@@ -59,17 +60,23 @@ int main(int argc, char** argv) {
     const auto arena = cli::load_arena(o.map, !o.no_cache);
     // Every pairing's Sim checks the map's starts against its agents before any run.
     const std::vector<game::Sim> sims = experiment::make_matchup_sims(arena, config, s);
-    cli::prepare_output_dir(o.out);
+    const std::size_t jobs = experiment::matchup_run_count(*arena, s);
+    // The journal records every finished run; --resume reads it back and runs only the missing ones.
+    const nlohmann::json setup = experiment::matchup_setup(*arena, config, s);
+    const auto journal = cli::open_journal(o, jobs, setup);
+    s.control = {journal.get(), cli::stop_check()};
 
-    const std::size_t jobs = arena->map().scenarios.size() * o.repeats;
-    experiment::ProgressReporter progress(jobs, jobs * (o.episodes + 1 + s.pursuers.size() * s.evaders.size()), stderr,
+    const std::size_t left = jobs - journal->recorded();
+    experiment::ProgressReporter progress(left, left * (o.episodes + 1 + s.pursuers.size() * s.evaders.size()), stderr,
                                           o.plain_progress);
-    const auto records = experiment::run_matchups(sims, s, &progress);
-    progress.finish();
+    const auto records = cli::run_stoppable(progress, [&] { return experiment::run_matchups(sims, s, &progress); });
     const auto summary = experiment::summarize_matchups(records, s);
     experiment::write_matchups_csv(o.out / "matchups.csv", records);
     experiment::write_matchup_agents_csv(o.out / "agents.csv", records);
     experiment::write_json(o.out / "summary.json", summary);
+    experiment::write_run_info(o.out / "run_info.json", "matchup", {{"map", arena.get()}},
+                               {{"setup", setup}, {"seeds", experiment::matchup_seeds(*arena, s)}});
+    journal->remove();  // complete: the files above hold every run
     std::fputs(experiment::matchup_table(summary).c_str(), stdout);
     std::printf("\nresults in %s\n", o.out.string().c_str());
     return 0;

@@ -11,6 +11,7 @@
 #include "experiment/paper_experiment.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
+#include "experiment/run_info.hpp"
 
 using namespace peg3d;
 
@@ -39,18 +40,21 @@ int main(int argc, char** argv) {
     const auto& scenarios = arena->map().scenarios;
     // One Sim per algorithm; each checks every start against its agents' radii before any run.
     const std::vector<game::Sim> sims = experiment::make_sims(arena, algs);
-    cli::prepare_output_dir(o.out);
+    experiment::SweepSettings settings{o.seed, o.episodes, o.repeats, o.threads, 0, {}};
+    const std::size_t runs = experiment::paper_run_count(*arena, algs, settings);
+    // The journal records every finished run; --resume reads it back and runs only the missing ones.
+    const auto journal = cli::open_journal(o, runs, experiment::paper_setup(*arena, algs, settings));
+    settings.control = {journal.get(), cli::stop_check()};
     const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
-    experiment::SweepSettings settings{o.seed, o.episodes, o.repeats, o.threads, 0};
-    const std::size_t runs = scenarios.size() * algs.size() * o.repeats;
-    experiment::ProgressReporter progress(runs, runs * (o.episodes + 1), stderr, o.plain_progress);
+    const std::size_t left = runs - journal->recorded();
+    experiment::ProgressReporter progress(left, left * (o.episodes + 1), stderr, o.plain_progress);
     const auto run_start = std::chrono::steady_clock::now();
-    experiment::PaperResults results = experiment::run_paper_experiment(algs, sims, settings, &progress);
-    progress.finish();
+    experiment::PaperResults results =
+        cli::run_stoppable(progress, [&] { return experiment::run_paper_experiment(algs, sims, settings, &progress); });
     const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
 
-    // Outputs: nothing is written before every run has finished.
+    // Outputs: nothing but the journal is written before every run has finished.
     std::vector<std::string> scenario_names, algorithm_names;
     for (const auto& s : scenarios) scenario_names.push_back(s.name);
     nlohmann::ordered_json config{{"map", cli::resolve_input(o.map).string()}, {"seed", o.seed}, {"episodes", o.episodes},
@@ -83,6 +87,9 @@ int main(int argc, char** argv) {
                                                                          {"steps_per_second", results.steps / run_seconds},
                                                                          {"threads", o.threads},
                                                                          {"world_cache", arena->stats().cache_status}});
+    experiment::write_run_info(o.out / "run_info.json", "paper", {{"map", arena.get()}},
+                               experiment::paper_run_info(settings));
+    journal->remove();  // complete: the files above hold every run
     if (plots) cli::run_plot_script("plot_paper.py", o.out);
 
     std::fputs(experiment::summary_table(summary).c_str(), stdout);

@@ -5,13 +5,15 @@
 
 #include <fmt/format.h>
 
-#include "core/random.hpp"
 #include "core/atomic_file.hpp"
+#include "core/config_json.hpp"
+#include "core/random.hpp"
 #include "experiment/csv_writer.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/parallel_runner.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
+#include "experiment/run_info.hpp"
 #include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
 
@@ -29,6 +31,30 @@ std::vector<std::string> eval_map_names(const std::vector<std::shared_ptr<const 
   return names;
 }
 
+std::size_t generalize_run_count(const game::Sim& train, const GeneralizeSettings& s) {
+  return train.arena().map().scenarios.size() * static_cast<std::size_t>(s.repeats);
+}
+
+nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s) {
+  nlohmann::json maps = nlohmann::json::array();
+  for (const EvalMap& m : evals) maps.push_back({{"name", m.name}, {"map_hash", map_content_hash(m.sim.arena())}});
+  return {{"experiment", "generalize"},
+          {"peg3d", peg3d_build_json()},
+          {"map_hash", map_content_hash(train.arena())},
+          {"eval_maps", std::move(maps)},
+          {"seed", s.seed},
+          {"episodes", s.episodes},
+          {"repeats", s.repeats},
+          {"config", config::to_json(train.config())}};
+}
+
+nlohmann::ordered_json generalize_seeds(const game::Sim& train, const GeneralizeSettings& s) {
+  return {{"root", s.seed},
+          {"derivation", "run seed = derive_seed(root, {scenario index, repeat}); training as a trial with the run "
+                         "seed; evaluation on map m, scenario k = derive_seed(run seed, {20, m, k})"},
+          {"runs", scenario_run_seeds(train.arena().map().scenarios, s.repeats, s.seed)}};
+}
+
 std::vector<GeneralizeRecord> run_generalization(
     const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s, ProgressReporter* progress,
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep) {
@@ -36,27 +62,64 @@ std::vector<GeneralizeRecord> run_generalization(
   const std::size_t jobs = scenarios.size() * static_cast<std::size_t>(s.repeats);
   std::vector<std::vector<GeneralizeRecord>> per_job(jobs);
   std::vector<TrialResult> kept(scenarios.size());
-  run_indexed(jobs, s.threads, [&](std::size_t i) {
+  const auto play_run = [&](std::size_t i) {
     const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
     const std::uint64_t seed = run_seed(s.seed, sc, rep);
-    TrialResult t = run_trial(train, {&scenarios[std::size_t(sc)], seed, s.episodes, false}, progress);
+    TrialResult t = run_trial(train, {&scenarios[std::size_t(sc)], seed, s.episodes, false, s.control.stop}, progress);
+    std::vector<GeneralizeRecord> records;
     for (std::size_t m = 0; m < evals.size(); ++m) {
       const game::Sim& sim = evals[m].sim;
       game::SimState state(sim);
       const auto& eval_scenarios = sim.arena().map().scenarios;
       for (std::size_t k = 0; k < eval_scenarios.size(); ++k) {
+        throw_if_stopped(s.control.stop);
         const world::Scenario& es = eval_scenarios[k];
         game::Lineup lineup;
         game::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
         game::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
-        per_job[i].push_back({scenarios[std::size_t(sc)].name, rep, evals[m].name, es.name,
-                              evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}))});
+        records.push_back({scenarios[std::size_t(sc)].name, rep, evals[m].name, es.name,
+                           evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}))});
         if (progress) progress->episode_done();
       }
     }
+    per_job[i] = std::move(records);
     if (rep == 0) kept[std::size_t(sc)] = std::move(t);
     if (progress) progress->run_done();
-  });
+  };
+  run_journaled(
+      jobs, s.threads, s.control, play_run,
+      // The run's games and, for repeat 0, the trained models (saved as policies).
+      [&](std::size_t i) {
+        nlohmann::json games = nlohmann::json::array();
+        for (const GeneralizeRecord& r : per_job[i]) {
+          games.push_back({{"train_scenario", r.train_scenario},
+                           {"repeat", r.repeat},
+                           {"eval_map", r.eval_map},
+                           {"eval_scenario", r.eval_scenario},
+                           {"result", episode_to_json(r.result)}});
+        }
+        nlohmann::json data{{"games", std::move(games)}};
+        if (i % static_cast<std::size_t>(s.repeats) == 0) {
+          const TrialResult& t = kept[i / static_cast<std::size_t>(s.repeats)];
+          data["pursuer_models"] = role_models_to_json(t.pursuer_models);
+          data["evader_models"] = role_models_to_json(t.evader_models);
+        }
+        return data;
+      },
+      [&](std::size_t i, const nlohmann::json& data) {
+        std::vector<GeneralizeRecord> records;
+        for (const auto& g : data.at("games")) {
+          records.push_back({g.at("train_scenario").get<std::string>(), g.at("repeat").get<int>(),
+                             g.at("eval_map").get<std::string>(), g.at("eval_scenario").get<std::string>(),
+                             episode_from_json(g.at("result"))});
+        }
+        per_job[i] = std::move(records);
+        if (i % static_cast<std::size_t>(s.repeats) == 0) {
+          TrialResult& t = kept[i / static_cast<std::size_t>(s.repeats)];
+          t.pursuer_models = role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);
+          t.evader_models = role_models_from_json(data.at("evader_models"), game::Role::kEvader);
+        }
+      });
   if (keep) {
     for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
       for (const auto& [role, models] :

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/run_journal.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
@@ -25,6 +26,7 @@ struct GeneralizeSettings {
   int episodes = 200;
   int repeats = 5;
   int threads = 0;
+  SweepControl control;  ///< journal and stop request (none by default)
 };
 
 struct GeneralizeRecord {
@@ -45,9 +47,23 @@ struct EvalMap {
 /// "-2", "-3", ... to repeats.
 std::vector<std::string> eval_map_names(const std::vector<std::shared_ptr<const world::Arena>>& arenas);
 
+/// Runs in the sweep (training scenarios x repeats); run i is scenario i / repeats, repeat i % repeats.
+std::size_t generalize_run_count(const game::Sim& train, const GeneralizeSettings& settings);
+
+/// Everything the sweep's results depend on, for its journal header and run_info.json: the experiment, the
+/// peg3d build, the training map's content hash, each evaluation map's name and content hash, seed, episodes,
+/// repeats and the configuration.
+nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMap>& evals,
+                                const GeneralizeSettings& settings);
+
+/// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
+nlohmann::ordered_json generalize_seeds(const game::Sim& train, const GeneralizeSettings& settings);
+
 /// Trains per training scenario and repeat on `train`, evaluates the frozen models greedily on every scenario
 /// of every evaluation map. The trained models of repeat 0 are returned through `keep` as
-/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...) when not null.
+/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...) when not null. With settings.control's
+/// journal, finished runs are recorded as they finish and runs it holds are read back instead of run; a stop
+/// request throws SweepInterrupted.
 std::vector<GeneralizeRecord> run_generalization(
     const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& settings,
     ProgressReporter* progress = nullptr,

@@ -1,19 +1,24 @@
 #include "experiment/matchup_experiment.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
+#include "core/config_json.hpp"
+#include "core/hash.hpp"
 #include "core/random.hpp"
 #include "experiment/csv_writer.hpp"
 #include "experiment/paper_experiment.hpp"
 #include "experiment/parallel_runner.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
+#include "experiment/run_info.hpp"
 #include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
 #include "game/lineup.hpp"
+#include "game/policy_io.hpp"
 
 namespace peg3d::experiment {
 
@@ -52,6 +57,41 @@ std::vector<game::Sim> make_matchup_sims(const std::shared_ptr<const world::Aren
   return sims;
 }
 
+std::size_t matchup_run_count(const world::Arena& arena, const MatchupSettings& s) {
+  return arena.map().scenarios.size() * static_cast<std::size_t>(s.repeats);
+}
+
+nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& base, const MatchupSettings& s) {
+  nlohmann::json pursuers = nlohmann::json::array(), evaders = nlohmann::json::array();
+  for (const auto p : s.pursuers) pursuers.push_back(game::to_string(p));
+  for (const auto e : s.evaders) evaders.push_back(game::to_string(e));
+  const auto policy_hash = [](const std::shared_ptr<game::FaclModel>& m) {
+    if (!m) return nlohmann::json(nullptr);
+    Fnv1a h;
+    h.add_text(game::policy_to_json(*m).dump());
+    return nlohmann::json(fmt::format("fnv1a64:{:016x}", h.value()));
+  };
+  return {{"experiment", "matchup"},
+          {"peg3d", peg3d_build_json()},
+          {"map_hash", map_content_hash(arena)},
+          {"seed", s.seed},
+          {"episodes", s.episodes},
+          {"repeats", s.repeats},
+          {"pursuers", std::move(pursuers)},
+          {"evaders", std::move(evaders)},
+          {"pursuer_policy_hash", policy_hash(s.pursuer_policy)},
+          {"evader_policy_hash", policy_hash(s.evader_policy)},
+          {"config", config::to_json(base)}};
+}
+
+nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& s) {
+  return {{"root", s.seed},
+          {"derivation", "run seed = derive_seed(root, {scenario index, repeat}); FACL training as a trial with the run "
+                         "seed; pairing (p, e) = derive_seed(run seed, {10, p, e}) for the pursuers, derive_seed(that, "
+                         "{1}) for the evaders, derive_seed(that, {2}) for the episode"},
+          {"runs", scenario_run_seeds(arena.map().scenarios, s.repeats, s.seed)}};
+}
+
 std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& s,
                                         ProgressReporter* progress) {
   const game::Sim& training = sims.front();
@@ -71,13 +111,13 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
     if (m) r.models = {m}, r.of_agent = {0};
     return r;
   };
-  run_indexed(jobs, s.threads, [&](std::size_t i) {
+  const auto play_run = [&](std::size_t i) {
     const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
     const world::Scenario& scenario = scenarios[std::size_t(sc)];
     const std::uint64_t seed = run_seed(s.seed, sc, rep);
     game::RoleModels facl_pursuers, facl_evaders;
     if (need_facl) {
-      TrialResult t = run_trial(training, {&scenario, seed, s.episodes, false}, progress);
+      TrialResult t = run_trial(training, {&scenario, seed, s.episodes, false, s.control.stop}, progress);
       facl_pursuers = std::move(t.pursuer_models);
       facl_evaders = std::move(t.evader_models);
     }
@@ -85,8 +125,10 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
     if (s.evader_policy) facl_evaders = loaded(s.evader_policy);
     game::SimState state(training);
     const int pursuers = static_cast<int>(scenario.pursuers.size()), evaders = static_cast<int>(scenario.evaders.size());
+    std::vector<MatchupRecord> records;
     for (std::size_t p = 0; p < n_p; ++p) {
       for (std::size_t e = 0; e < n_e; ++e) {
+        throw_if_stopped(s.control.stop);
         const game::Sim& sim = sims[1 + p * n_e + e];
         const std::uint64_t pseed = derive_seed(seed, {10, p, e});
         game::Lineup lineup;
@@ -103,12 +145,43 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
         MatchupRecord record{scenario.name, rep, game::to_string(s.pursuers[p]), game::to_string(s.evaders[e]), {}, {}};
         record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}));
         record.agents = game::agent_summaries(state);
-        per_job[i].push_back(std::move(record));
+        records.push_back(std::move(record));
         if (progress) progress->episode_done();
       }
     }
+    per_job[i] = std::move(records);
     if (progress) progress->run_done();
-  });
+  };
+  run_journaled(
+      jobs, s.threads, s.control, play_run,
+      [&](std::size_t i) {
+        nlohmann::json games = nlohmann::json::array();
+        for (const MatchupRecord& r : per_job[i]) {
+          nlohmann::json agents = nlohmann::json::array();
+          for (const auto& a : r.agents) agents.push_back(agent_summary_to_json(a));
+          games.push_back({{"scenario", r.scenario},
+                           {"repeat", r.repeat},
+                           {"pursuer", r.pursuer},
+                           {"evader", r.evader},
+                           {"result", episode_to_json(r.result)},
+                           {"agents", std::move(agents)}});
+        }
+        return nlohmann::json{{"games", std::move(games)}};
+      },
+      [&](std::size_t i, const nlohmann::json& data) {
+        std::vector<MatchupRecord> records;
+        for (const auto& g : data.at("games")) {
+          MatchupRecord r{g.at("scenario").get<std::string>(), g.at("repeat").get<int>(),
+                          g.at("pursuer").get<std::string>(), g.at("evader").get<std::string>(),
+                          episode_from_json(g.at("result")), {}};
+          for (const auto& a : g.at("agents")) r.agents.push_back(agent_summary_from_json(a));
+          records.push_back(std::move(r));
+        }
+        if (records.size() != n_p * n_e) {
+          throw std::invalid_argument(fmt::format("{} games, expected {} (one per pairing)", records.size(), n_p * n_e));
+        }
+        per_job[i] = std::move(records);
+      });
   std::vector<MatchupRecord> out;
   for (auto& v : per_job) std::move(v.begin(), v.end(), std::back_inserter(out));
   return out;

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/run_journal.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
@@ -33,6 +34,7 @@ struct MatchupSettings {
   int threads = 0;
   std::shared_ptr<game::FaclModel> pursuer_policy;  ///< a saved FACL pursuer instead of training (every pursuer plays it)
   std::shared_ptr<game::FaclModel> evader_policy;   ///< a saved FACL evader instead of training (every evader plays it)
+  SweepControl control;                             ///< journal and stop request (none by default)
 };
 
 struct MatchupRecord {
@@ -56,6 +58,20 @@ game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind p
 std::vector<game::Sim> make_matchup_sims(const std::shared_ptr<const world::Arena>& arena, const game::GameConfig& base,
                                          const MatchupSettings& settings);
 
+/// Runs in the sweep (scenarios x repeats); run i is scenario i / repeats, repeat i % repeats, and plays every
+/// pairing.
+std::size_t matchup_run_count(const world::Arena& arena, const MatchupSettings& settings);
+
+/// Everything the sweep's results depend on, for its journal header and run_info.json: the experiment, the
+/// peg3d build, the map's content hash, seed, episodes, repeats, pursuer and evader policies, the content
+/// hashes of loaded policies, and the base configuration.
+nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& base, const MatchupSettings& settings);
+
+/// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
+nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& settings);
+
+/// Plays every run (see matchup_run_count); with settings.control's journal, finished runs are recorded as
+/// they finish and runs it holds are read back instead of played; a stop request throws SweepInterrupted.
 std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& settings,
                                         ProgressReporter* progress = nullptr);
 

@@ -12,6 +12,7 @@
 #include "core/random.hpp"
 #include "experiment/parallel_runner.hpp"
 #include "experiment/progress_reporter.hpp"
+#include "experiment/run_info.hpp"
 #include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
 
@@ -95,26 +96,85 @@ std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat) {
   return derive_seed(root, {static_cast<std::uint64_t>(scenario), static_cast<std::uint64_t>(repeat)});
 }
 
+nlohmann::ordered_json scenario_run_seeds(const std::vector<world::Scenario>& scenarios, int repeats,
+                                          std::uint64_t root) {
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
+    for (int rep = 0; rep < repeats; ++rep) {
+      runs.push_back({{"run", sc * static_cast<std::size_t>(repeats) + static_cast<std::size_t>(rep)},
+                      {"scenario", scenarios[sc].name},
+                      {"repeat", rep},
+                      {"seed", run_seed(root, static_cast<int>(sc), rep)}});
+    }
+  }
+  return runs;
+}
+
+std::size_t paper_run_count(const world::Arena& arena, const std::vector<Algorithm>& algorithms, const SweepSettings& s) {
+  return arena.map().scenarios.size() * algorithms.size() * static_cast<std::size_t>(s.repeats);
+}
+
+nlohmann::json paper_setup(const world::Arena& arena, const std::vector<Algorithm>& algorithms, const SweepSettings& s) {
+  nlohmann::json algs = nlohmann::json::array();
+  for (const Algorithm& a : algorithms) algs.push_back({{"name", a.name}, {"config", config::to_json(a.config)}});
+  return {{"experiment", "paper"},         {"peg3d", peg3d_build_json()}, {"map_hash", map_content_hash(arena)},
+          {"seed", s.seed},                {"episodes", s.episodes},      {"repeats", s.repeats},
+          {"trace_repeat", s.trace_repeat}, {"algorithms", std::move(algs)}};
+}
+
+nlohmann::ordered_json paper_run_info(const SweepSettings& s) {
+  return {{"configuration", "config.json: every algorithm's effective configuration, the seed, episodes, repeats, map"},
+          {"trace_repeat", s.trace_repeat},
+          {"seeds", "root seed in config.json; each run's seed, derive_seed(root, {scenario index, repeat}), in the "
+                    "seed column of runs.csv"}};
+}
+
 PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
                                   const SweepSettings& s, ProgressReporter* progress) {
   const auto& scenarios = sims.front().arena().map().scenarios;
   const std::size_t n_alg = algorithms.size(), n_rep = static_cast<std::size_t>(s.repeats);
   const std::size_t total = scenarios.size() * n_alg * n_rep;
   std::vector<TrialResult> trials(total);
-  run_indexed(total, s.threads, [&](std::size_t i) {
-    const std::size_t sc = i / (n_alg * n_rep), alg = (i / n_rep) % n_alg, rep = i % n_rep;
-    TrialSpec spec;
-    spec.scenario = &scenarios[sc];
-    spec.seed = run_seed(s.seed, static_cast<int>(sc), static_cast<int>(rep));
-    spec.episodes = s.episodes;
-    spec.keep_trace = static_cast<int>(rep) == s.trace_repeat;
-    trials[i] = run_trial(sims[alg], spec, progress);
-    if (!spec.keep_trace) {  // only the traced repeat's models are kept
-      trials[i].pursuer_models = {};
-      trials[i].evader_models = {};
-    }
-    if (progress) progress->run_done();
-  });
+  const auto traced = [&](std::size_t i) { return static_cast<int>(i % n_rep) == s.trace_repeat; };
+  run_journaled(
+      total, s.threads, s.control,
+      [&](std::size_t i) {
+        const std::size_t sc = i / (n_alg * n_rep), alg = (i / n_rep) % n_alg, rep = i % n_rep;
+        TrialSpec spec;
+        spec.scenario = &scenarios[sc];
+        spec.seed = run_seed(s.seed, static_cast<int>(sc), static_cast<int>(rep));
+        spec.episodes = s.episodes;
+        spec.keep_trace = traced(i);
+        spec.stop = s.control.stop;
+        trials[i] = run_trial(sims[alg], spec, progress);
+        if (!spec.keep_trace) {  // only the traced repeat's models are kept
+          trials[i].pursuer_models = {};
+          trials[i].evader_models = {};
+        }
+        if (progress) progress->run_done();
+      },
+      // What the result files need of a run: its evaluation, learning curve and, when traced, its steps and
+      // trained models.
+      [&](std::size_t i) {
+        const TrialResult& t = trials[i];
+        nlohmann::json data{{"evaluation", episode_to_json(t.evaluation)}, {"training", episodes_to_json(t.training)}};
+        if (traced(i)) {
+          data["trace"] = trace_to_json(t.trace);
+          data["pursuer_models"] = role_models_to_json(t.pursuer_models);
+          data["evader_models"] = role_models_to_json(t.evader_models);
+        }
+        return data;
+      },
+      [&](std::size_t i, const nlohmann::json& data) {
+        TrialResult& t = trials[i];
+        t.evaluation = episode_from_json(data.at("evaluation"));
+        t.training = episodes_from_json(data.at("training"));
+        if (traced(i)) {
+          t.trace = trace_from_json(data.at("trace"));
+          t.pursuer_models = role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);
+          t.evader_models = role_models_from_json(data.at("evader_models"), game::Role::kEvader);
+        }
+      });
 
   PaperResults r;
   r.runs.reserve(total);

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/result_files.hpp"
+#include "experiment/run_journal.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
@@ -48,6 +49,7 @@ struct SweepSettings {
   int repeats = 20;        ///< runs per scenario and algorithm
   int threads = 0;         ///< worker threads, 0: all cores
   int trace_repeat = 0;    ///< repeat whose evaluation is recorded step by step and whose policies are kept
+  SweepControl control;    ///< journal and stop request (none by default)
 };
 
 struct PaperResults {
@@ -62,10 +64,30 @@ struct PaperResults {
 /// The seed of a scenario's repeat (shared by all algorithms).
 std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat);
 
+/// Every run of a sweep over scenarios x repeats (run = scenario index * repeats + repeat) with its seed, for
+/// run_info.json: [{"run", "scenario", "repeat", "seed"}].
+nlohmann::ordered_json scenario_run_seeds(const std::vector<world::Scenario>& scenarios, int repeats,
+                                          std::uint64_t root);
+
 /// One Sim per algorithm over `arena` (each checks the map's scenarios against its configuration).
 std::vector<game::Sim> make_sims(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms);
 
-/// Runs every scenario x algorithm x repeat; sims[k] plays algorithms[k].
+/// Runs in the sweep: scenarios x algorithms x repeats.
+std::size_t paper_run_count(const world::Arena& arena, const std::vector<Algorithm>& algorithms, const SweepSettings& settings);
+
+/// Everything the sweep's results depend on, for its journal header (run_journal.hpp): the experiment, the
+/// peg3d build, the map's content hash, seed, episodes, repeats, the traced repeat, and every algorithm's
+/// name and effective configuration, in order.
+nlohmann::json paper_setup(const world::Arena& arena, const std::vector<Algorithm>& algorithms,
+                           const SweepSettings& settings);
+
+/// The part of run_info.json (run_info.hpp) that config.json and runs.csv do not hold already: the traced
+/// repeat, and where the configuration and the per-run seeds are.
+nlohmann::ordered_json paper_run_info(const SweepSettings& settings);
+
+/// Runs every scenario x algorithm x repeat; sims[k] plays algorithms[k]. Run i is scenario i / (A * R),
+/// algorithm (i / R) % A, repeat i % R. With settings.control's journal, finished runs are recorded as they
+/// finish and runs it holds are read back instead of run; a stop request throws SweepInterrupted.
 PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
                                   const SweepSettings& settings, ProgressReporter* progress = nullptr);
 

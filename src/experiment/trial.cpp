@@ -29,11 +29,13 @@ TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec, ProgressRepor
   game::SimState state(sim);
   r.training.reserve(static_cast<std::size_t>(spec.episodes));
   for (int e = 0; e < spec.episodes; ++e) {
+    throw_if_stopped(spec.stop);
     const auto seed = derive_seed(spec.seed, {static_cast<std::uint64_t>(TrialStream::kTrainingEpisode),
                                               static_cast<std::uint64_t>(e)});
     r.training.push_back(game::play(sim, state, scenario, lineup.policies(), /*learning=*/true, seed));
     if (progress) progress->episode_done();
   }
+  throw_if_stopped(spec.stop);
   if (spec.keep_trace) r.trace.reserve(sim.max_steps(), scenario.agents());
   r.evaluation = game::play(sim, state, scenario, lineup.policies(), /*learning=*/false,
                             stream_seed(spec.seed, TrialStream::kEvaluation), spec.keep_trace ? &r.trace : nullptr);

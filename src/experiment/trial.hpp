@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "experiment/parallel_runner.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
 #include "game/sim.hpp"
@@ -19,6 +20,7 @@ struct TrialSpec {
   std::uint64_t seed = 0;   ///< the trial's root seed
   int episodes = 200;       ///< training episodes, >= 0
   bool keep_trace = false;  ///< record every step of the evaluation episode
+  StopCheck stop;           ///< polled before every episode; a stop request throws RunCancelled
 };
 
 struct TrialResult {
@@ -36,7 +38,8 @@ enum class TrialStream : std::uint64_t { kPursuer = 1, kEvader = 2, kTrainingEpi
 std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s);
 
 /// Trains and evaluates the agents the Sim's configuration names. `progress` (optional) is told of every
-/// episode.
+/// episode. Throws RunCancelled when spec.stop asks to stop (checked between episodes, so a run gives up
+/// within one episode's time).
 TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec, ProgressReporter* progress = nullptr);
 
 /// Plays one greedy evaluation episode of already-built policies, in a state of the caller's (reused across

@@ -1,0 +1,206 @@
+#!/usr/bin/python3
+"""End-to-end checks of sweeps that survive interruption (docs/results.md, "Journal and resume"):
+- a sweep killed mid-way with SIGKILL keeps its finished runs in OUT/runs.journal and writes no result file;
+  --resume (on another thread count, after a torn last line was appended) finishes it with result files
+  byte-identical to an uninterrupted sweep's: peg-paper killed on 1 thread and on 2, peg-matchup and
+  peg-generalize once each;
+- SIGINT stops a sweep within 2 s with status 130, says what was kept and prints the command that resumes
+  it; that command finishes the sweep identically; SIGTERM exits with 143;
+- a finished sweep removes its journal; an existing journal without --resume, --resume without a journal and
+  --resume with another seed are input errors (status 2) that name the problem.
+
+usage: check_resume.py BUILD_BIN_DIR SOURCE_DIR WORK_DIR
+"""
+import filecmp
+import os
+import re
+import shlex
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what)
+    return cond
+
+
+def run(cmd):
+    return subprocess.run(cmd, capture_output=True, text=True)
+
+
+
+def start(cmd):
+    # A script's background job inherits SIGINT ignored (and peg3d leaves an ignored signal ignored, as a
+    # shell's background job expects): give the sweep the default disposition, as a terminal would.
+    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+
+
+def journal_runs(out):
+    """Complete run lines in the journal (0 when there is none yet)."""
+    try:
+        with open(os.path.join(out, "runs.journal"), "rb") as f:
+            return max(f.read().count(b"\n") - 1, 0)
+    except FileNotFoundError:
+        return 0
+
+
+def wait_for_runs(proc, out, runs, timeout=120.0):
+    """Waits until the journal holds `runs` finished runs while the sweep still works; False if it ended first."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            return False
+        if journal_runs(out) >= runs:
+            return True
+        time.sleep(0.01)
+    return False
+
+
+def result_files(folder):
+    """Every file of an output folder but the wall-clock one (timing.json), by relative path."""
+    found = set()
+    for root, _, files in os.walk(folder):
+        for name in files:
+            rel = os.path.relpath(os.path.join(root, name), folder)
+            if rel != "timing.json":
+                found.add(rel)
+    return found
+
+
+def same_results(reference, folder, what):
+    ref, got = result_files(reference), result_files(folder)
+    if not check(ref == got, f"{what}: files differ: missing {sorted(ref - got)}, extra {sorted(got - ref)}"):
+        return
+    differ = [f for f in sorted(ref) if not filecmp.cmp(os.path.join(reference, f), os.path.join(folder, f), shallow=False)]
+    check(not differ, f"{what}: not byte-identical to the uninterrupted sweep: {differ}")
+
+
+def killed_then_resumed(name, cmd, out, reference, threads, resume_threads, tear, after=5):
+    """SIGKILL once `after` runs are journaled, optionally tear the last line, resume on another thread count."""
+    shutil.rmtree(out, ignore_errors=True)
+    proc = start(cmd + ["--out", out, "--threads", str(threads)])
+    if not check(wait_for_runs(proc, out, after), f"{name}: killed mid-way (the sweep ended before {after} runs were "
+                                                  f"journaled: status {proc.poll()}; raise its budget)"):
+        proc.kill()
+        proc.wait()
+        return
+    proc.kill()  # SIGKILL
+    proc.wait()
+    kept = journal_runs(out)
+    check(not os.path.exists(os.path.join(out, "summary.json")), f"{name}: no result file after SIGKILL")
+    if tear:  # a crash in the middle of writing a line
+        with open(os.path.join(out, "runs.journal"), "ab") as f:
+            f.write(b'{"run":0,"data":{"evaluation":[0,12')
+    failed = len(failures)
+    r = run(cmd + ["--out", out, "--threads", str(resume_threads), "--resume"])
+    check(r.returncode == 0, f"{name}: --resume status {r.returncode}: {r.stderr[-800:]}")
+    m = re.search(r"resuming: (\d+) of (\d+) runs", r.stderr)
+    check(m is not None and int(m.group(1)) == kept, f"{name}: resume reads back the {kept} journaled runs: {r.stderr[:300]!r}")
+    check(not tear or "torn last line" in r.stderr, f"{name}: the torn last line is reported and dropped")
+    check(not os.path.exists(os.path.join(out, "runs.journal")), f"{name}: the finished sweep removed its journal")
+    same_results(reference, out, f"{name} (killed on {threads} thread(s), resumed on {resume_threads})")
+    if len(failures) == failed:
+        print(f"{name}: killed with {kept} of {m.group(2)} runs journaled, resumed identically")
+
+
+def main():
+    bin_dir, source, work = sys.argv[1:4]
+    paper, matchup, generalize = (os.path.join(bin_dir, p) for p in ("peg-paper", "peg-matchup", "peg-generalize"))
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    os.chdir(source)
+    # Worlds are built once, into a cache of the test's own (not the user's).
+    os.environ["PEG3D_CACHE_DIR"] = os.path.join(work, "cache")
+    t0 = time.monotonic()
+
+    sweeps = {
+        # name: command without --out and --threads; 16 runs each, of a few tens of milliseconds in a Release
+        # build (and small enough for the sanitizer build too)
+        "peg-paper": [paper, "--seed", "7", "--repeats", "2", "--episodes", "20", "--algorithms", "peg3d,baseline",
+                      "--no-plots", "--plain-progress"],
+        "peg-matchup": [matchup, "--seed", "7", "--repeats", "4", "--episodes", "20", "--pursuers", "facl,pn",
+                        "--evaders", "facl,flee", "--plain-progress"],
+        "peg-generalize": [generalize, "--seed", "7", "--repeats", "4", "--episodes", "20", "--eval-maps",
+                           "maps/paper.yaml", "--plain-progress"],
+    }
+    references = {}
+    for name, cmd in sweeps.items():
+        references[name] = os.path.join(work, f"{name}-reference")
+        r = run(cmd + ["--out", references[name], "--threads", "2"])
+        check(r.returncode == 0, f"{name}: uninterrupted sweep status {r.returncode}: {r.stderr[-800:]}")
+        check(not os.path.exists(os.path.join(references[name], "runs.journal")), f"{name}: a finished sweep removes its journal")
+        check(os.path.exists(os.path.join(references[name], "run_info.json")), f"{name}: run_info.json written")
+
+    # SIGKILL mid-way, then --resume: 1 thread resumed on 2 (with a torn last line), 2 resumed on 1.
+    killed_then_resumed("peg-paper", sweeps["peg-paper"], os.path.join(work, "paper-kill-1"), references["peg-paper"], 1, 2, True)
+    killed_then_resumed("peg-paper", sweeps["peg-paper"], os.path.join(work, "paper-kill-2"), references["peg-paper"], 2, 1, False)
+    killed_then_resumed("peg-matchup", sweeps["peg-matchup"], os.path.join(work, "matchup-kill"), references["peg-matchup"], 2, 1, True)
+    killed_then_resumed("peg-generalize", sweeps["peg-generalize"], os.path.join(work, "generalize-kill"),
+                        references["peg-generalize"], 1, 2, False)
+
+    # SIGINT: stops within 2 s, status 130, says what it kept and how to resume; the printed command finishes it.
+    out = os.path.join(work, "paper-int")
+    cmd = sweeps["peg-paper"] + ["--out", out, "--threads", "2"]
+    proc = start(cmd)
+    if check(wait_for_runs(proc, out, 1), "peg-paper SIGINT: the sweep ended before a run was journaled"):
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+        stopped = time.monotonic() - sent
+        print(f"SIGINT: stopped in {stopped:.3f} s, status {proc.returncode}")
+        check(stopped < 2.0, f"SIGINT stops within 2 s (took {stopped:.2f} s)")
+        check(proc.returncode == 130, f"SIGINT exit status {proc.returncode}, expected 130: {err[-500:]}")
+        kept = journal_runs(out)
+        journal = os.path.join(out, "runs.journal")
+        check(re.search(rf"kept {kept} of 16 runs in {re.escape(journal)}", err) is not None,
+              f"SIGINT: says it kept {kept} of 16 runs in {journal}: {err[-500:]!r}")
+        check(not os.path.exists(os.path.join(out, "runs.csv")), "SIGINT: no result file written")
+        m = re.search(r"^resume with: (.*)$", err, re.M)
+        if check(m is not None, f"SIGINT: prints the resume command: {err[-500:]!r}"):
+            resume = shlex.split(m.group(1))
+            check(resume == cmd + ["--resume"], f"the resume command is the same command plus --resume: {resume}")
+            r = run(resume)
+            check(r.returncode == 0, f"the printed resume command: status {r.returncode}: {r.stderr[-800:]}")
+            same_results(references["peg-paper"], out, "peg-paper (SIGINT, resumed)")
+
+    # SIGTERM: 143.
+    out = os.path.join(work, "matchup-term")
+    proc = start(sweeps["peg-matchup"] + ["--out", out, "--threads", "2"])
+    if check(wait_for_runs(proc, out, 1), "peg-matchup SIGTERM: the sweep ended before a run was journaled"):
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=30)
+        check(proc.returncode == 143, f"SIGTERM exit status {proc.returncode}, expected 143: {err[-500:]}")
+        check("resume with:" in err, "SIGTERM: prints the resume command")
+
+    # Input errors, status 2, nothing run: a journal without --resume, another seed with --resume.
+    base = sweeps["peg-matchup"] + ["--out", out, "--threads", "2"]
+    journal = os.path.join(out, "runs.journal")
+    size = os.path.getsize(journal) if os.path.exists(journal) else -1
+    r = run(base)
+    check(r.returncode == 2 and "--resume" in r.stderr and "runs.journal" in r.stderr,
+          f"an existing journal without --resume: status {r.returncode}, {r.stderr[-300:]!r}")
+    seed = [a if a != "7" else "8" for a in base]
+    r = run(seed + ["--resume"])
+    check(r.returncode == 2 and "runs.journal:1: setup.seed:" in r.stderr,
+          f"--resume with another seed names setup.seed: status {r.returncode}, {r.stderr[-300:]!r}")
+    check(size >= 0 and os.path.exists(journal) and os.path.getsize(journal) == size,
+          "refused resumes leave the journal as it was")
+    r = run(sweeps["peg-matchup"] + ["--out", os.path.join(work, "nothing"), "--resume"])
+    check(r.returncode == 2 and "no journal" in r.stderr, f"--resume without a journal: status {r.returncode}, {r.stderr[-300:]!r}")
+    check(not os.path.exists(os.path.join(work, "nothing")), "--resume without a journal writes nothing")
+
+    print(f"{time.monotonic() - t0:.1f} s")
+    print("ok" if not failures else f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
