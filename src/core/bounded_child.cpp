@@ -144,7 +144,9 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
   }
   if (bytes.empty()) {
     result.status = ChildResult::Status::kCrashed;
-    result.output = "exited without a result";
+    // A sanitizer's deadly-signal handler turns a crash into an exit, so the status is all there is to say.
+    result.output = "exited with status " + std::to_string(WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1) +
+                    " without a result";
     return result;
   }
   result.status = bytes[0] == 'O'   ? ChildResult::Status::kOk

@@ -51,9 +51,22 @@ TEST(CoreBoundedChild, MemoryBeyondTheLimitStopsTheChild) {
 }
 
 TEST(CoreBoundedChild, ACrashIsReportedWithItsSignal) {
-  const ChildResult r = run_bounded([]() -> std::string { std::raise(SIGSEGV); return ""; }, {});
+  // The default action, so that a sanitizer's SEGV handler (which exits instead) does not change the outcome.
+  const ChildResult r = run_bounded(
+      []() -> std::string {
+        std::signal(SIGSEGV, SIG_DFL);
+        std::raise(SIGSEGV);
+        return "";
+      },
+      {});
   EXPECT_EQ(r.status, Status::kCrashed);
   EXPECT_EQ(r.output, "SIGSEGV");
+}
+
+TEST(CoreBoundedChild, AnExitWithoutAResultIsACrashWithItsStatus) {
+  const ChildResult r = run_bounded([]() -> std::string { ::_exit(3); }, {});
+  EXPECT_EQ(r.status, Status::kCrashed);
+  EXPECT_EQ(r.output, "exited with status 3 without a result");
 }
 
 }  // namespace
