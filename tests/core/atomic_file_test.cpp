@@ -1,4 +1,5 @@
 #include "core/atomic_file.hpp"
+#include "support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -16,13 +17,6 @@ namespace fs = std::filesystem;
 
 class CoreAtomicFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("peg3d_atomic_file_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   static std::string read(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -33,7 +27,8 @@ class CoreAtomicFile : public ::testing::Test {
   // Entries in the test directory: a failed or abandoned write must leave no temporary behind.
   std::size_t entries() const { return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), {})); }
 
-  fs::path dir_;
+  peg3d::testing::ScratchDir scratch_;  // before dir_, which copies its path
+  fs::path dir_ = scratch_.path();
 };
 
 TEST_F(CoreAtomicFile, CommitWritesContentAndLeavesNoTemporary) {

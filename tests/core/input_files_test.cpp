@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/yaml_input.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace peg3d {
 namespace {
@@ -18,13 +19,6 @@ namespace fs = std::filesystem;
 
 class CoreInputFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("peg3d_input_files_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   fs::path write(const std::string& name, const std::string& text) {
     const fs::path p = dir_ / name;
     std::ofstream(p, std::ios::binary) << text;
@@ -41,7 +35,8 @@ class CoreInputFiles : public ::testing::Test {
     ADD_FAILURE() << "no InputError";
     return InputError("", 0, "", "");
   }
-  fs::path dir_;
+  peg3d::testing::ScratchDir scratch_;  // before dir_, which copies its path
+  fs::path dir_ = scratch_.path();
 };
 
 TEST_F(CoreInputFiles, ReadsARegularFileWhole) {

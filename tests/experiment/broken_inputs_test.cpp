@@ -20,6 +20,7 @@
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
 #include "game/policy_io.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace peg3d::experiment {
 namespace {
@@ -83,14 +84,9 @@ TEST(ExperimentBrokenInputs, EveryBrokenConfigurationIsRefusedAsExpected) {
 class ExperimentBrokenPolicy : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("peg3d_broken_policy_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     const game::AgentConfig config = game::agent_preset("peg3d", game::Role::kPursuer);
     good_ = game::policy_to_json(game::FaclModel(config, game::Role::kPursuer));
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Writes the good policy changed by `edit` (pretty-printed, so fields sit on their own lines) and loads it.
   void expect_refused(const std::function<void(nlohmann::json&)>& edit, const Expectation& want) {
@@ -117,7 +113,8 @@ class ExperimentBrokenPolicy : public ::testing::Test {
     return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + long(at), '\n'));
   }
 
-  fs::path dir_;
+  peg3d::testing::ScratchDir scratch_;  // before dir_, which copies its path
+  fs::path dir_ = scratch_.path();
   nlohmann::json good_;
 };
 

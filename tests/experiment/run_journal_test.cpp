@@ -20,6 +20,7 @@
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
 #include "game/policy_io.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace peg3d::experiment {
 namespace {
@@ -32,13 +33,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 class ExperimentRunJournal : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("peg3d_run_journal_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     file_ = dir_ / kJournalFileName;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string text() const {
     std::ifstream in(file_, std::ios::binary);
@@ -67,7 +63,8 @@ class ExperimentRunJournal : public ::testing::Test {
     return InputError("none");
   }
 
-  fs::path dir_, file_;
+  peg3d::testing::ScratchDir scratch_;  // before dir_, which copies its path
+  fs::path dir_ = scratch_.path(), file_;
 };
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }

@@ -1,13 +1,11 @@
 #pragma once
 // Helpers shared by the world tests: test data paths, scratch folders, small arenas built in code.
 
-#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <string>
 
-#include <unistd.h>
-
+#include "support/scratch_dir.hpp"
 #include "world/arena.hpp"
 #include "world/map_spec.hpp"
 
@@ -17,28 +15,7 @@ inline std::filesystem::path data_dir() { return PEG3D_TEST_DATA_DIR; }
 inline std::filesystem::path mesh_path(const std::string& name) { return data_dir() / "meshes" / name; }
 inline std::filesystem::path source_dir() { return PEG3D_SOURCE_DIR; }
 
-/// A fresh folder under the system's temp dir, removed with everything in it when the object dies.
-class ScratchDir {
- public:
-  ScratchDir() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::temp_directory_path() /
-            ("peg3d-world-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  std::filesystem::path path_;
-};
+using peg3d::testing::ScratchDir;
 
 /// An empty arena box of the given size from the origin, no boundary faces, one scenario.
 inline MapSpec empty_spec(const Vec3& size, double resolution, double max_distance = 3.0) {
