@@ -12,6 +12,7 @@
 #include "experiment/progress_reporter.hpp"
 #include "experiment/result_files.hpp"
 #include "experiment/run_info.hpp"
+#include "experiment/trajectory_file.hpp"
 
 using namespace peg3d;
 

@@ -20,7 +20,7 @@ std::string v3(const Vec3& v) { return fmt::format("{:.6f},{:.6f},{:.6f}", v.x()
 std::string v3_text(const Vec3& v) { return fmt::format("({:.6f}, {:.6f}, {:.6f})", v.x(), v.y(), v.z()); }
 
 std::string hit_of(const game::Trace& trace, const game::CollisionEvent& e) {
-  if (e.kind == world::ObstacleKind::kAgent) return "agent:" + agent_label(trace, e.obstacle_id);
+  if (e.kind == world::ObstacleKind::kAgent) return "agent:" + game::agent_label(trace, e.obstacle_id);
   return fmt::format("{}:{}", world::to_string(e.kind), e.obstacle_id);
 }
 
@@ -34,15 +34,15 @@ CollisionLog make_log(const std::string& name, const game::Trace& trace, const g
   log.steps = st.step;
   log.time = st.time;
   for (const game::CollisionEvent& e : trace.collisions) {
-    log.events.push_back({e.step, e.time, agent_label(trace, e.agent), hit_of(trace, e), e.triangle, e.point, e.normal,
+    log.events.push_back({e.step, e.time, game::agent_label(trace, e.agent), hit_of(trace, e), e.triangle, e.point, e.normal,
                           e.penetration});
   }
   for (const game::CaptureEvent& c : trace.captures) {
-    log.captures.push_back({c.step, c.time, agent_label(trace, c.pursuer), agent_label(trace, c.evader), c.distance});
+    log.captures.push_back({c.step, c.time, game::agent_label(trace, c.pursuer), game::agent_label(trace, c.evader), c.distance});
   }
   for (int i = 0; i < st.agent_count(); ++i) {
     const game::AgentState& a = st.agents[std::size_t(i)];
-    log.agents.push_back({agent_label(trace, i), a.kinematics.position, a.kinematics.heading.alpha,
+    log.agents.push_back({game::agent_label(trace, i), a.kinematics.position, a.kinematics.heading.alpha,
                           a.kinematics.heading.theta, a.path, a.active});
   }
   if (movers != nullptr) {

@@ -41,13 +41,6 @@ void write_runs_csv(const std::filesystem::path& file, const std::vector<RunReco
 void write_learning_curves_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs,
                                const std::vector<std::vector<game::EpisodeResult>>& curves);
 
-/// A trajectory file: every recorded instant of one episode. Agents are labelled by role ("pursuer",
-/// "evader") when their role has one agent, else by role and rank ("pursuer0", "pursuer1", ...).
-void write_trajectory_csv(const std::filesystem::path& file, const game::Trace& trace);
-
-/// The label of agent i of a trace in trajectory columns.
-std::string agent_label(const game::Trace& trace, int i);
-
 /// `folder / (name + extension)` for a name made of map-given parts (scenario names): throws InputError when
 /// the name could leave the folder or hide a file (see world::is_safe_name; '_' joins the parts).
 std::filesystem::path output_file(const std::filesystem::path& folder, const std::string& name, const char* extension);

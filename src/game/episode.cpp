@@ -68,6 +68,17 @@ void Trace::reserve(int max_steps, int agent_count) {
   captures.reserve(std::size_t(agent_count));
 }
 
+std::string agent_label(const Trace& trace, int i) {
+  const Role role = trace.roles[std::size_t(i)];
+  int rank = 0, count = 0;
+  for (int j = 0; j < trace.agents; ++j) {
+    if (trace.roles[std::size_t(j)] != role) continue;
+    if (j < i) ++rank;
+    ++count;
+  }
+  return count == 1 ? std::string(to_string(role)) : std::string(to_string(role)) + std::to_string(rank);
+}
+
 void Trace::clear() {
   agents = 0;
   roles.clear();

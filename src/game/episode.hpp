@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "game/policy.hpp"
@@ -95,6 +96,10 @@ struct Trace {
   /// Appends the state's current instant (after reset(): the start; after step(): with the step's events).
   void record(const SimState& state, bool after_step);
 };
+
+/// The label of agent i of a trace, as trajectory files, logs and viewers write it: the role alone
+/// ("pursuer", "evader") when the role has one agent, else role and rank ("pursuer0", "pursuer1", ...).
+std::string agent_label(const Trace& trace, int i);
 
 /// Plays one episode of `scenario`. policies[i] drives agent i (pursuers first, then evaders, in the
 /// scenario's order); distinct agents need distinct policy objects (they may share a FACL model). With

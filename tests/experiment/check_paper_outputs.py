@@ -22,7 +22,8 @@ TRAJ = ["t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "eva
         "pursuer_theta", "evader_alpha", "evader_theta", "distance"] + [
             f"{a}_{c}" for a in ("pursuer", "evader") for c in (
                 "d_target", "target_az", "target_el", "d_obstacle", "obstacle_az", "obstacle_el", "d_alpha",
-                "d_theta", "reward", "pinned")]
+                "d_theta", "reward", "pinned")] + [
+            f"{a}_{c}" for a in ("pursuer", "evader") for c in ("active", "hit", "captured")]
 FIGURES = ["trajectories.png", "comparison.png", "learning.png", "apollonius.png"]
 DETERMINISTIC = ["runs.csv", "learning_curves.csv", "summary.json", "config.json"]
 
