@@ -10,6 +10,13 @@ find_package(nlohmann_json 3.11 REQUIRED)
 find_package(assimp REQUIRED)
 find_package(octomap REQUIRED)
 find_package(dynamicEDT3D REQUIRED)
+find_package(meshoptimizer REQUIRED CONFIG)
+
+# three.js for the replay viewer (libjs-three, r111): its build and the non-module OrbitControls are inlined
+# into every viewer file, so they are staged beside the viewer's own files.
+find_file(PEG3D_THREE_JS three.min.js PATHS /usr/share/javascript/three NO_DEFAULT_PATH REQUIRED)
+find_file(PEG3D_ORBIT_CONTROLS_JS OrbitControls.js PATHS /usr/share/javascript/three/examples/js/controls
+          NO_DEFAULT_PATH REQUIRED)
 
 # Debian's BulletConfig.cmake carries relative paths; its pkg-config file is reliable. peg3d uses the
 # double-precision build so that sweep fractions and contact points keep the precision of the rest of the

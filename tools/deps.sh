@@ -7,7 +7,7 @@ PACKAGES=(
   libbullet-dev libeigen3-dev libassimp-dev liboctomap-dev libdynamicedt3d-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libboost-dev
+  libboost-dev libmeshoptimizer-dev libjs-three
   python3-matplotlib python3-numpy
 )
 
