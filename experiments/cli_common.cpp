@@ -12,6 +12,9 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <fnmatch.h>
+
+#include "view/viewer_html.hpp"
 
 #include "world/map_spec.hpp"
 
@@ -207,6 +210,47 @@ bool run_plot_script(const std::string& script, const std::filesystem::path& dir
     return false;
   }
   return true;
+}
+
+void add_html_option(CLI::App& app, std::vector<std::string>& patterns, const std::string& keys) {
+  app.add_option("--html", patterns,
+                 "write a replay viewer file (one HTML page, docs/viewer.md) for each run whose key matches one of "
+                 "these shell patterns (" + keys + "; 'all': every run)")
+      ->delimiter(',');
+}
+
+bool chosen_for_html(const std::vector<std::string>& patterns, const std::string& key) {
+  for (const auto& p : patterns) {
+    if (p == "all" || ::fnmatch(p.c_str(), key.c_str(), 0) == 0) return true;
+  }
+  return false;
+}
+
+std::uintmax_t write_viewer(const std::filesystem::path& file, const view::ReplayScene& scene, const game::Sim& sim,
+                            const game::Trace& trace, const view::ReplayInfo& info) {
+  static const view::ViewerAssets assets = view::ViewerAssets::load(data_dir() / "assets" / "viewer");
+  view::write_viewer_html(file, assets, view::replay_json(scene, sim, trace, info), info.title);
+  return std::filesystem::file_size(file);
+}
+
+std::uintmax_t write_case_viewer(const std::filesystem::path& file, const experiment::CollisionCase& c,
+                                 const experiment::CasePlay& play, const std::string& title,
+                                 const view::ReplaySettings& settings) {
+  return write_viewer(file, view::ReplayScene(play.sim.arena(), settings), play.sim, play.trace,
+                      {title.empty() ? "case " + c.name : title,
+                       fmt::format("{} on {}; {} collision(s), {} at {:.2f} s", c.file.string(), c.map.filename().string(),
+                                   play.log.events.size(), play.log.outcome, play.log.time)});
+}
+
+void report_viewers(const std::vector<std::string>& files, const std::vector<std::string>& patterns) {
+  for (const auto& f : files) std::printf("replay viewer: %s\n", f.c_str());
+  if (files.empty() && !patterns.empty()) {
+    std::fprintf(stderr, "warning: --html chose no run (see --help for the keys runs have)\n");
+  }
+}
+
+std::string ending_of(const game::EpisodeResult& result) {
+  return fmt::format("{} at {:.1f} s", game::to_string(result.outcome), result.duration);
 }
 
 }  // namespace peg3d::cli

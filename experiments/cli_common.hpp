@@ -15,8 +15,12 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.hpp"
+#include "experiment/collision_case.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/run_journal.hpp"
+#include "game/episode.hpp"
+#include "game/sim.hpp"
+#include "view/replay.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::cli {
@@ -99,6 +103,30 @@ auto run_stoppable(experiment::ProgressReporter& progress, Sweep&& sweep) {
     throw;
   }
 }
+
+/// --html PATTERN...: the runs to write viewer files for (docs/viewer.md). Patterns are shell globs matched
+/// against a run's key (peg-paper: SCENARIO_ALGORITHM); "all" chooses every run.
+void add_html_option(CLI::App& app, std::vector<std::string>& patterns, const std::string& keys);
+
+/// Whether `key` matches one of the --html patterns.
+bool chosen_for_html(const std::vector<std::string>& patterns, const std::string& key);
+
+/// Writes the viewer file of one recorded episode (the viewer's files are read from
+/// data_dir()/assets/viewer once) and returns its size in bytes.
+std::uintmax_t write_viewer(const std::filesystem::path& file, const view::ReplayScene& scene, const game::Sim& sim,
+                            const game::Trace& trace, const view::ReplayInfo& info);
+
+/// Writes the viewer file of a played collision-regression case (title: "case NAME" unless given); returns
+/// its size in bytes.
+std::uintmax_t write_case_viewer(const std::filesystem::path& file, const experiment::CollisionCase& c,
+                                 const experiment::CasePlay& play, const std::string& title = "",
+                                 const view::ReplaySettings& settings = {});
+
+/// Prints "replay viewer: FILE" for each file written; a warning on stderr when --html chose no run.
+void report_viewers(const std::vector<std::string>& files, const std::vector<std::string>& patterns);
+
+/// How an episode ended, for a viewer's subtitle: "capture at 31.2 s", "timeout at 100 s", ...
+std::string ending_of(const game::EpisodeResult& result);
 
 /// Runs `/usr/bin/python3 <data_dir>/tools/<script> <dir>` (an argument vector, no shell); false (with a
 /// warning) when it fails.

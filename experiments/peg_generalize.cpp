@@ -2,6 +2,8 @@
 // terrain among them); capture and collision rates per evaluation map.
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "cli_common.hpp"
 #include "core/config_json.hpp"
 #include "experiment/generalize_experiment.hpp"
@@ -21,7 +23,9 @@ int main(int argc, char** argv) {
   std::string config_source = "peg3d";
   std::vector<std::filesystem::path> eval_maps{"maps/paper.yaml", "maps/forest.yaml", "maps/valley.yaml"};
   bool list_config = false;
+  std::vector<std::string> html;
   cli::add_sweep_options(app, o);
+  cli::add_html_option(app, html, "TRAIN_rREPEAT_on_EVALMAP_EVALSCENARIO, e.g. S1_r0_on_forest_S2 or '*_r0_on_valley_*'");
   app.add_option("--config", config_source, "configuration: a preset (peg3d, paper, baseline) or a JSON file")
       ->capture_default_str();
   app.add_option("--eval-maps", eval_maps, "maps to evaluate the trained policies on")->delimiter(',')->capture_default_str();
@@ -42,12 +46,13 @@ int main(int argc, char** argv) {
     std::vector<experiment::EvalMap> evals;
     for (std::size_t m = 0; m < arenas.size(); ++m) evals.push_back({names[m], game::Sim(arenas[m], config)});
 
-    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads, {}};
+    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads, {}, {}};
     const std::size_t jobs = experiment::generalize_run_count(train_sim, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::generalize_setup(train_sim, evals, s);
     const auto journal = cli::open_journal(o, jobs, setup);
     s.control = {journal.get(), cli::stop_check()};
+    if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
 
     std::size_t eval_count = 0;
     for (const auto& e : arenas) eval_count += e->map().scenarios.size();
@@ -68,10 +73,26 @@ int main(int argc, char** argv) {
     experiment::write_run_info(o.out / "run_info.json", "generalize", maps,
                                {{"setup", setup}, {"seeds", experiment::generalize_seeds(train_sim, s)}});
     journal->remove();  // complete: the files above hold every run
+    std::vector<std::string> viewers;
+    for (std::size_t m = 0; m < evals.size() && !html.empty(); ++m) {
+      std::unique_ptr<view::ReplayScene> scene;
+      for (const auto& r : records) {
+        if (!r.trace || r.eval_map != evals[m].name) continue;
+        if (!scene) scene = std::make_unique<view::ReplayScene>(evals[m].sim.arena());
+        const std::filesystem::path file = experiment::output_file(o.out, experiment::generalize_key(r), ".html");
+        cli::write_viewer(file, *scene, evals[m].sim, *r.trace,
+                          {fmt::format("trained on {} {} (repeat {}), played on {} {}", train->map().name,
+                                       r.train_scenario, r.repeat, r.eval_map, r.eval_scenario),
+                           fmt::format("peg-generalize, seed {}, {} training episodes; {}", o.seed, o.episodes,
+                                       cli::ending_of(r.result))});
+        viewers.push_back(file.string());
+      }
+    }
     std::printf("trained on %s (%zu scenarios x %d repeats, %d episodes each)\n", o.map.string().c_str(),
                 train->map().scenarios.size(), o.repeats, o.episodes);
     std::fputs(experiment::generalization_table(summary).c_str(), stdout);
     std::printf("\nresults in %s\n", o.out.string().c_str());
+    cli::report_viewers(viewers, html);
     return 0;
   });
 }

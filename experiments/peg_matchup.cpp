@@ -26,7 +26,9 @@ int main(int argc, char** argv) {
   std::string config_source = "peg3d";
   std::filesystem::path pursuer_policy, evader_policy;
   bool list_config = false;
+  std::vector<std::string> html;
   cli::add_sweep_options(app, o);
+  cli::add_html_option(app, html, "SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee or 'S2_r0_*'");
   app.add_option("--config", config_source,
                  "configuration the agents start from: a preset (peg3d, paper, baseline) or a JSON file")
       ->capture_default_str();
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
     s.episodes = o.episodes;
     s.repeats = o.repeats;
     s.threads = o.threads;
+    if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
     const auto arena = cli::load_arena(o.map, !o.no_cache);
     // Every pairing's Sim checks the map's starts against its agents before any run.
     const std::vector<game::Sim> sims = experiment::make_matchup_sims(arena, config, s);
@@ -77,8 +80,24 @@ int main(int argc, char** argv) {
     experiment::write_run_info(o.out / "run_info.json", "matchup", {{"map", arena.get()}},
                                {{"setup", setup}, {"seeds", experiment::matchup_seeds(*arena, s)}});
     journal->remove();  // complete: the files above hold every run
+    std::vector<std::string> viewers;
+    if (!html.empty()) {
+      const view::ReplayScene scene(*arena);
+      for (const auto& r : records) {
+        if (!r.trace) continue;
+        std::size_t p = 0, e = 0;  // the pairing's Sim: sims[1 + p * evaders + e]
+        while (game::to_string(s.pursuers[p]) != r.pursuer) ++p;
+        while (game::to_string(s.evaders[e]) != r.evader) ++e;
+        const std::filesystem::path file = experiment::output_file(o.out, experiment::matchup_key(r), ".html");
+        cli::write_viewer(file, scene, sims[1 + p * s.evaders.size() + e], *r.trace,
+                          {fmt::format("{} {} repeat {}: {} vs {}", arena->map().name, r.scenario, r.repeat, r.pursuer, r.evader),
+                           fmt::format("peg-matchup, seed {}; {}", o.seed, cli::ending_of(r.result))});
+        viewers.push_back(file.string());
+      }
+    }
     std::fputs(experiment::matchup_table(summary).c_str(), stdout);
     std::printf("\nresults in %s\n", o.out.string().c_str());
+    cli::report_viewers(viewers, html);
     return 0;
   });
 }

@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
   o.out = "results/paper";
   std::vector<std::string> algorithms{"peg3d", "baseline", "paper"};
   bool plots = true, list_config = false;
+  std::vector<std::string> html;
   cli::add_sweep_options(app, o);
+  cli::add_html_option(app, html, "SCENARIO_ALGORITHM, e.g. S1_peg3d or '*_peg3d'; the evaluation episode of repeat 0");
   app.add_option("--algorithms", algorithms, "algorithms to compare (peg3d, baseline, paper)")
       ->delimiter(',')
       ->capture_default_str();
@@ -92,10 +94,32 @@ int main(int argc, char** argv) {
                                experiment::paper_run_info(settings));
     journal->remove();  // complete: the files above hold every run
     if (plots) cli::run_plot_script("plot_paper.py", o.out);
+    // Viewer files beside the figures, one per chosen evaluation episode (repeat 0, as the trajectories).
+    std::vector<std::string> viewers;
+    std::unique_ptr<view::ReplayScene> scene;
+    for (const auto& sc : scenarios) {
+      for (std::size_t a = 0; a < algs.size(); ++a) {
+        const std::string key = sc.name + "_" + algs[a].name;
+        const auto trace = results.traces.find(key);
+        if (trace == results.traces.end() || !cli::chosen_for_html(html, key)) continue;
+        if (!scene) scene = std::make_unique<view::ReplayScene>(*arena);
+        const game::EpisodeResult* result = nullptr;
+        for (const auto& r : results.runs) {
+          if (r.scenario == sc.name && r.algorithm == algs[a].name && r.repeat == 0) result = &r.evaluation;
+        }
+        const std::filesystem::path file = experiment::output_file(o.out, key, ".html");
+        cli::write_viewer(file, *scene, sims[a], trace->second,
+                          {fmt::format("{} {}: {}", arena->map().name, sc.name, algs[a].name),
+                           fmt::format("peg-paper, seed {}, repeat 0 after {} training episodes; {}", o.seed, o.episodes,
+                                       result ? cli::ending_of(*result) : std::string("evaluation"))});
+        viewers.push_back(file.string());
+      }
+    }
 
     std::fputs(experiment::summary_table(summary).c_str(), stdout);
     std::printf("\n%zu runs, %lld steps in %.1f s (%.0f steps/s); results in %s\n", runs, results.steps, run_seconds,
                 results.steps / run_seconds, o.out.string().c_str());
+    cli::report_viewers(viewers, html);
     return 0;
   });
 }

@@ -1,5 +1,7 @@
 // peg-collide: headless collision-regression tests (docs/collision-tests.md).
-//   peg-collide run CASE... [--strict] [--update]   replay cases, compare with their golden logs
+//   peg-collide run CASE... [--strict] [--update] [--html DIR]
+//                                                   replay cases, compare with their golden logs (and write
+//                                                   each case's replay viewer, DIR/CASE.html)
 //   peg-collide record CASE...                      write the golden logs (only when asked)
 //   peg-collide new --map MAP --motion FILE --out CASE [--agent LABEL] [--scenario NAME] [--set k=v]...
 //                                                   make a case from a map and a motion, and record it
@@ -16,6 +18,7 @@
 #include "core/atomic_file.hpp"
 #include "experiment/collision_case.hpp"
 #include "experiment/collision_log.hpp"
+#include "experiment/result_files.hpp"
 
 using namespace peg3d;
 
@@ -66,6 +69,8 @@ int main(int argc, char** argv) {
   run->add_option("cases", run_cases, "case folders, .yaml files, or folders of cases")->required();
   run->add_flag("--strict", strict, "a differing trajectory hash fails the case too");
   run->add_flag("--update", update, "record the golden logs of the cases that differ (review the diff!)");
+  std::filesystem::path html_dir;
+  run->add_option("--html", html_dir, "write each case's replay viewer (one HTML page, docs/viewer.md) as DIR/CASE.html");
 
   std::vector<std::string> record_cases;
   CLI::App* rec = app.add_subcommand("record", "write the golden logs of cases");
@@ -129,7 +134,13 @@ int main(int argc, char** argv) {
     for (const auto& path : expand(run_cases)) {
       const experiment::CollisionCase c = experiment::load_case(path);
       const experiment::CollisionLog expected = experiment::parse_log(read_text(c.golden), c.golden);
-      const experiment::CollisionLog actual = experiment::run_case(c, use_cache);
+      const experiment::CasePlay play = experiment::play_case(c, use_cache);
+      const experiment::CollisionLog& actual = play.log;
+      if (!html_dir.empty()) {
+        cli::prepare_output_dir(html_dir);
+        const std::filesystem::path file = experiment::output_file(html_dir, c.name, ".html");
+        cli::write_case_viewer(file, c, play);
+      }
       std::vector<std::string> notes;
       const auto diffs = experiment::compare_logs(expected, actual, experiment::Tolerances{}, strict, &notes);
       for (const auto& n : notes) std::printf("note %s: %s\n", c.name.c_str(), n.c_str());

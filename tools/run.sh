@@ -4,4 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
-exec build/bin/peg-paper "$@"
+# One replay viewer per paper scenario (the peg3d algorithm) beside the figures: --html.
+exec build/bin/peg-paper --html '*_peg3d' "$@"

@@ -216,7 +216,7 @@ std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path)
   return out;
 }
 
-CollisionLog run_case(const CollisionCase& c, bool use_cache) {
+CasePlay play_case(const CollisionCase& c, bool use_cache) {
   world::BuildOptions options;
   if (use_cache) options.cache_dir = world::default_cache_dir();
   const auto arena = world::Arena::build(world::load_map(c.map), options);
@@ -268,7 +268,10 @@ CollisionLog run_case(const CollisionCase& c, bool use_cache) {
   game::Trace trace;
   trace.reserve(sim.max_steps(), n);
   game::play(sim, state, *scenario, lineup.policies(), /*learning=*/false, c.seed, &trace);
-  return make_log(c.name, trace, state, sim.movers());
+  CollisionLog log = make_log(c.name, trace, state, sim.movers());
+  return {sim, std::move(trace), std::move(log)};
 }
+
+CollisionLog run_case(const CollisionCase& c, bool use_cache) { return play_case(c, use_cache).log; }
 
 }  // namespace peg3d::experiment

@@ -22,6 +22,7 @@
 #include "experiment/collision_log.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
+#include "game/sim.hpp"
 
 namespace peg3d::experiment {
 
@@ -56,8 +57,18 @@ CollisionCase load_case(const std::filesystem::path& path);
 /// The cases at `path`: the case itself, or every case among the folder's entries, sorted by name.
 std::vector<std::filesystem::path> find_cases(const std::filesystem::path& path);
 
-/// Plays the case headless (greedy, no learning) and logs it. Throws InputError for bad input (map,
-/// configuration, policy files, unknown agent labels).
+/// A case played: the model it was played on, every instant, and its log.
+struct CasePlay {
+  game::Sim sim;
+  game::Trace trace;
+  CollisionLog log;
+};
+
+/// Plays the case headless (greedy, no learning). Throws InputError for bad input (map, configuration,
+/// policy files, unknown agent labels).
+CasePlay play_case(const CollisionCase& c, bool use_cache = true);
+
+/// play_case's log.
 CollisionLog run_case(const CollisionCase& c, bool use_cache = true);
 
 /// Timed steering commands, one per line: `time_s d_alpha_deg d_theta_deg` (the requested heading changes per

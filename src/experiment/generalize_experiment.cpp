@@ -55,6 +55,10 @@ nlohmann::ordered_json generalize_seeds(const game::Sim& train, const Generalize
           {"runs", scenario_run_seeds(train.arena().map().scenarios, s.repeats, s.seed)}};
 }
 
+std::string generalize_key(const GeneralizeRecord& r) {
+  return fmt::format("{}_r{}_on_{}_{}", r.train_scenario, r.repeat, r.eval_map, r.eval_scenario);
+}
+
 std::vector<GeneralizeRecord> run_generalization(
     const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s, ProgressReporter* progress,
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep) {
@@ -77,8 +81,15 @@ std::vector<GeneralizeRecord> run_generalization(
         game::Lineup lineup;
         game::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
         game::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
-        records.push_back({scenarios[std::size_t(sc)].name, rep, evals[m].name, es.name,
-                           evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}))});
+        GeneralizeRecord r{scenarios[std::size_t(sc)].name, rep, evals[m].name, es.name, {}, {}};
+        std::shared_ptr<game::Trace> trace;
+        if (s.keep_trace && s.keep_trace(generalize_key(r))) {
+          trace = std::make_shared<game::Trace>();
+          trace->reserve(sim.max_steps(), es.agents());
+        }
+        r.result = evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}), trace.get());
+        r.trace = std::move(trace);
+        records.push_back(std::move(r));
         if (progress) progress->episode_done();
       }
     }
@@ -97,6 +108,7 @@ std::vector<GeneralizeRecord> run_generalization(
                            {"eval_map", r.eval_map},
                            {"eval_scenario", r.eval_scenario},
                            {"result", episode_to_json(r.result)}});
+          if (r.trace) games.back()["trace"] = trace_to_json(*r.trace);
         }
         nlohmann::json data{{"games", std::move(games)}};
         if (i % static_cast<std::size_t>(s.repeats) == 0) {
@@ -111,7 +123,8 @@ std::vector<GeneralizeRecord> run_generalization(
         for (const auto& g : data.at("games")) {
           records.push_back({g.at("train_scenario").get<std::string>(), g.at("repeat").get<int>(),
                              g.at("eval_map").get<std::string>(), g.at("eval_scenario").get<std::string>(),
-                             episode_from_json(g.at("result"))});
+                             episode_from_json(g.at("result")), {}});
+          if (g.contains("trace")) records.back().trace = std::make_shared<const game::Trace>(trace_from_json(g.at("trace")));
         }
         per_job[i] = std::move(records);
         if (i % static_cast<std::size_t>(s.repeats) == 0) {

@@ -3,6 +3,7 @@
 // scenario of other maps (for instance one with terrain). Reports capture and collision rates per map.
 
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -27,6 +28,8 @@ struct GeneralizeSettings {
   int repeats = 5;
   int threads = 0;
   SweepControl control;  ///< journal and stop request (none by default)
+  /// Chooses the games (by generalize_key) whose episode is recorded, for replay viewers; none when empty.
+  std::function<bool(const std::string&)> keep_trace;
 };
 
 struct GeneralizeRecord {
@@ -35,7 +38,11 @@ struct GeneralizeRecord {
   std::string eval_map;        ///< name of the evaluation map
   std::string eval_scenario;
   game::EpisodeResult result;
+  std::shared_ptr<const game::Trace> trace;  ///< every instant, when settings.keep_trace chose the game
 };
+
+/// A game's key: TRAINSCENARIO_rREPEAT_on_EVALMAP_EVALSCENARIO, e.g. S1_r0_on_forest_S2.
+std::string generalize_key(const GeneralizeRecord& r);
 
 /// An evaluation map: its Sim and the name results give it.
 struct EvalMap {

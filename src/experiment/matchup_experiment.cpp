@@ -142,8 +142,14 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
         } else {
           game::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
         }
-        MatchupRecord record{scenario.name, rep, game::to_string(s.pursuers[p]), game::to_string(s.evaders[e]), {}, {}};
-        record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}));
+        MatchupRecord record{scenario.name, rep, game::to_string(s.pursuers[p]), game::to_string(s.evaders[e]), {}, {}, {}};
+        std::shared_ptr<game::Trace> trace;
+        if (s.keep_trace && s.keep_trace(matchup_key(record))) {
+          trace = std::make_shared<game::Trace>();
+          trace->reserve(sim.max_steps(), scenario.agents());
+        }
+        record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}), trace.get());
+        record.trace = std::move(trace);
         record.agents = game::agent_summaries(state);
         records.push_back(std::move(record));
         if (progress) progress->episode_done();
@@ -165,6 +171,7 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
                            {"evader", r.evader},
                            {"result", episode_to_json(r.result)},
                            {"agents", std::move(agents)}});
+          if (r.trace) games.back()["trace"] = trace_to_json(*r.trace);
         }
         return nlohmann::json{{"games", std::move(games)}};
       },
@@ -173,8 +180,9 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
         for (const auto& g : data.at("games")) {
           MatchupRecord r{g.at("scenario").get<std::string>(), g.at("repeat").get<int>(),
                           g.at("pursuer").get<std::string>(), g.at("evader").get<std::string>(),
-                          episode_from_json(g.at("result")), {}};
+                          episode_from_json(g.at("result")), {}, {}};
           for (const auto& a : g.at("agents")) r.agents.push_back(agent_summary_from_json(a));
+          if (g.contains("trace")) r.trace = std::make_shared<const game::Trace>(trace_from_json(g.at("trace")));
           records.push_back(std::move(r));
         }
         if (records.size() != n_p * n_e) {
@@ -185,6 +193,10 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
   std::vector<MatchupRecord> out;
   for (auto& v : per_job) std::move(v.begin(), v.end(), std::back_inserter(out));
   return out;
+}
+
+std::string matchup_key(const MatchupRecord& r) {
+  return fmt::format("{}_r{}_{}_vs_{}", r.scenario, r.repeat, r.pursuer, r.evader);
 }
 
 void write_matchups_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records) {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,6 +36,8 @@ struct MatchupSettings {
   std::shared_ptr<game::FaclModel> pursuer_policy;  ///< a saved FACL pursuer instead of training (every pursuer plays it)
   std::shared_ptr<game::FaclModel> evader_policy;   ///< a saved FACL evader instead of training (every evader plays it)
   SweepControl control;                             ///< journal and stop request (none by default)
+  /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
+  std::function<bool(const std::string&)> keep_trace;
 };
 
 struct MatchupRecord {
@@ -43,7 +46,11 @@ struct MatchupRecord {
   std::string pursuer, evader;  ///< policy names
   game::EpisodeResult result;
   std::vector<game::AgentSummary> agents;
+  std::shared_ptr<const game::Trace> trace;  ///< every instant, when settings.keep_trace chose the game
 };
+
+/// A game's key: SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee.
+std::string matchup_key(const MatchupRecord& r);
 
 /// The configuration a scripted policy plays with: the base agent's kinematics and guard, its own policy,
 /// no motion space and no learning.
