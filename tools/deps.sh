@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages peg3d needs, only those missing. Fast when everything is present.
+#   tools/deps.sh          what building and running needs
+#   tools/deps.sh --test   that, plus what the test suite alone needs (headless Chromium for the viewer test)
 set -euo pipefail
 
 PACKAGES=(
@@ -10,6 +12,9 @@ PACKAGES=(
   libboost-dev libmeshoptimizer-dev libjs-three
   python3-matplotlib python3-numpy
 )
+if [[ "${1:-}" == "--test" ]]; then
+  PACKAGES+=(chromium python3-websocket python3-pil)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

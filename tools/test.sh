@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ "${1:-}" == "--sanitize" ]]; then
   shift
-  tools/deps.sh
+  tools/deps.sh --test
   if [[ ! -f build-sanitize/CMakeCache.txt ]]; then
     # Benchmarks are timed, never checked: the sanitized build leaves them out and builds everything tested.
     # Warnings are the Release build's check (-Werror there); GCC 12 at -O1 with ASan warns falsely inside
@@ -21,5 +21,6 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   ctest --test-dir build-sanitize --output-on-failure --parallel "$(nproc)" "$@"
   exit
 fi
+tools/deps.sh --test
 tools/build.sh
 ctest --test-dir build --output-on-failure --parallel "$(nproc)" "$@"

@@ -1,0 +1,257 @@
+#!/usr/bin/env python3
+"""The replay viewer in a real browser (headless Chromium, software WebGL), driven over the DevTools protocol.
+
+usage: check_viewer.py BIN_DIR SOURCE_DIR WORK_DIR
+
+1. Writes viewer files the three ways users do: peg-paper --html on tests/data/viewer/scene.yaml (terrain,
+   spheres, a cylinder, an orbiting mover), peg-view from the trajectory file it wrote, and
+   peg-collide run --html on a collision case.
+2. Opens each in Chromium and checks: the page builds its scene (window.pegView.ready), the JavaScript
+   console holds no error and no exception, and the page makes no network request.
+3. On the peg-paper file, from the pixels of screenshots at two instants: hiding the obstacles, the terrain,
+   the trails or the movers changes the picture (so each is drawn), and the agents' pixels lie elsewhere at
+   the second instant (so they moved). The screenshots stay in WORK_DIR to look at.
+
+Exit status 0: all passed; 77: skipped (no Chromium, or no python3-websocket); 1: a check failed.
+"""
+import base64
+import glob
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+SKIP = 77
+# Chromium's software GL reports reading pixels back (each screenshot) as a "performance" driver message.
+HARMLESS = ("GPU stall due to ReadPixels",)
+
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+    return ok
+
+
+def run(cmd, **kw):
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, **kw)
+    if r.returncode != 0:
+        print(f"command failed ({r.returncode}): {' '.join(cmd)}\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}")
+    return r
+
+
+class Page:
+    """One Chromium tab over the DevTools protocol: commands, and the events that arrived meanwhile."""
+
+    def __init__(self, ws_url, websocket):
+        self.ws = websocket.create_connection(ws_url, timeout=60, suppress_origin=True)
+        self.next_id = 0
+        self.events = []
+
+    def call(self, method, **params):
+        self.next_id += 1
+        my_id = self.next_id
+        self.ws.send(json.dumps({"id": my_id, "method": method, "params": params}))
+        while True:
+            msg = json.loads(self.ws.recv())
+            if msg.get("id") == my_id:
+                if "error" in msg:
+                    raise RuntimeError(f"{method}: {msg['error']}")
+                return msg.get("result", {})
+            if "method" in msg:
+                self.events.append(msg)
+
+    def js(self, expression):
+        r = self.call("Runtime.evaluate", expression=expression, returnByValue=True, awaitPromise=True)
+        if "exceptionDetails" in r:
+            raise RuntimeError(f"{expression}: {r['exceptionDetails'].get('exception', {}).get('description')}")
+        return r["result"].get("value")
+
+    def screenshot(self):
+        from PIL import Image
+        data = self.call("Page.captureScreenshot", format="png")["data"]
+        return Image.open(io.BytesIO(base64.b64decode(data))).convert("RGB")
+
+
+def start_chromium(profile):
+    exe = shutil.which("chromium")
+    cmd = [exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--use-gl=swiftshader", "--enable-unsafe-swiftshader",
+           "--window-size=1280,800", "--no-first-run", "--no-default-browser-check", "--disable-extensions",
+           "--disable-background-networking", "--disable-component-update", "--disable-sync",
+           f"--user-data-dir={profile}", "--remote-debugging-port=0", "about:blank"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    port_file = os.path.join(profile, "DevToolsActivePort")
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        if os.path.exists(port_file):
+            lines = open(port_file).read().split()
+            if lines:
+                return proc, int(lines[0])
+        time.sleep(0.1)
+    proc.kill()
+    raise RuntimeError("Chromium did not open its DevTools port within 60 s")
+
+
+def open_page(port, websocket):
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=30) as r:
+        targets = [t for t in json.load(r) if t.get("type") == "page"]
+    page = Page(targets[0]["webSocketDebuggerUrl"], websocket)
+    for domain in ("Runtime", "Log", "Network", "Page"):
+        page.call(f"{domain}.enable")
+    return page
+
+
+def load(page, html):
+    """Navigates to the file and waits for the viewer; returns the load time in seconds."""
+    page.events.clear()
+    start = time.time()
+    page.call("Page.navigate", url="file://" + os.path.abspath(html))
+    deadline = start + 120
+    while time.time() < deadline:
+        try:
+            if page.js("!!(window.pegView && window.pegView.ready)"):
+                return time.time() - start
+        except RuntimeError:
+            pass  # the page is between documents
+        time.sleep(0.1)
+    return None
+
+
+def console_problems(page, html):
+    """Errors, exceptions and warnings of the page's console and log; requests other than the page itself."""
+    problems = []
+    own = "file://" + os.path.abspath(html)
+    for e in page.events:
+        m, p = e["method"], e.get("params", {})
+        if m == "Runtime.exceptionThrown":
+            problems.append("exception: " + json.dumps(p.get("exceptionDetails", {}))[:300])
+        elif m == "Runtime.consoleAPICalled" and p.get("type") in ("error", "assert", "warning"):
+            text = " ".join(str(a.get("value", a.get("description", ""))) for a in p.get("args", []))
+            if not any(h in text for h in HARMLESS):
+                problems.append(f"console.{p['type']}: {text[:300]}")
+        elif m == "Log.entryAdded" and p.get("entry", {}).get("level") in ("error", "warning"):
+            text = p["entry"].get("text", "")
+            if not any(h in text for h in HARMLESS):
+                problems.append(f"log {p['entry']['level']}: {text[:300]}")
+        elif m == "Network.requestWillBeSent":
+            url = p.get("request", {}).get("url", "")
+            if url != own:
+                problems.append(f"network request: {url[:200]}")
+    return problems
+
+
+def changed_pixels(a, b):
+    import numpy as np
+    d = np.abs(np.asarray(a, dtype=np.int16) - np.asarray(b, dtype=np.int16)).sum(axis=2)
+    return d > 24
+
+
+def centroid(mask):
+    import numpy as np
+    ys, xs = np.nonzero(mask)
+    return (float(xs.mean()), float(ys.mean())) if len(xs) else None
+
+
+def main():
+    bin_dir, source, work = sys.argv[1:4]
+    if shutil.which("chromium") is None:
+        print("SKIPPED: chromium is not installed (tools/test.sh installs it)")
+        return SKIP
+    try:
+        import websocket  # python3-websocket
+        import numpy  # noqa: F401
+        from PIL import Image  # noqa: F401
+    except ImportError as e:
+        print(f"SKIPPED: {e} (tools/test.sh installs python3-websocket, python3-numpy, python3-pil)")
+        return SKIP
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    scene = os.path.join(source, "tests", "data", "viewer", "scene.yaml")
+
+    # 1. Viewer files, three ways.
+    paper_out = os.path.join(work, "paper")
+    r = run([os.path.join(bin_dir, "peg-paper"), "--map", scene, "--out", paper_out, "--algorithms", "peg3d",
+             "--episodes", "3", "--repeats", "1", "--seed", "5", "--no-plots", "--no-cache", "--html", "across_*",
+             "--plain-progress"])
+    paper_html = os.path.join(paper_out, "across_peg3d.html")
+    check(r.returncode == 0 and os.path.exists(paper_html), "peg-paper --html writes across_peg3d.html")
+    check(f"replay viewer: {paper_html}" in r.stdout, "peg-paper names the viewer file in its summary")
+    view_html = os.path.join(work, "from_csv.html")
+    r = run([os.path.join(bin_dir, "peg-view"), "--map", scene, "--trajectory",
+             os.path.join(paper_out, "trajectories", "across_peg3d.csv"), "--out", view_html, "--no-cache"])
+    check(r.returncode == 0 and os.path.exists(view_html), "peg-view writes a viewer from a trajectory file")
+    case_dir = os.path.join(work, "cases")
+    r = run([os.path.join(bin_dir, "peg-collide"), "--no-cache", "run",
+             os.path.join(source, "tests", "collision", "mover-crosses-path"), "--html", case_dir])
+    case_html = os.path.join(case_dir, "mover-crosses-path.html")
+    check(r.returncode == 0 and os.path.exists(case_html), "peg-collide run --html writes the case's viewer")
+    if failures:
+        return 1
+
+    profile = tempfile.mkdtemp(prefix="peg3d-chromium-")
+    proc, port = start_chromium(profile)
+    try:
+        page = open_page(port, websocket)
+        # 2. Every file opens offline, quietly.
+        for html in (paper_html, view_html, case_html):
+            name = os.path.basename(html)
+            seconds = load(page, html)
+            if not check(seconds is not None, f"{name}: the viewer is ready ({os.path.getsize(html) / 1e6:.1f} MB)"):
+                continue
+            print(f"     loaded in {seconds:.2f} s")
+            page.js("pegView.seek(pegView.duration / 2)")
+            problems = console_problems(page, html)
+            check(not problems, f"{name}: no console error, no exception, no network request" +
+                  ("" if not problems else ": " + "; ".join(problems[:5])))
+
+        # 3. The pixels of the peg-paper file.
+        if load(page, paper_html) is None:
+            return 1
+        duration = page.js("pegView.duration")
+        frames = page.js("pegView.frames")
+        check(frames > 10, f"the episode has {frames} frames over {duration:.1f} s")
+        shots = {}
+        agents_at = {}
+        for label, t in (("early", 0.2 * duration), ("late", 0.8 * duration)):
+            page.js(f"pegView.seek({t})")
+            full = page.screenshot()
+            full.save(os.path.join(work, f"viewer_{label}.png"))
+            shots[label] = full
+            page.js("pegView.setLayer('agents', false)")
+            without = page.screenshot()
+            page.js("pegView.setLayer('agents', true)")
+            agents_at[label] = changed_pixels(full, without)
+        page.js(f"pegView.seek({0.8 * duration})")
+        for layer in ("obstacles", "terrain", "trails", "movers"):
+            page.js(f"pegView.setLayer('{layer}', false)")
+            without = page.screenshot()
+            page.js(f"pegView.setLayer('{layer}', true)")
+            n = int(changed_pixels(shots["late"], without).sum())
+            check(n > 100, f"the {layer} are drawn ({n} pixels change when they are hidden)")
+        a, b = centroid(agents_at["early"]), centroid(agents_at["late"])
+        if check(a is not None and b is not None, "the agents are drawn at both instants"):
+            moved = ((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) ** 0.5
+            check(moved > 10, f"the agents moved between the instants ({moved:.0f} pixels)")
+        n = int(changed_pixels(shots["early"], shots["late"]).sum())
+        check(n > 500, f"the two instants look different ({n} pixels)")
+        problems = console_problems(page, paper_html)
+        check(not problems, "no console error or network request while driving the page" +
+              ("" if not problems else ": " + "; ".join(problems[:5])))
+    finally:
+        proc.kill()
+        proc.wait()
+        shutil.rmtree(profile, ignore_errors=True)
+    print(f"screenshots: {os.path.join(work, 'viewer_early.png')}, {os.path.join(work, 'viewer_late.png')}")
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
