@@ -173,6 +173,10 @@ TriangleMesh import_mesh_in_process(const std::filesystem::path& file) {
 TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimits& limits) {
   check_file(file);
   const std::string name = file.string();
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(file, ec);
+  const double seconds = limits.seconds_for(ec ? 0 : bytes);
+  const std::size_t memory = limits.memory_for(ec ? 0 : bytes);
   const ChildResult r = run_bounded(
       [&] {
         try {
@@ -185,20 +189,20 @@ TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimi
           throw MeshError(fmt::format("mesh file '{}' cannot be read: {}", name, e.what()));
         }
       },
-      {limits.seconds, limits.memory_bytes});
+      {seconds, memory});
   switch (r.status) {
     case ChildResult::Status::kOk:
       return deserialize(r.output, name);
     case ChildResult::Status::kFailed:
       throw MeshError(r.output);
     case ChildResult::Status::kTimedOut:
-      throw MeshError(fmt::format("mesh file '{}' took more than {} s to import and was given up: it is malformed or too "
+      throw MeshError(fmt::format("mesh file '{}' took more than {:.1f} s to import and was given up: it is malformed or too "
                                   "large",
-                                  name, limits.seconds));
+                                  name, seconds));
     case ChildResult::Status::kOutOfMemory:
       throw MeshError(fmt::format("mesh file '{}' needed more memory than the {} MiB an import may use and was given up: "
                                   "it is malformed or too large",
-                                  name, limits.memory_bytes >> 20));
+                                  name, memory >> 20));
     case ChildResult::Status::kCrashed:
       break;
   }

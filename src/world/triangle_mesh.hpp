@@ -1,6 +1,7 @@
 #pragma once
 // Triangle meshes as plain arrays, and their bounded import through assimp (OBJ, STL, PLY, OFF, glTF 2, 3DS).
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <stdexcept>
@@ -31,10 +32,24 @@ class MeshError : public InputError {
   using InputError::InputError;
 };
 
-/// How long and how much memory one mesh import may take before it is given up (see import_mesh).
+/// How long and how much memory one mesh import may take before it is given up (see import_mesh). Both grow
+/// with the file: a text OBJ of a million triangles (35 MB) takes about 2 s, 0.6 GB resident and between 1
+/// and 1.5 GiB of address space to import, so a fixed bound would refuse honest terrain while a small file
+/// that asks for gigabytes is still stopped early.
 struct MeshImportLimits {
-  double seconds = 8.0;                                // s of wall time, > 0
-  std::size_t memory_bytes = std::size_t{768} << 20;  // bytes the import may add to the process, > 0
+  double seconds = 8.0;                                   ///< s of wall time for any file, > 0
+  double seconds_per_mib = 0.5;                           ///< s more per MiB of file, >= 0
+  std::size_t memory_bytes = std::size_t{768} << 20;     ///< bytes the import may add to the process, > 0
+  std::size_t memory_per_file_byte = 64;                  ///< or this many per byte of file, when more
+  std::size_t max_memory_bytes = std::size_t{8} << 30;   ///< and never more than this
+
+  /// The bounds for a file of `file_bytes`.
+  double seconds_for(std::uintmax_t file_bytes) const { return seconds + seconds_per_mib * double(file_bytes) / (1 << 20); }
+  std::size_t memory_for(std::uintmax_t file_bytes) const {
+    const double scaled = double(memory_per_file_byte) * double(file_bytes);
+    return std::min(max_memory_bytes, std::max(memory_bytes, scaled >= double(max_memory_bytes) ? max_memory_bytes
+                                                                                                  : std::size_t(scaled)));
+  }
 };
 
 /// Imports every triangle of a mesh file (all its meshes, node transforms applied) in the file's own units.

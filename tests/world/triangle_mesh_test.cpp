@@ -179,3 +179,21 @@ TEST(WorldMeshImport, TruncatedFilesNeverCrash) {
 
 }  // namespace
 }  // namespace peg3d::world
+
+namespace peg3d::world {
+namespace {
+
+// A million-triangle text OBJ (35 MB) needs about 1.5 GiB of address space to import: the bounds grow with
+// the file, from 8 s and 768 MiB for small files, up to 8 GiB.
+TEST(WorldMeshImportLimits, GrowWithTheFileUpToTheCap) {
+  const MeshImportLimits l;
+  EXPECT_EQ(l.memory_for(0), std::size_t{768} << 20);
+  EXPECT_EQ(l.memory_for(1'000'000), std::size_t{768} << 20);
+  EXPECT_EQ(l.memory_for(35'000'000), std::size_t{64} * 35'000'000);
+  EXPECT_EQ(l.memory_for(std::uintmax_t{1} << 40), std::size_t{8} << 30);
+  EXPECT_DOUBLE_EQ(l.seconds_for(0), 8.0);
+  EXPECT_DOUBLE_EQ(l.seconds_for(std::uintmax_t{10} << 20), 13.0);
+}
+
+}  // namespace
+}  // namespace peg3d::world
