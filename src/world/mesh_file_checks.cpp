@@ -31,6 +31,10 @@ std::string lower(std::string s) {
   throw MeshError(fmt::format("mesh file '{}' {}", file.string(), why));
 }
 
+// Bodies are walked (list lengths, face indices) only in files up to this size; larger ones go to the bounded
+// import with their headers checked.
+constexpr std::size_t kMaxWalkedBytes = std::size_t{256} << 20;
+
 std::string read_prefix(const fs::path& file, std::size_t n) {
   std::ifstream in(file, std::ios::binary);
   std::string s(n, '\0');
@@ -58,7 +62,10 @@ bool is_number(std::string_view t) {
 // ---- PLY: element counts times the smallest size of one element must fit in the body. ----
 
 void check_ply(const fs::path& file, std::uintmax_t size) {
-  const std::string head = read_prefix(file, 1 << 20);
+  // A file whose body is walked is read once, whole; the header is its start.
+  const bool walked = size <= kMaxWalkedBytes;
+  const std::string text = walked ? read_input_file(file, "mesh file", kMaxWalkedBytes) : read_prefix(file, 1 << 20);
+  const std::string_view head = std::string_view(text).substr(0, std::size_t{1} << 20);
   // assimp 5.2's PLY reader loops forever on a header cut short before "end_header", on some lines it does not
   // know, and on an "end_header" not followed by a line break (the last two found by fuzzing): the header must
   // be lines of the format's own keywords, ended by a line that is exactly "end_header".
@@ -66,7 +73,7 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
   for (std::size_t at = 0; at < head.size();) {
     const std::size_t eol = head.find('\n', at);
     if (eol == std::string::npos) break;
-    std::string_view l = std::string_view(head).substr(at, eol - at);
+    std::string_view l = head.substr(at, eol - at);
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
     if (l == "end_header") {
       end = at;
@@ -77,7 +84,7 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
   }
   if (end == std::string::npos) refuse(file, "is malformed: its PLY header has no end_header line");
   const std::uintmax_t body = size - (body_start + 1);
-  std::istringstream lines(head.substr(0, end));
+  std::istringstream lines(std::string(head.substr(0, end)));
   std::string line;
   bool ascii = true;
   struct Property {
@@ -158,8 +165,8 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
     if (need > body) refuse(file, fmt::format("declares PLY elements needing at least {} bytes, but its body holds {}", need, body));
   }
   // The lists' lengths are in the body: walk it, so no list asks the importer for more items than follow.
-  if (size > (std::uintmax_t{256} << 20) || body_start == std::string::npos) return;
-  const std::string all = read_input_file(file, "mesh file", std::size_t{256} << 20);
+  if (!walked || body_start == std::string::npos) return;
+  const std::string& all = text;
   const bool big_endian = head.find("binary_big_endian") < end;
   std::size_t at = body_start + 1;
   const auto list_too_long = [&](const Element& e, std::uint64_t i, std::uint64_t n) {
@@ -222,8 +229,9 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
 // ---- OFF: "OFF nv nf ne"; a vertex takes at least 6 bytes ("0 0 0\n"), a face at least 4 ("1 0\n"). ----
 
 void check_off(const fs::path& file, std::uintmax_t size) {
-  const std::string head = read_prefix(file, 4096);
-  std::istringstream in(head);
+  const bool walked = size <= kMaxWalkedBytes;
+  const std::string text = walked ? read_input_file(file, "mesh file", kMaxWalkedBytes) : read_prefix(file, 4096);
+  std::istringstream in(text.substr(0, 4096));
   std::vector<std::string> words;
   std::string line;
   while (words.size() < 4 && std::getline(in, line)) {
@@ -241,8 +249,8 @@ void check_off(const fs::path& file, std::uintmax_t size) {
     refuse(file, fmt::format("declares {} vertices and {} faces, more than its {} bytes can hold", nv, nf, size));
   }
   // assimp clamps a face's out-of-range index to the last vertex, making up a triangle: refuse it instead.
-  if (size > (std::uintmax_t{256} << 20)) return;
-  std::istringstream all(read_input_file(file, "mesh file", std::size_t{256} << 20));
+  if (!walked) return;
+  std::istringstream all(text);
   std::uint64_t skipped = 0, face = 0;
   bool counts_read = false;
   while (std::getline(all, line) && face < nf) {
@@ -303,8 +311,8 @@ const nlohmann::json& list(const nlohmann::json& doc, const char* key, const fs:
 }
 
 void check_gltf(const fs::path& file, std::uintmax_t size, bool binary) {
-  if (size > (std::uintmax_t{256} << 20)) return;  // larger glTF files go to the bounded import unchecked
-  const std::string bytes = read_input_file(file, "mesh file", std::size_t{256} << 20);
+  if (size > kMaxWalkedBytes) return;  // larger glTF files go to the bounded import unchecked
+  const std::string bytes = read_input_file(file, "mesh file", kMaxWalkedBytes);
   std::string_view json_text = bytes;
   std::uint64_t bin_chunk = 0;
   if (binary) {
@@ -461,8 +469,8 @@ void check_3ds_chunks(const fs::path& file, const std::string& b, std::size_t at
 }
 
 void check_3ds(const fs::path& file, std::uintmax_t size) {
-  if (size > (std::uintmax_t{256} << 20)) return;
-  const std::string bytes = read_input_file(file, "mesh file", std::size_t{256} << 20);
+  if (size > kMaxWalkedBytes) return;
+  const std::string bytes = read_input_file(file, "mesh file", kMaxWalkedBytes);
   check_3ds_chunks(file, bytes, 0, bytes.size(), 0);
 }
 
