@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/random.hpp"
+#include "core/step_profile.hpp"
 #include "geometry/angles.hpp"
 
 namespace peg3d::game {
@@ -88,7 +89,11 @@ Steering FaclPolicy::act(const AgentView& view) {
   const Features f = features_of(view.percept);
   const bool reuse = have_fired_ && f == fired_features_;
   for (Lane& l : lanes_) {
-    if (!reuse) model_->fire(l.channel, f, l.now());
+    if (!reuse) {
+      const StepProfile::Scope profiled(StepProfile::kFiring);
+      model_->fire(l.channel, f, l.now());
+    }
+    const StepProfile::Scope profiled(StepProfile::kActorCritic);
     const std::size_t n = std::size_t(l.actions);
     if (learning_) {
       l.exploration.act(*l.tables, l.now(), {l.u.data(), n}, {l.u_explored.data(), n});
@@ -108,9 +113,14 @@ void FaclPolicy::learn(double reward, const AgentView& next, bool terminal) {
   for (Lane& l : lanes_) {
     const std::size_t n = std::size_t(l.actions);
     if (terminal) {
+      const StepProfile::Scope profiled(StepProfile::kLearning);
       l.trainable->update(l.now(), {l.u.data(), n}, {l.u_explored.data(), n}, reward, nullptr);
     } else {
-      model_->fire(l.channel, f, l.next());
+      {
+        const StepProfile::Scope profiled(StepProfile::kFiring);
+        model_->fire(l.channel, f, l.next());
+      }
+      const StepProfile::Scope profiled(StepProfile::kLearning);
       l.trainable->update(l.now(), {l.u.data(), n}, {l.u_explored.data(), n}, reward, &l.next());
       l.current = 1 - l.current;  // the successor's firing is the next act()'s current state
     }

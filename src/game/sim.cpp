@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/step_profile.hpp"
 #include "core/validation.hpp"
 #include "game/constraints.hpp"
 #include "geometry/sphere_sweep.hpp"
@@ -423,6 +424,7 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
 
   // 1. Every active agent's heading and move, all from the state at t.
   for (int i = 0; i < n; ++i) {
+    const StepProfile::Scope profiled(StepProfile::kConstraints);
     const AgentState& a = st.agents[std::size_t(i)];
     AgentEvents& e = ev.agents[std::size_t(i)];
     e.command = commands[std::size_t(i)];
@@ -450,8 +452,12 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     if (!a.active) continue;
     KinematicState& k = st.scratch.next[std::size_t(i)];
     const Vec3 from = a.kinematics.position, to = k.position;
-    const auto c = st.collider.move_agent(a.body, k.position);
+    const auto c = [&] {
+      const StepProfile::Scope profiled(StepProfile::kCollisions);
+      return st.collider.move_agent(a.body, k.position);
+    }();
     if (movers != nullptr) {
+      const StepProfile::Scope profiled(StepProfile::kMovers);
       collide_movers(sim, st, i, from, to, c);
     } else if (c) {
       k.position = st.collider.agent_position(a.body);  // stopped at the time of impact
@@ -459,7 +465,10 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     }
   }
   // 3. Agents with each other, when the configuration says they collide.
-  if (g.team.agent_collisions != AgentCollisions::kNone) collide_agents(sim, st);
+  if (g.team.agent_collisions != AgentCollisions::kNone) {
+    const StepProfile::Scope profiled(StepProfile::kCollisions);
+    collide_agents(sim, st);
+  }
 
   // 4. Commit the moves.
   for (int i = 0; i < n; ++i) {
@@ -495,7 +504,10 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     --st.free_evaders;
   }
 
-  if (st.moving_field) st.moving_field->set_time(*sim.movers(), st.time);
+  if (st.moving_field) {
+    const StepProfile::Scope profiled(StepProfile::kMovers);
+    st.moving_field->set_time(*sim.movers(), st.time);
+  }
 
   // 6. New observations: every agent that took part in the step (a captured evader gets its final view).
   //    With one agent per role the opponents never change.
@@ -503,6 +515,7 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];
     if (!ev.agents[std::size_t(i)].acted) continue;
+    const StepProfile::Scope profiled(StepProfile::kObservation);
     if (!one_on_one && !ev.agents[std::size_t(i)].captured) a.opponent = choose_opponent(st, i, rule_of(g, a.role));
     perceive_agent(sim, st, i);
   }
@@ -530,7 +543,10 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
                           a.view.percept.obstacle.distance,
                           success,
                           e.collided};
-    e.reward = reward(a.role, a.config->reward, in, (a.config->speed + o.config->speed) * g.dt);
+    {
+      const StepProfile::Scope profiled(StepProfile::kRewards);
+      e.reward = reward(a.role, a.config->reward, in, (a.config->speed + o.config->speed) * g.dt);
+    }
     a.total_reward += e.reward.total;
     a.pinned_steps += a.view.percept.pinned;
     if (e.captured) a.active = false;
