@@ -15,6 +15,7 @@
 #include "world/map_rules.hpp"
 #include "world/mover_timeline.hpp"
 #include "world/obstacle_geometry.hpp"
+#include "world/terrain_shapes.hpp"
 #include "world/voxel_grid.hpp"
 
 namespace peg3d::world {
@@ -203,6 +204,8 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
       throw MapError(spec.source, spec.meshes[i].line, fmt::format("terrain[{}].file", i), e.what());
     }
     st.triangles += arena->meshes_.back().triangle_count();
+    // Starts are checked against solid terrain at every reset: index the triangles once.
+    arena->solid_index_.push_back(spec.meshes[i].solid_below ? VerticalRayIndex(arena->meshes_.back()) : VerticalRayIndex());
   }
 
   validate_movers(spec, arena->meshes_);
@@ -285,9 +288,15 @@ void Arena::save_octree(const std::filesystem::path& bt_file, double t) const {
   write_file_atomically(bt_file, {std::string_view(octree_with_shapes(octree_bt_, field_.grid(), shapes))});
 }
 
+std::shared_ptr<const TerrainShapes> Arena::terrain_shapes() const {
+  const std::lock_guard lock(terrain_mutex_);
+  if (!terrain_) terrain_ = std::make_shared<const TerrainShapes>(meshes_);
+  return terrain_;
+}
+
 bool Arena::below_solid_terrain(const Vec3& p) const {
   for (std::size_t i = 0; i < meshes_.size(); ++i) {
-    if (spec_.meshes[i].solid_below && is_below_surface(meshes_[i], p)) return true;
+    if (spec_.meshes[i].solid_below && solid_index_[i].is_below_surface(meshes_[i], p)) return true;
   }
   return false;
 }

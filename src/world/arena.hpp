@@ -16,9 +16,12 @@
 #include "geometry/vector.hpp"
 #include "world/distance_field.hpp"
 #include "world/map_spec.hpp"
+#include "world/obstacle_geometry.hpp"
 #include "world/triangle_mesh.hpp"
 
 namespace peg3d::world {
+
+struct TerrainShapes;
 
 class MoverTimeline;
 
@@ -94,6 +97,10 @@ class Arena {
   /// and kept: later requests, from any thread, share it read-only. Null for a map without movers.
   std::shared_ptr<const MoverTimeline> movers_until(double seconds) const;
 
+  /// Bullet's hierarchies of the terrain meshes (world/terrain_shapes.hpp), built on the first request and
+  /// shared read-only by every later one, from any thread.
+  std::shared_ptr<const TerrainShapes> terrain_shapes() const;
+
   /// True when p lies under a terrain mesh marked solid_below (exact: a vertical ray through its triangles).
   /// Bullet sees only a terrain's surface, so this is how a start buried under a height field is caught.
   bool below_solid_terrain(const Vec3& p) const;
@@ -115,6 +122,9 @@ class Arena {
   std::vector<TriangleMesh> meshes_;
   DistanceField field_;
   std::string octree_bt_;
+  std::vector<VerticalRayIndex> solid_index_;              // per mesh; empty for meshes not solid below
+  mutable std::mutex terrain_mutex_;                       // guards terrain_
+  mutable std::shared_ptr<const TerrainShapes> terrain_;  // built on the first request
   mutable std::mutex movers_mutex_;                        // guards movers_
   mutable std::shared_ptr<const MoverTimeline> movers_;   // the longest timeline simulated so far
 };

@@ -7,6 +7,7 @@
 #include <btBulletCollisionCommon.h>
 
 #include "core/validation.hpp"
+#include "world/terrain_shapes.hpp"
 
 namespace peg3d::world {
 namespace {
@@ -92,12 +93,13 @@ struct CollisionWorld::Impl {
   btDbvtBroadphase broadphase;
   btCollisionWorld world{&dispatcher, &broadphase, &configuration};
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> mesh_arrays;  // views of the Arena's triangles
+  std::shared_ptr<const TerrainShapes> terrain;  // the Arena's, shared
   std::vector<std::unique_ptr<btCollisionObject>> obstacles;
   std::vector<Agent> agents;
   long long sweeps = 0;
 
-  Impl(std::shared_ptr<const Arena> a, const CollisionOptions& o) : arena(std::move(a)), options(o) {
+  Impl(std::shared_ptr<const Arena> a, const CollisionOptions& o)
+      : arena(std::move(a)), options(o), terrain(arena->terrain_shapes()) {
     // Static obstacles never move: do not refresh their AABBs on every query.
     world.setForceUpdateAllAabbs(false);
     const MapSpec& spec = arena->map();
@@ -113,15 +115,9 @@ struct CollisionWorld::Impl {
       shape->setMargin(std::min(kCylinderMargin, 0.25 * std::min(c.radius, 0.5 * c.height)));
       add_obstacle(std::move(shape), c.base + Vec3(0, 0, 0.5 * c.height), ObstacleKind::kCylinder, int(i));
     }
-    for (std::size_t i = 0; i < arena->meshes().size(); ++i) {
-      const TriangleMesh& m = arena->meshes()[i];
-      // Bullet reads the Arena's arrays in place (the shared_ptr keeps them alive); it never writes them.
-      auto array = std::make_unique<btTriangleIndexVertexArray>(
-          int(m.faces.size()), const_cast<int*>(m.faces.front().data()), int(sizeof(m.faces[0])),
-          int(m.vertices.size()), const_cast<btScalar*>(m.vertices.front().data()), int(sizeof(Vec3)));
-      auto shape = std::make_unique<btBvhTriangleMeshShape>(array.get(), /*useQuantizedAabbCompression=*/true);
-      mesh_arrays.push_back(std::move(array));
-      add_obstacle(std::move(shape), Vec3::Zero(), ObstacleKind::kMesh, int(i));
+    for (std::size_t i = 0; i < terrain->shapes.size(); ++i) {
+      // Shared with every other world over this Arena; queries only read it.
+      add_obstacle(terrain->shapes[i].get(), Vec3::Zero(), ObstacleKind::kMesh, int(i));
     }
   }
 
@@ -131,14 +127,19 @@ struct CollisionWorld::Impl {
   }
 
   void add_obstacle(std::unique_ptr<btCollisionShape> shape, const Vec3& at, ObstacleKind kind, int id) {
+    add_obstacle(static_cast<const btCollisionShape*>(shape.get()), at, kind, id);
+    shapes.push_back(std::move(shape));
+  }
+
+  void add_obstacle(const btCollisionShape* shape, const Vec3& at, ObstacleKind kind, int id) {
     auto object = std::make_unique<btCollisionObject>();
-    object->setCollisionShape(shape.get());
+    // Bullet's API takes a mutable shape; a static object's shape is only read.
+    object->setCollisionShape(const_cast<btCollisionShape*>(shape));
     object->setWorldTransform(btTransform(btQuaternion::getIdentity(), bt(at)));
     object->setCollisionFlags(btCollisionObject::CF_STATIC_OBJECT);
     object->setUserIndex(static_cast<int>(kind));
     object->setUserIndex2(id);
     world.addCollisionObject(object.get(), kObstacleGroup, kAgentGroup);
-    shapes.push_back(std::move(shape));
     obstacles.push_back(std::move(object));
   }
 

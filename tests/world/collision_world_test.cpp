@@ -308,6 +308,21 @@ TEST(WorldCollision, WorldsOverOneArenaAreIndependentAcrossThreads) {
   EXPECT_NE(alone[0], alone[1]);
 }
 
+TEST(WorldCollision, WorldsOverOneArenaShareItsTerrainHierarchy) {
+  // Building a terrain's hierarchy costs about a second per million triangles: once per Arena, not per world.
+  MapSpec spec = empty_spec(Vec3(20, 10, 8), 0.2);
+  spec.meshes.push_back(testing::mesh_entry("ridge.obj"));
+  const auto arena = arena_with(spec);
+  const auto shapes = arena->terrain_shapes();
+  const long before = shapes.use_count();
+  {
+    CollisionWorld w1(arena), w2(arena);
+    EXPECT_EQ(arena->terrain_shapes(), shapes);
+    EXPECT_EQ(shapes.use_count(), before + 2);  // each world holds the Arena's, none built its own
+  }
+  EXPECT_EQ(shapes.use_count(), before);
+}
+
 TEST(WorldCollision, MovingInOneWorldLeavesAnotherAlone) {
   MapSpec spec = empty_spec(Vec3::Constant(10), 0.25);
   spec.spheres.push_back({Vec3(5, 5, 5), 1.0});
