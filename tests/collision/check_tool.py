@@ -8,20 +8,14 @@ usage: check_tool.py PEG_COLLIDE SUITE_DIR WORK_DIR
 """
 import os
 import shutil
-import subprocess
 import sys
 
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import check, run as run_program, verdict  # noqa: E402
 
 
 def run(*args):
-    return subprocess.run(list(args), capture_output=True, text=True)
+    return run_program(list(args))
 
 
 def main():
@@ -91,8 +85,7 @@ def main():
     check(r.returncode == 2 and "nowhere" in r.stderr, f"an unknown scenario: status {r.returncode}, {r.stderr!r}")
     check(not os.path.exists(os.path.join(work, "y")), "a case that cannot be recorded leaves nothing behind")
 
-    print("ok" if not failures else f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":

@@ -14,20 +14,10 @@ import csv
 import json
 import os
 import shutil
-import subprocess
 import sys
 
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
-
-
-def run(cmd, cwd=None, env=None):
-    return subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, env=env)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import check, run, verdict  # noqa: E402
 
 
 def rows(path):
@@ -157,8 +147,7 @@ def main():
     check(r.returncode == 0, f"a copied peg-paper with its share/ runs from another folder: {r.stderr[-500:]}")
     check(os.path.exists(os.path.join(elsewhere, "res", "trajectories.png")), "and draws its figures")
 
-    print("ok" if not failures else f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":

@@ -10,8 +10,10 @@ import json
 import os
 import re
 import shutil
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import check, run as run_program, verdict  # noqa: E402
 
 EPISODE = ["outcome", "captured", "capture_time_s", "episode_time_s", "final_distance_m", "pursuer_path_m",
            "evader_path_m", "collisions", "evader_pinned_fraction", "pursuer_pinned_fraction", "pursuer_return",
@@ -26,14 +28,6 @@ TRAJ = ["t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "eva
             f"{a}_{c}" for a in ("pursuer", "evader") for c in ("active", "hit", "captured")]
 FIGURES = ["trajectories.png", "comparison.png", "learning.png", "apollonius.png"]
 DETERMINISTIC = ["runs.csv", "learning_curves.csv", "summary.json", "config.json"]
-
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
 
 
 def header(path):
@@ -54,7 +48,7 @@ def run(binary, out, *extra):
     cmd = [binary, "--out", out, "--repeats", "2", "--episodes", "3", "--plain-progress", "--no-cache", *extra]
     if "--map" not in extra:
         cmd += ["--map", "maps/paper.yaml"]
-    return subprocess.run(cmd, capture_output=True, text=True)
+    return run_program(cmd)
 
 
 def main():
@@ -114,8 +108,7 @@ def main():
         check(r.stderr.startswith("error:"), f"{args}: 'error: ...' on stderr, got {r.stderr[:200]!r}")
         check(not os.path.exists(bad) or not os.listdir(bad), f"{args}: no output written")
 
-    print("ok" if not failures else f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":

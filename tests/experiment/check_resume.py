@@ -21,19 +21,8 @@ import subprocess
 import sys
 import time
 
-failures = []
-
-
-def check(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL:", what)
-    return cond
-
-
-def run(cmd):
-    return subprocess.run(cmd, capture_output=True, text=True)
-
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checks import check, failures, run, verdict  # noqa: E402
 
 
 def start(cmd):
@@ -198,8 +187,7 @@ def main():
     check(not os.path.exists(os.path.join(work, "nothing")), "--resume without a journal writes nothing")
 
     print(f"{time.monotonic() - t0:.1f} s")
-    print("ok" if not failures else f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":

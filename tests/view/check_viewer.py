@@ -26,22 +26,21 @@ import tempfile
 import time
 import urllib.request
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import checks  # noqa: E402
+from checks import failures, verdict  # noqa: E402
+
 SKIP = 77
 # Chromium's software GL reports reading pixels back (each screenshot) as a "performance" driver message.
 HARMLESS = ("GPU stall due to ReadPixels",)
 
-failures = []
-
 
 def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
-    return ok
+    return checks.check(ok, what, verbose=True)
 
 
 def run(cmd, **kw):
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, **kw)
+    r = checks.run(cmd, timeout=600, **kw)
     if r.returncode != 0:
         print(f"command failed ({r.returncode}): {' '.join(cmd)}\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}")
     return r
@@ -249,8 +248,7 @@ def main():
         proc.wait()
         shutil.rmtree(profile, ignore_errors=True)
     print(f"screenshots: {os.path.join(work, 'viewer_early.png')}, {os.path.join(work, 'viewer_late.png')}")
-    print(f"{len(failures)} failure(s)")
-    return 1 if failures else 0
+    return verdict()
 
 
 if __name__ == "__main__":
