@@ -30,15 +30,6 @@ void push(std::vector<float>& out, const Vec3& v) {
   out.push_back(static_cast<float>(v.z()));
 }
 
-const char* shape_name(Shape::Kind k) {
-  switch (k) {
-    case Shape::Kind::kSphere: return "sphere";
-    case Shape::Kind::kCylinder: return "cylinder";
-    case Shape::Kind::kBox: return "box";
-  }
-  return "sphere";
-}
-
 // The frames at which movers and pair geometry are sampled: all, or `cap` evenly spread with both ends.
 std::vector<std::uint32_t> sample_frames(int frames, int cap) {
   std::vector<std::uint32_t> out;
@@ -147,7 +138,7 @@ ReplayScene::ReplayScene(const world::Arena& arena, const ReplaySettings& settin
   }
   json_["movers"] = nlohmann::json::array();
   for (const auto& mv : m.movers) {
-    json_["movers"].push_back({{"shape", shape_name(mv.shape.kind)},
+    json_["movers"].push_back({{"shape", to_string(mv.shape.kind)},
                                {"radius", mv.shape.radius},
                                {"height", mv.shape.height},
                                {"size", vec(mv.shape.size)},
