@@ -10,10 +10,13 @@
 
 #include "core/error.hpp"
 #include "core/yaml_input.hpp"
+#include "support/input_error_of.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace peg3d {
 namespace {
+
+using peg3d::testing::input_error_of;
 
 namespace fs = std::filesystem;
 
@@ -23,17 +26,6 @@ class CoreInputFiles : public ::testing::Test {
     const fs::path p = dir_ / name;
     std::ofstream(p, std::ios::binary) << text;
     return p;
-  }
-  // The InputError `f` throws (fails the test if it throws nothing).
-  template <class F>
-  static InputError error_of(F&& f) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      return e;
-    }
-    ADD_FAILURE() << "no InputError";
-    return InputError("", 0, "", "");
   }
   peg3d::testing::ScratchDir scratch_;  // before dir_, which copies its path
   fs::path dir_ = scratch_.path();
@@ -45,19 +37,19 @@ TEST_F(CoreInputFiles, ReadsARegularFileWhole) {
 }
 
 TEST_F(CoreInputFiles, RefusesMissingFilesDirectoriesDevicesAndFifos) {
-  EXPECT_EQ(error_of([&] { read_input_file(dir_ / "none.yaml", "map file"); }).message(), "map file not found");
-  EXPECT_EQ(error_of([&] { read_input_file(dir_, "map file"); }).message(), "map file is not a regular file");
+  EXPECT_EQ(input_error_of([&] { read_input_file(dir_ / "none.yaml", "map file"); }).message(), "map file not found");
+  EXPECT_EQ(input_error_of([&] { read_input_file(dir_, "map file"); }).message(), "map file is not a regular file");
   // /dev/zero never ends and a FIFO without a writer blocks forever: both are refused before any read.
-  EXPECT_EQ(error_of([&] { read_input_file("/dev/zero", "policy file"); }).message(), "policy file is not a regular file");
+  EXPECT_EQ(input_error_of([&] { read_input_file("/dev/zero", "policy file"); }).message(), "policy file is not a regular file");
   const fs::path fifo = dir_ / "fifo.json";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_EQ(error_of([&] { read_input_file(fifo, "configuration"); }).message(), "configuration is not a regular file");
+  EXPECT_EQ(input_error_of([&] { read_input_file(fifo, "configuration"); }).message(), "configuration is not a regular file");
 }
 
 TEST_F(CoreInputFiles, RefusesFilesAboveTheSizeCap) {
   const fs::path f = write("big.json", std::string(1001, ' '));
   EXPECT_EQ(read_input_file(f, "x", 1001).size(), 1001u);
-  const InputError e = error_of([&] { read_input_file(f, "policy file", 1000); });
+  const InputError e = input_error_of([&] { read_input_file(f, "policy file", 1000); });
   EXPECT_EQ(e.file(), f);
   EXPECT_EQ(e.message(), "policy file is 1001 bytes, more than the 1000 this build reads");
 }

@@ -20,10 +20,13 @@
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
 #include "game/policy_io.hpp"
+#include "support/input_error_of.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace peg3d::experiment {
 namespace {
+
+using peg3d::testing::input_error_of;
 
 namespace fs = std::filesystem;
 
@@ -51,17 +54,6 @@ class ExperimentRunJournal : public ::testing::Test {
     return {{"experiment", "test"}, {"seed", seed}, {"config", {{"dt", 0.05}, {"name", "peg3d"}}}};
   }
 
-  /// The InputError `f` throws (fails when it throws none).
-  template <class F>
-  static InputError error_of(F&& f) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      return e;
-    }
-    ADD_FAILURE() << "no InputError";
-    return InputError("none");
-  }
 
   peg3d::testing::ScratchDir scratch_;  // before dir_, which copies its path
   fs::path dir_ = scratch_.path(), file_;
@@ -251,7 +243,7 @@ TEST_F(ExperimentRunJournal, ATornLastLineIsDroppedAndCut) {
 TEST_F(ExperimentRunJournal, AJournalOfAnotherSweepIsRefusedNamingTheField) {
   RunJournal::create(file_, 4, setup(7))->record(0, {});
   const std::string before = text();
-  InputError e = error_of([&] { RunJournal::resume(file_, 4, setup(8)); });
+  InputError e = input_error_of([&] { RunJournal::resume(file_, 4, setup(8)); });
   EXPECT_EQ(e.file(), file_);
   EXPECT_EQ(e.line(), 1);
   EXPECT_EQ(e.field(), "setup.seed");
@@ -259,45 +251,45 @@ TEST_F(ExperimentRunJournal, AJournalOfAnotherSweepIsRefusedNamingTheField) {
 
   nlohmann::json other = setup();
   other["config"]["dt"] = 0.1;
-  e = error_of([&] { RunJournal::resume(file_, 4, other); });
+  e = input_error_of([&] { RunJournal::resume(file_, 4, other); });
   EXPECT_EQ(e.field(), "setup.config.dt");
   other = setup();
   other["extra"] = true;
-  e = error_of([&] { RunJournal::resume(file_, 4, other); });
+  e = input_error_of([&] { RunJournal::resume(file_, 4, other); });
   EXPECT_EQ(e.field(), "setup.extra");
-  e = error_of([&] { RunJournal::resume(file_, 5, setup()); });
+  e = input_error_of([&] { RunJournal::resume(file_, 5, setup()); });
   EXPECT_EQ(e.field(), "runs");
   EXPECT_EQ(text(), before);  // a refused journal is left as it was
 
   // Starting a new sweep over it is refused too: runs of two sweeps are never mixed.
-  e = error_of([&] { RunJournal::create(file_, 4, setup()); });
+  e = input_error_of([&] { RunJournal::create(file_, 4, setup()); });
   EXPECT_EQ(e.file(), file_);
   EXPECT_EQ(text(), before);
 }
 
 TEST_F(ExperimentRunJournal, BadFilesAndLinesAreInputErrorsNamingTheLine) {
-  EXPECT_NE(std::string(error_of([&] { RunJournal::resume(file_, 4, setup()); }).what()).find("no journal"),
+  EXPECT_NE(std::string(input_error_of([&] { RunJournal::resume(file_, 4, setup()); }).what()).find("no journal"),
             std::string::npos);
   append("{\"format\":\"peg3d-policy\"}\n");
-  EXPECT_EQ(error_of([&] { RunJournal::resume(file_, 4, setup()); }).field(), "format");
+  EXPECT_EQ(input_error_of([&] { RunJournal::resume(file_, 4, setup()); }).field(), "format");
   fs::remove(file_);
 
   RunJournal::create(file_, 4, setup());
   append("{\"run\":0,\"data\":{}}\nnot json\n{\"run\":1,\"data\":{}}\n");
-  InputError e = error_of([&] { RunJournal::resume(file_, 4, setup()); });
+  InputError e = input_error_of([&] { RunJournal::resume(file_, 4, setup()); });
   EXPECT_EQ(e.line(), 3);
   fs::remove(file_);
 
   RunJournal::create(file_, 4, setup());
   append("{\"run\":9,\"data\":{}}\n{\"run\":1,\"data\":{}}\n");
-  e = error_of([&] { RunJournal::resume(file_, 4, setup()); });
+  e = input_error_of([&] { RunJournal::resume(file_, 4, setup()); });
   EXPECT_EQ(e.line(), 2);
   EXPECT_EQ(e.field(), "run");
   fs::remove(file_);
 
   RunJournal::create(file_, 4, setup());
   append("{\"run\":1,\"data\":{}}\n{\"run\":1,\"data\":{}}\n{\"run\":2,\"data\":{}}\n");
-  e = error_of([&] { RunJournal::resume(file_, 4, setup()); });
+  e = input_error_of([&] { RunJournal::resume(file_, 4, setup()); });
   EXPECT_EQ(e.line(), 3);
   EXPECT_NE(std::string(e.what()).find("twice"), std::string::npos) << e.what();
   fs::remove(file_);
@@ -306,10 +298,10 @@ TEST_F(ExperimentRunJournal, BadFilesAndLinesAreInputErrorsNamingTheLine) {
   RunJournal::create(file_, 4, setup());
   append("{\"run\":2,\"data\":{\"evaluation\":[1,2]}}\n");
   auto j = RunJournal::resume(file_, 4, setup());
-  e = error_of([&] { j->restore(2, [](const nlohmann::json& d) { episode_from_json(d.at("evaluation")); }); });
+  e = input_error_of([&] { j->restore(2, [](const nlohmann::json& d) { episode_from_json(d.at("evaluation")); }); });
   EXPECT_EQ(e.line(), 2);
   EXPECT_EQ(e.field(), "run 2");
-  e = error_of([&] { j->restore(2, [](const nlohmann::json& d) { (void)d.at("missing"); }); });
+  e = input_error_of([&] { j->restore(2, [](const nlohmann::json& d) { (void)d.at("missing"); }); });
   EXPECT_EQ(e.line(), 2);
 }
 
