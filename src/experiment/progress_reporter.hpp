@@ -64,7 +64,8 @@ struct ProgressOptions {
 /// atomics; printing happens under a mutex, rate-limited as described above.
 class ProgressReporter {
  public:
-  /// Reports to `out` (stderr by default); force_plain selects plain lines even on a terminal.
+  /// Reports to `out` (stderr by default); force_plain selects plain lines even on a terminal. A null `out`
+  /// only counts (a sweep's non-root MPI ranks count episodes for the root, which prints).
   ProgressReporter(std::size_t total_runs, std::size_t total_episodes, std::FILE* out = stderr,
                    bool force_plain = false);
   ProgressReporter(std::size_t total_runs, std::size_t total_episodes, std::FILE* out, ProgressOptions options);

@@ -15,6 +15,8 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/input_files.hpp"
+#include "experiment/distributed_sweep.hpp"
+#include "experiment/process_group.hpp"
 #include "game/policy_io.hpp"
 
 namespace peg3d::experiment {
@@ -331,6 +333,10 @@ void run_journaled(std::size_t count, int threads, const SweepControl& control,
                    const std::function<nlohmann::json(std::size_t)>& encode,
                    const std::function<void(std::size_t, const nlohmann::json&)>& restore) {
   RunJournal* journal = control.journal;
+  const bool distributed = control.group && control.group->size() > 1;
+  if (journal && distributed && !control.group->is_root()) {
+    throw std::logic_error("run_journaled: only the root of a process group keeps the journal");
+  }
   if (journal && journal->runs() != count) {
     throw std::logic_error(fmt::format("run_journaled: the journal plans {} runs, the sweep {}", journal->runs(), count));
   }
@@ -343,6 +349,19 @@ void run_journaled(std::size_t count, int threads, const SweepControl& control,
     }
   }
   if (journal) journal->release_restored();
+
+  if (distributed) {
+    const DistributedOutcome outcome = run_distributed(todo, threads, control, run, encode, restore);
+    if (!control.group->is_root()) {
+      if (outcome.stopped) throw SweepInterrupted(outcome.finished, count, {});
+      return;
+    }
+    if (outcome.finished < todo.size()) {
+      throw SweepInterrupted(journal ? journal->recorded() : count - todo.size() + outcome.finished, count,
+                             journal ? journal->file() : std::filesystem::path());
+    }
+    return;
+  }
 
   std::atomic<std::size_t> finished{0};
   run_indexed(

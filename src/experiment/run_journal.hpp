@@ -30,6 +30,9 @@
 
 namespace peg3d::experiment {
 
+class ProcessGroup;
+class ProgressReporter;
+
 inline constexpr const char* kJournalFormat = "peg3d-journal";
 inline constexpr int kJournalVersion = 1;
 /// The journal's name in an experiment's output folder.
@@ -111,10 +114,16 @@ class SweepInterrupted : public std::runtime_error {
   std::filesystem::path journal_;
 };
 
-/// How a sweep is recorded and stopped; part of every experiment's settings.
+/// How a sweep is recorded, stopped and spread over processes; part of every experiment's settings.
 struct SweepControl {
   RunJournal* journal = nullptr;  ///< records each finished run; runs it already holds are read back, not rerun
   StopCheck stop;                 ///< polled before each run and between episodes; true stops the sweep
+  /// The processes the sweep is spread over (distributed_sweep.hpp); null or of size 1: this process alone.
+  /// With several, only the root (rank 0) has a journal.
+  ProcessGroup* group = nullptr;
+  /// The progress the runs count into. With a group, the other ranks' episode counts are sent to the root
+  /// with their runs and added to the root's reporter, which alone prints. Null: none.
+  ProgressReporter* progress = nullptr;
 };
 
 /// Runs 0..count-1 as run_indexed does (same threads and determinism), through `control`:
@@ -123,6 +132,12 @@ struct SweepControl {
 /// - on a stop request no further run starts, runs in flight give up (run throws RunCancelled) and are
 ///   dropped, and SweepInterrupted is thrown once the threads are joined, unless every run finished anyway.
 /// encode is not called without a journal. Other exceptions of run propagate as in run_indexed.
+///
+/// With a group of several processes (control.group), every rank calls this with the same arguments but
+/// `threads`: the runs are spread over the ranks as in run_distributed (distributed_sweep.hpp), and on the
+/// root every run ends up in its slot exactly as in a single-process sweep, computed there or restored from
+/// another rank's encode(i). The other ranks return once the root needs them no more; their slots are not
+/// all filled.
 void run_journaled(std::size_t count, int threads, const SweepControl& control,
                    const std::function<void(std::size_t)>& run,
                    const std::function<nlohmann::json(std::size_t)>& encode,
