@@ -8,12 +8,14 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <string_view>
 #include <tuple>
 
 #include <fmt/format.h>
 #include <fnmatch.h>
 
+#include "mpi_process_group.hpp"
 #include "view/viewer_html.hpp"
 
 #include "world/map_spec.hpp"
@@ -129,40 +131,148 @@ void add_sweep_options(CLI::App& app, SweepOptions& o) {
                "runs are run");
 }
 
-int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+namespace {
+
+// The MPI ranks of an experiment binary (sweep_main), and where the sweep is: failures are settled across
+// ranks by agreement before it, by ending every rank during it; after it only the root works.
+std::unique_ptr<experiment::ProcessGroup> g_group;
+enum class SweepPhase { kSetUp, kSweep, kAfter };
+SweepPhase g_phase = SweepPhase::kSetUp;
+
+bool several_ranks() { return g_group && g_group->size() > 1; }
+
+// Thrown by begin_sweep on the ranks whose set-up succeeded when another's failed: end with its status.
+struct PeerFailed {
+  int status;
+};
+
+// Prints a failure's message and returns its status; with several ranks, settles it first (sweep_main).
+int settle(int status, const std::string& message, bool root_only = false) {
+  if (several_ranks() && g_phase == SweepPhase::kSetUp) {
+    const experiment::ProcessGroup::Failure f = g_group->agree(status);
+    if (f.rank == g_group->rank()) std::fputs(message.c_str(), stderr);
+    return f.status;
+  }
+  if (!several_ranks() || !root_only || g_group->is_root()) std::fputs(message.c_str(), stderr);
+  return status;
+}
+
+int guarded(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return std::string("error: ") + e.what() + "\nRun with --help for more information.\n";
   });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    // Every rank parses the same flags: the root alone prints.
+    std::ostringstream out, err;
+    const int status = app.exit(e, out, err) == 0 ? 0 : 2;
+    if (!several_ranks() || g_group->is_root()) std::fputs(out.str().c_str(), stdout), std::fputs(err.str().c_str(), stderr);
+    return status;
   }
   try {
     return body();
+  } catch (const PeerFailed& p) {
+    return p.status;
   } catch (const experiment::SweepInterrupted& e) {
     const int sig = stop_signal();
     const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a stop request";
-    if (e.journal().empty()) {
-      std::fprintf(stderr, "interrupted by %s: %zu of %zu runs had finished; no result files written\n", name, e.kept(),
-                   e.total());
-    } else {
-      std::fprintf(stderr,
-                   "interrupted by %s: kept %zu of %zu runs in %s; no result files written\nresume with: %s\n", name,
-                   e.kept(), e.total(), e.journal().string().c_str(), resume_command(argc, argv).c_str());
-    }
-    return sig > 0 ? 128 + sig : 1;
+    const std::string message =
+        e.journal().empty()
+            ? fmt::format("interrupted by {}: {} of {} runs had finished; no result files written\n", name, e.kept(),
+                          e.total())
+            : fmt::format("interrupted by {}: kept {} of {} runs in {}; no result files written\nresume with: {}\n",
+                          name, e.kept(), e.total(), e.journal().string(), resume_command(argc, argv)) +
+                  (several_ranks() ? "(launched as this sweep was, by mpirun or srun, on any number of ranks)\n" : "");
+    return settle(sig > 0 ? 128 + sig : 1, message, /*root_only=*/true);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
+    return settle(2, fmt::format("error: {}\n", e.what()));
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
+    return settle(1, fmt::format("error: {}\n", e.what()));
   } catch (...) {
-    std::fprintf(stderr, "error: an unexpected failure\n");
-    return 1;
+    return settle(1, "error: an unexpected failure\n");
   }
 }
+
+}  // namespace
+
+int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  return guarded(app, argc, argv, body);
+}
+
+int sweep_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
+  if (launched_as_mpi_ranks()) {
+#ifdef PEG3D_HAVE_MPI
+    try {
+      g_group = join_mpi_ranks(&argc, &argv);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+#else
+    const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+    if (size == nullptr) size = std::getenv("PMI_SIZE");
+    if (size != nullptr && std::atoi(size) > 1) {
+      std::fprintf(stderr, "error: started as %s MPI ranks, but this peg3d was built without MPI: install "
+                           "libopenmpi-dev and rebuild, or run one process with --threads\n", size);
+      return 2;
+    }
+#endif
+  }
+  const int status = guarded(app, argc, argv, body);
+  g_group.reset();  // MPI_Finalize, once every rank is done with the others
+  return status;
+}
+
+experiment::ProcessGroup* process_group() { return g_group.get(); }
+
+bool SweepSession::root() const { return !control.group || control.group->is_root(); }
+
+void SweepSession::complete() {
+  if (journal) journal->remove();
+}
+
+SweepSession open_sweep(const SweepOptions& o, std::size_t runs, std::size_t episodes_per_run,
+                        const nlohmann::json& setup) {
+  SweepSession s;
+  s.control.group = g_group.get();
+  s.control.stop = stop_check();
+  if (s.root()) {
+    s.journal = open_journal(o, runs, setup);
+    s.left_ = runs - s.journal->recorded();
+    s.progress = std::make_unique<experiment::ProgressReporter>(s.left_, s.left_ * episodes_per_run, stderr,
+                                                                o.plain_progress);
+  } else {
+    s.progress = std::make_unique<experiment::ProgressReporter>(0, 0, nullptr);
+  }
+  s.control.journal = s.journal.get();
+  s.control.progress = s.progress.get();
+  return s;
+}
+
+namespace detail {
+
+void begin_sweep() {
+  if (several_ranks()) {
+    const experiment::ProcessGroup::Failure f = g_group->agree(0);
+    if (f.rank >= 0) throw PeerFailed{f.status};
+  }
+  g_phase = SweepPhase::kSweep;
+}
+
+void end_sweep() { g_phase = SweepPhase::kAfter; }
+
+void fail_in_sweep(const std::exception& e) {
+  g_phase = SweepPhase::kAfter;
+  if (!several_ranks()) return;
+  // Other ranks may be waiting on this one: end them all.
+  const int status = dynamic_cast<const InputError*>(&e) ? 2 : 1;
+  std::fprintf(stderr, "error: rank %d: %s\n", g_group->rank(), e.what());
+  std::fflush(stderr);
+  g_group->abort(status);
+}
+
+}  // namespace detail
 
 std::filesystem::path data_dir() {
   if (const char* env = std::getenv("PEG3D_DATA_DIR"); env != nullptr && *env != '\0') return env;

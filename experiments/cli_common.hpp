@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "experiment/collision_case.hpp"
+#include "experiment/process_group.hpp"
 #include "experiment/progress_reporter.hpp"
 #include "experiment/run_journal.hpp"
 #include "game/episode.hpp"
@@ -89,17 +90,66 @@ class StopOnSignals {
   std::unique_ptr<Saved> saved_;
 };
 
+/// guarded_main for the experiment binaries, which also run as MPI ranks (README, "Sweeps on a cluster"). When
+/// an MPI launcher (mpirun, srun) started the program and peg3d was built with MPI, it first joins the ranks
+/// (process_group()), and failures are settled across them so that none waits forever:
+/// - before the sweep (flags, maps, configurations, the journal): every rank ends with the status of the
+///   lowest failing rank, which alone prints its error;
+/// - during the sweep: the failing rank prints its error and ends every rank (MPI_Abort);
+/// - after it only the root works: it writes the result files; the other ranks return 0 (or 128 + the signal
+///   that stopped them), silently.
+/// Started by a launcher as several ranks, a build without MPI refuses to run (status 2) rather than run
+/// the whole sweep once per rank.
+int sweep_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+/// The ranks this experiment binary runs on; null when it runs alone.
+experiment::ProcessGroup* process_group();
+
+/// A sweep as the experiment binaries run it.
+struct SweepSession {
+  std::unique_ptr<experiment::RunJournal> journal;         ///< on the root only (open_journal)
+  std::unique_ptr<experiment::ProgressReporter> progress;  ///< prints on the root, only counts elsewhere
+  experiment::SweepControl control;                        ///< the journal, the stop signals, the ranks, progress
+
+  /// Whether this process writes the results: it runs alone or is rank 0.
+  bool root() const;
+  /// Runs left to compute when the sweep starts (all of them but those the journal holds).
+  std::size_t left() const { return left_; }
+  /// Removes the journal: every result file is written.
+  void complete();
+
+  std::size_t left_ = 0;
+};
+
+/// Opens a sweep of `runs` runs of `episodes_per_run` episodes each: on the root the journal (open_journal)
+/// and a progress line on stderr; on the other ranks neither touches the disk nor prints.
+SweepSession open_sweep(const SweepOptions& o, std::size_t runs, std::size_t episodes_per_run,
+                        const nlohmann::json& setup);
+
+namespace detail {
+void begin_sweep();
+void end_sweep();
+void fail_in_sweep(const std::exception& e);
+}  // namespace detail
+
 /// Runs a sweep with SIGINT and SIGTERM turned into stop requests, then closes the progress line, also when
-/// the sweep was interrupted (SweepInterrupted goes on to guarded_main).
+/// the sweep was interrupted (SweepInterrupted goes on to sweep_main). With several ranks, it first agrees
+/// with them that every set-up succeeded, and a failure during the sweep ends every rank (see sweep_main).
 template <class Sweep>
-auto run_stoppable(experiment::ProgressReporter& progress, Sweep&& sweep) {
+auto run_stoppable(SweepSession& session, Sweep&& sweep) {
   const StopOnSignals signals;
+  detail::begin_sweep();
   try {
     auto result = sweep();
-    progress.finish();
+    detail::end_sweep();
+    session.progress->finish();
     return result;
   } catch (const experiment::SweepInterrupted&) {
-    progress.finish();
+    detail::end_sweep();
+    session.progress->finish();
+    throw;
+  } catch (const std::exception& e) {
+    detail::fail_in_sweep(e);  // with several ranks, does not return
     throw;
   }
 }

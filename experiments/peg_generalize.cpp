@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--eval-maps", eval_maps, "maps to evaluate the trained policies on")->delimiter(',')->capture_default_str();
   app.add_flag("--list-config", list_config, "print every configuration field and exit");
 
-  return cli::guarded_main(app, argc, argv, [&] {
+  return cli::sweep_main(app, argc, argv, [&] {
     const game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), o.sets);
     if (list_config) {
       std::fputs(config::format_field_list(config::list_fields(config)).c_str(), stdout);
@@ -50,17 +50,16 @@ int main(int argc, char** argv) {
     const std::size_t jobs = experiment::generalize_run_count(train_sim, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::generalize_setup(train_sim, evals, s);
-    const auto journal = cli::open_journal(o, jobs, setup);
-    s.control = {journal.get(), cli::stop_check()};
-    if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
-
     std::size_t eval_count = 0;
     for (const auto& e : arenas) eval_count += e->map().scenarios.size();
-    const std::size_t left = jobs - journal->recorded();
-    experiment::ProgressReporter progress(left, left * (o.episodes + 1 + eval_count), stderr, o.plain_progress);
+    cli::SweepSession sweep = cli::open_sweep(o, jobs, static_cast<std::size_t>(o.episodes) + 1 + eval_count, setup);
+    s.control = sweep.control;
+    if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
+
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>> policies;
     const auto records = cli::run_stoppable(
-        progress, [&] { return experiment::run_generalization(train_sim, evals, s, &progress, &policies); });
+        sweep, [&] { return experiment::run_generalization(train_sim, evals, s, sweep.progress.get(), &policies); });
+    if (!sweep.root()) return 0;  // the root writes the results
     const auto summary = experiment::summarize_generalization(records, names);
     std::filesystem::create_directories(o.out / "policies");
     for (const auto& [key, model] : policies) {
@@ -72,7 +71,7 @@ int main(int argc, char** argv) {
     for (std::size_t m = 0; m < arenas.size(); ++m) maps.emplace_back("eval " + names[m], arenas[m].get());
     experiment::write_run_info(o.out / "run_info.json", "generalize", maps,
                                {{"setup", setup}, {"seeds", experiment::generalize_seeds(train_sim, s)}});
-    journal->remove();  // complete: the files above hold every run
+    sweep.complete();  // the files above hold every run
     std::vector<std::string> viewers;
     for (std::size_t m = 0; m < evals.size() && !html.empty(); ++m) {
       std::unique_ptr<view::ReplayScene> scene;

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   app.add_option("--evader-policy", evader_policy, "use this saved FACL evader instead of training one");
   app.add_flag("--list-config", list_config, "print every configuration field and exit");
 
-  return cli::guarded_main(app, argc, argv, [&] {
+  return cli::sweep_main(app, argc, argv, [&] {
     const game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), o.sets);
     if (list_config) {
       std::fputs(config::format_field_list(config::list_fields(config)).c_str(), stdout);
@@ -66,20 +66,19 @@ int main(int argc, char** argv) {
     const std::size_t jobs = experiment::matchup_run_count(*arena, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::matchup_setup(*arena, config, s);
-    const auto journal = cli::open_journal(o, jobs, setup);
-    s.control = {journal.get(), cli::stop_check()};
-
-    const std::size_t left = jobs - journal->recorded();
-    experiment::ProgressReporter progress(left, left * (o.episodes + 1 + s.pursuers.size() * s.evaders.size()), stderr,
-                                          o.plain_progress);
-    const auto records = cli::run_stoppable(progress, [&] { return experiment::run_matchups(sims, s, &progress); });
+    cli::SweepSession sweep =
+        cli::open_sweep(o, jobs, static_cast<std::size_t>(o.episodes) + 1 + s.pursuers.size() * s.evaders.size(), setup);
+    s.control = sweep.control;
+    const auto records =
+        cli::run_stoppable(sweep, [&] { return experiment::run_matchups(sims, s, sweep.progress.get()); });
+    if (!sweep.root()) return 0;  // the root writes the results
     const auto summary = experiment::summarize_matchups(records, s);
     experiment::write_matchups_csv(o.out / "matchups.csv", records);
     experiment::write_matchup_agents_csv(o.out / "agents.csv", records);
     experiment::write_json(o.out / "summary.json", summary);
     experiment::write_run_info(o.out / "run_info.json", "matchup", {{"map", arena.get()}},
                                {{"setup", setup}, {"seeds", experiment::matchup_seeds(*arena, s)}});
-    journal->remove();  // complete: the files above hold every run
+    sweep.complete();  // the files above hold every run
     std::vector<std::string> viewers;
     if (!html.empty()) {
       const view::ReplayScene scene(*arena);

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-plots", plots, "skip the figures");
   app.add_flag("--list-config", list_config, "print every configuration field of each algorithm and exit");
 
-  return cli::guarded_main(app, argc, argv, [&] {
+  return cli::sweep_main(app, argc, argv, [&] {
     const auto wall_start = std::chrono::steady_clock::now();
     const std::vector<experiment::Algorithm> algs = experiment::make_algorithms(algorithms, o.sets);
     if (list_config) {
@@ -46,16 +46,16 @@ int main(int argc, char** argv) {
     experiment::SweepSettings settings{o.seed, o.episodes, o.repeats, o.threads, 0, {}};
     const std::size_t runs = experiment::paper_run_count(*arena, algs, settings);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
-    const auto journal = cli::open_journal(o, runs, experiment::paper_setup(*arena, algs, settings));
-    settings.control = {journal.get(), cli::stop_check()};
+    cli::SweepSession sweep =
+        cli::open_sweep(o, runs, static_cast<std::size_t>(o.episodes) + 1, experiment::paper_setup(*arena, algs, settings));
+    settings.control = sweep.control;
     const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
-    const std::size_t left = runs - journal->recorded();
-    experiment::ProgressReporter progress(left, left * (o.episodes + 1), stderr, o.plain_progress);
     const auto run_start = std::chrono::steady_clock::now();
-    experiment::PaperResults results =
-        cli::run_stoppable(progress, [&] { return experiment::run_paper_experiment(algs, sims, settings, &progress); });
+    experiment::PaperResults results = cli::run_stoppable(
+        sweep, [&] { return experiment::run_paper_experiment(algs, sims, settings, sweep.progress.get()); });
     const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+    if (!sweep.root()) return 0;  // the root writes the results
 
     // Outputs: nothing but the journal is written before every run has finished.
     std::vector<std::string> scenario_names, algorithm_names;
@@ -89,10 +89,11 @@ int main(int argc, char** argv) {
                                                                          {"steps", results.steps},
                                                                          {"steps_per_second", results.steps / run_seconds},
                                                                          {"threads", o.threads},
+                                                                         {"ranks", cli::process_group() ? cli::process_group()->size() : 1},
                                                                          {"world_cache", arena->stats().cache_status}});
     experiment::write_run_info(o.out / "run_info.json", "paper", {{"map", arena.get()}},
                                experiment::paper_run_info(settings));
-    journal->remove();  // complete: the files above hold every run
+    sweep.complete();  // the files above hold every run
     if (plots) cli::run_plot_script("plot_paper.py", o.out);
     // Viewer files beside the figures, one per chosen evaluation episode (repeat 0, as the trajectories).
     std::vector<std::string> viewers;

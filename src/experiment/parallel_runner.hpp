@@ -7,6 +7,8 @@
 // Stopping early is cooperative: a StopCheck, polled before each index is handed out (and by long jobs at
 // cheap points of their own, which then throw RunCancelled), so a sweep can end within a moment of a request.
 
+#include <sched.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -34,10 +36,14 @@ inline void throw_if_stopped(const StopCheck& stop) {
   if (stop && stop()) throw RunCancelled();
 }
 
-/// Number of worker threads run_indexed uses for `threads`: threads itself when > 0, else the hardware
-/// concurrency (1 if unknown).
+/// Number of worker threads run_indexed uses for `threads`: threads itself when > 0, else the cores this
+/// process may run on (its CPU affinity: what taskset, a Slurm allocation or mpirun's binding of a rank
+/// leaves it), falling back to the hardware concurrency (1 if unknown).
 inline int resolve_thread_count(int threads) {
   if (threads > 0) return threads;
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) > 0) return CPU_COUNT(&allowed);
   const unsigned hardware = std::thread::hardware_concurrency();
   return hardware == 0 ? 1 : static_cast<int>(hardware);
 }

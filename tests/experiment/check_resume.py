@@ -11,7 +11,6 @@
 
 usage: check_resume.py BUILD_BIN_DIR SOURCE_DIR WORK_DIR
 """
-import filecmp
 import os
 import re
 import shlex
@@ -23,6 +22,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from checks import check, failures, run, verdict  # noqa: E402
+from result_folders import journal_runs, same_results, wait_for_runs  # noqa: E402
 
 
 def start(cmd):
@@ -30,46 +30,6 @@ def start(cmd):
     # shell's background job expects): give the sweep the default disposition, as a terminal would.
     return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-
-
-def journal_runs(out):
-    """Complete run lines in the journal (0 when there is none yet)."""
-    try:
-        with open(os.path.join(out, "runs.journal"), "rb") as f:
-            return max(f.read().count(b"\n") - 1, 0)
-    except FileNotFoundError:
-        return 0
-
-
-def wait_for_runs(proc, out, runs, timeout=120.0):
-    """Waits until the journal holds `runs` finished runs while the sweep still works; False if it ended first."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if proc.poll() is not None:
-            return False
-        if journal_runs(out) >= runs:
-            return True
-        time.sleep(0.01)
-    return False
-
-
-def result_files(folder):
-    """Every file of an output folder but the wall-clock one (timing.json), by relative path."""
-    found = set()
-    for root, _, files in os.walk(folder):
-        for name in files:
-            rel = os.path.relpath(os.path.join(root, name), folder)
-            if rel != "timing.json":
-                found.add(rel)
-    return found
-
-
-def same_results(reference, folder, what):
-    ref, got = result_files(reference), result_files(folder)
-    if not check(ref == got, f"{what}: files differ: missing {sorted(ref - got)}, extra {sorted(got - ref)}"):
-        return
-    differ = [f for f in sorted(ref) if not filecmp.cmp(os.path.join(reference, f), os.path.join(folder, f), shallow=False)]
-    check(not differ, f"{what}: not byte-identical to the uninterrupted sweep: {differ}")
 
 
 def killed_then_resumed(name, cmd, out, reference, threads, resume_threads, tear, after=5):

@@ -1,0 +1,51 @@
+"""What the sweep end-to-end scripts share about output folders: the journal as it grows, and result files
+compared byte for byte.
+
+    from result_folders import journal_runs, same_results, wait_for_runs
+"""
+import filecmp
+import os
+import time
+
+from checks import check
+
+
+def journal_runs(out):
+    """Complete run lines in OUT/runs.journal (0 when there is none yet)."""
+    try:
+        with open(os.path.join(out, "runs.journal"), "rb") as f:
+            return max(f.read().count(b"\n") - 1, 0)
+    except FileNotFoundError:
+        return 0
+
+
+def wait_for_runs(proc, out, runs, timeout=120.0):
+    """Waits until the journal holds `runs` finished runs while the sweep still works; False if it ended first."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            return False
+        if journal_runs(out) >= runs:
+            return True
+        time.sleep(0.01)
+    return False
+
+
+def result_files(folder):
+    """Every file of an output folder but the wall-clock one (timing.json), by relative path."""
+    found = set()
+    for root, _, files in os.walk(folder):
+        for name in files:
+            rel = os.path.relpath(os.path.join(root, name), folder)
+            if rel != "timing.json":
+                found.add(rel)
+    return found
+
+
+def same_results(reference, folder, what):
+    """Checks that `folder` holds the files of `reference`, byte-identical (timing.json aside)."""
+    ref, got = result_files(reference), result_files(folder)
+    if not check(ref == got, f"{what}: files differ: missing {sorted(ref - got)}, extra {sorted(got - ref)}"):
+        return False
+    differ = [f for f in sorted(ref) if not filecmp.cmp(os.path.join(reference, f), os.path.join(folder, f), shallow=False)]
+    return check(not differ, f"{what}: not byte-identical to the reference sweep: {differ}")
