@@ -58,7 +58,7 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
   return false;
 }
 
-Heading constrained_heading(const ConstraintInputs& in, const Steering& u) {
+Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving) {
   const AgentConfig& c = in.config;
   const double margin = c.steering.polar_margin;
   const Heading requested = bounded_steer(in.self.heading, u, c.steering, in.dt);
@@ -76,10 +76,15 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u) {
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);
     changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds);
   }
-  if (!changed) return requested;
+  if (!changed) {
+    if (moving) *moving = d;  // direction(requested), untouched
+    return requested;
+  }
   // Turn towards the constrained direction within the same steering bound.
   const AngleErrors e = angle_errors(in.self.heading, d);
-  return bounded_steer(in.self.heading, {e.azimuth, e.elevation}, c.steering, in.dt);
+  const Heading turned = bounded_steer(in.self.heading, {e.azimuth, e.elevation}, c.steering, in.dt);
+  if (moving) *moving = direction(turned);
+  return turned;
 }
 
 }  // namespace peg3d::game

@@ -60,7 +60,8 @@ struct ConstraintInputs {
 
 /// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),
 /// then the guard (when enabled). When a constraint moved the direction, the agent turns towards the
-/// constrained direction within the same steering bound.
-Heading constrained_heading(const ConstraintInputs& in, const Steering& u);
+/// constrained direction within the same steering bound. With `moving`, also stores direction(heading)
+/// there, computed once for the constraints and the move (the same bits as calling direction again).
+Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving = nullptr);
 
 }  // namespace peg3d::game

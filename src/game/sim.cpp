@@ -441,8 +441,9 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
     const ConstraintInputs in{*a.config,     a.role,       g.dt, a.kinematics, o.kinematics.position, o.config->speed,
                               a.view.field, a.bounds};
-    const Heading h = constrained_heading(in, e.command);
-    st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, a.config->speed, g.dt, a.bounds);
+    Vec3 d;
+    const Heading h = constrained_heading(in, e.command, &d);
+    st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, d, a.config->speed, g.dt, a.bounds);
   }
 
   // 2. Swept collisions with the map's obstacles, in index order: a hit stops the agent at the contact.

@@ -13,7 +13,19 @@ inline constexpr double kPi = std::numbers::pi;
 
 /// Wraps an angle to (-pi, pi].
 inline double wrap_angle(double a) {
-  a = std::remainder(a, 2.0 * kPi);  // in [-pi, pi]
+  // std::remainder(a, 2 pi), bit for bit, without the library call for |a| < 9 (every angle a step makes):
+  // there the rounded quotient is 0 or +-1, and for pi < |a| < 9 the difference a -+ 2 pi is exact
+  // (Sterbenz: 2 pi / 2 <= |a| <= 2 * 2 pi). Beyond, and for NaN and infinities, the library.
+  constexpr double kTwoPi = 2.0 * kPi;
+  const double m = std::abs(a);
+  if (m <= kPi) {
+    // as it is
+  } else if (m < 9.0) {
+    const double wrapped = a - std::copysign(kTwoPi, a);
+    a = wrapped == 0.0 ? std::copysign(0.0, a) : wrapped;  // a zero remainder keeps the sign of a
+  } else {
+    a = std::remainder(a, kTwoPi);  // in [-pi, pi]
+  }
   return a == -kPi ? kPi : a;
 }
 

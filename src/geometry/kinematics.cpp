@@ -15,9 +15,14 @@ Heading steer(const Heading& h, const Steering& u, double bound, double polar_ma
 }
 
 KinematicState advance(const KinematicState& s, const Heading& h, double speed, double dt, const Box& bounds) {
+  return advance(s, h, direction(h), speed, dt, bounds);
+}
+
+KinematicState advance(const KinematicState& s, const Heading& h, const Vec3& direction_of_h, double speed, double dt,
+                       const Box& bounds) {
   KinematicState next;
   next.heading = h;
-  next.position = bounds.clamp(s.position + (speed * dt) * direction(h));
+  next.position = bounds.clamp(s.position + (speed * dt) * direction_of_h);
   return next;
 }
 

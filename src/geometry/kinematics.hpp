@@ -73,6 +73,9 @@ Heading steer(const Heading& h, const Steering& u, double bound, double polar_ma
 /// new position is clamped to `bounds` (pass the arena shrunk by the agent's radius), so agents slide along
 /// the arena boundary instead of leaving it.
 KinematicState advance(const KinematicState& s, const Heading& h, double speed, double dt, const Box& bounds);
+/// advance with the heading's direction (direction(h)) already at hand.
+KinematicState advance(const KinematicState& s, const Heading& h, const Vec3& direction_of_h, double speed, double dt,
+                       const Box& bounds);
 
 /// One sample of eq. (1): the heading is steered first (steer), then the agent advances along it.
 KinematicState step(const KinematicState& s, const Steering& u, double speed, double dt, double bound,
