@@ -10,6 +10,22 @@ namespace peg3d {
 
 bool Cone::contains(const Vec3& d, double tolerance) const { return angle_between(d, axis) <= half_angle + tolerance; }
 
+ConeMembership::ConeMembership(const Cone& cone, double tolerance)
+    : cone_(cone), tolerance_(tolerance), cos_limit_(std::cos(cone.half_angle + tolerance)) {}
+
+bool ConeMembership::operator()(const Vec3& d) const {
+  // cos(angle) from the dot product is off by a few ulps, far less than the margin, and the angle moves at
+  // least as much as its cosine: outside the margin the answer is contains()'s. Inside it, contains() decides.
+  constexpr double kMargin = 1e-9;
+  const double norms = d.norm() * cone_.axis.norm();
+  if (norms > 0.0) {
+    const double c = d.dot(cone_.axis) / norms;
+    if (c > cos_limit_ + kMargin) return true;
+    if (c < cos_limit_ - kMargin) return false;
+  }
+  return cone_.contains(d, tolerance_);
+}
+
 Vec3 Cone::project(const Vec3& d) const { return project(d, Vec3::Zero(), 0.0); }
 
 Vec3 Cone::project(const Vec3& d, const Vec3& hint, double commit_angle) const {
@@ -44,12 +60,13 @@ Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, c
   const bool axis_vertical = cone.axis.x() == 0.0 && cone.axis.y() == 0.0;
   const double a0 = hc.alpha, a1 = axis_vertical ? hc.alpha : a0 + wrap_angle(ha.alpha - a0);
   const auto on_edge = [&](double alpha) { return direction(Heading{alpha, edge}); };
-  if (cone.contains(on_edge(a0))) return on_edge(a0);
-  if (!cone.contains(on_edge(a1))) return on_edge(a1);  // no direction satisfies both: stay near the axis
+  const ConeMembership inside(cone);
+  if (inside(on_edge(a0))) return on_edge(a0);
+  if (!inside(on_edge(a1))) return on_edge(a1);  // no direction satisfies both: stay near the axis
   double lo = 0.0, hi = 1.0;  // on_edge(a0 + lo (a1 - a0)) is outside, at hi inside
   for (int i = 0; i < 40; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (cone.contains(on_edge(a0 + mid * (a1 - a0))) ? hi : lo) = mid;
+    (inside(on_edge(a0 + mid * (a1 - a0))) ? hi : lo) = mid;
   }
   return on_edge(a0 + hi * (a1 - a0));
 }
@@ -61,10 +78,11 @@ Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to) {
   // Spherical interpolation; sin(omega) ~ 0 only for opposite directions, where any great circle will do.
   const Vec3 side = omega > kPi - 1e-9 ? any_perpendicular(from) : Vec3((to - std::cos(omega) * from).normalized());
   const auto at = [&](double t) { return Vec3(std::cos(t * omega) * from + std::sin(t * omega) * side); };
+  const ConeMembership inside(cone);
   double lo = 0.0, hi = 1.0;  // at(lo) outside, at(hi) inside
   for (int i = 0; i < 40; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (cone.contains(at(mid)) ? hi : lo) = mid;
+    (inside(at(mid)) ? hi : lo) = mid;
   }
   return at(hi).normalized();
 }

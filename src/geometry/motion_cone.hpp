@@ -24,6 +24,20 @@ struct Cone {
   Vec3 project(const Vec3& d, const Vec3& hint, double commit_angle) const;
 };
 
+/// cone.contains(d, tolerance), the same answer, for testing many directions against one cone (the
+/// bisections below): a cosine compared with a margin decides all but the directions within about 1e-9 rad
+/// of the surface, and contains() decides those, instead of an atan2 for every one.
+class ConeMembership {
+ public:
+  explicit ConeMembership(const Cone& cone, double tolerance = 1e-12);
+  bool operator()(const Vec3& d) const;
+
+ private:
+  const Cone& cone_;
+  double tolerance_;
+  double cos_limit_;
+};
+
 /// The unit direction nearest to d that lies in the cone and whose polar angle lies in [polar_margin,
 /// pi - polar_margin] (a climb/dive limit). When the cone and that band do not meet (a narrow cone about a
 /// steep axis), the band's direction nearest to the cone's axis. polar_margin = 0 is plain projection.

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "core/validation.hpp"
 #include "geometry/angles.hpp"
 #include "test_vectors.hpp"
@@ -113,6 +116,38 @@ TEST(MotionCone, FirstInsideOnArcLandsOnTheConeBoundary) {
     // q lies on the arc from `from` to the axis.
     EXPECT_NEAR(angle_between(from, q) + angle_between(q, cone.axis), angle_between(from, cone.axis), 1e-8);
   }
+}
+
+}  // namespace
+}  // namespace peg3d
+
+namespace peg3d {
+namespace {
+
+// ConeMembership answers as contains() for every direction, far from the surface and on it: directions
+// drawn at random, and directions placed at the cone's angle plus offsets down to a few ulps.
+TEST(MotionCone, MembershipAnswersAsContainsEverywhere) {
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> half(0.0, kPi), offset_exp(-17.0, -1.0);
+  const auto random_unit = [&] { return Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized(); };
+  int near_surface = 0;
+  for (int c = 0; c < 2000; ++c) {
+    const Cone cone{random_unit(), c % 10 == 0 ? 0.0 : (c % 10 == 1 ? kPi : half(rng))};
+    const ConeMembership inside(cone);
+    for (int k = 0; k < 200; ++k) {
+      Vec3 d = random_unit() * std::exp(gauss(rng));  // not unit: contains() takes any non-zero length
+      if (k % 2 == 0) {
+        // At the surface: rotate the axis by the half angle plus a tiny signed offset, about a perpendicular.
+        const Vec3 side = cone.axis.cross(random_unit()).normalized();
+        const double a = cone.half_angle + (k % 4 == 0 ? 1.0 : -1.0) * std::pow(10.0, offset_exp(rng));
+        d = std::cos(a) * cone.axis + std::sin(a) * side;
+        ++near_surface;
+      }
+      ASSERT_EQ(inside(d), cone.contains(d)) << "cone half angle " << cone.half_angle << ", direction " << d.transpose();
+    }
+  }
+  EXPECT_GT(near_surface, 100000);
 }
 
 }  // namespace
