@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <optional>
 
 #include "core/validation.hpp"
 #include "geometry/angles.hpp"
@@ -48,6 +49,50 @@ Vec3 any_perpendicular(const Vec3& v) {
   return v.cross(e).normalized();
 }
 
+namespace {
+
+// The first t in (0, 1) where a cos(theta0 + t span) + b sin(theta0 + t span) = q, in closed form; nullopt
+// when the curve never reaches q there.
+std::optional<double> first_crossing(double a, double b, double q, double theta0, double span) {
+  const double r = std::hypot(a, b);
+  if (!(r > 0.0) || span == 0.0 || !(std::abs(q) <= r)) return std::nullopt;
+  const double phi = std::atan2(b, a), w = std::acos(q / r);
+  double first = 1.0;
+  for (const double root : {phi + w, phi - w}) {
+    for (int k = -3; k <= 3; ++k) {
+      const double t = (root + 2.0 * kPi * k - theta0) / span;
+      if (t > 0.0 && t < first) first = t;
+    }
+  }
+  if (first >= 1.0) return std::nullopt;
+  return first;
+}
+
+// The search of the cone's bisections: 40 halvings of [0, 1] keeping inside(point(lo)) false (point(0) is
+// outside) and inside(point(hi)) true, returning hi. The curves searched are arcs of at most half a turn, on
+// which the angle to the axis has at most one minimum, so they cross the cone's surface at most twice; when
+// point(1) is inside too, exactly once, and hi is the first point of the 2^-40 grid inside, whatever the path
+// to it. A closed-form guess of that crossing, checked at the two points of the 2^-30 grid around it, then
+// stands for the first 30 halvings: the same hi, for a third of the work. Otherwise (point(1) outside, or a
+// guess off near a tangency) all 40 halvings run.
+template <class Point>
+double search_crossing(const ConeMembership& inside, const Point& point, std::optional<double> guess) {
+  double lo = 0.0, hi = 1.0;
+  int halvings = 40;
+  if (guess && inside(point(1.0))) {
+    constexpr double kCoarse = 0x1p30;
+    const double l = std::floor(*guess * kCoarse) / kCoarse, h = l + 1.0 / kCoarse;
+    if (l >= 0.0 && h <= 1.0 && !inside(point(l)) && inside(point(h))) lo = l, hi = h, halvings = 10;
+  }
+  for (int i = 0; i < halvings; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (inside(point(mid)) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+}  // namespace
+
 Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, const Vec3& hint,
                          double commit_angle) {
   const Vec3 c = cone.project(d, hint, commit_angle);
@@ -59,16 +104,19 @@ Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, c
   const Heading ha = heading_of(cone.axis);
   const bool axis_vertical = cone.axis.x() == 0.0 && cone.axis.y() == 0.0;
   const double a0 = hc.alpha, a1 = axis_vertical ? hc.alpha : a0 + wrap_angle(ha.alpha - a0);
-  const auto on_edge = [&](double alpha) { return direction(Heading{alpha, edge}); };
+  // direction(Heading{alpha, edge}) with the edge's sine and cosine taken once for all the halvings: the
+  // same products, so the same bits.
+  const double sin_edge = std::sin(edge), cos_edge = std::cos(edge);
+  const auto on_edge = [&](double alpha) { return Vec3(sin_edge * std::cos(alpha), sin_edge * std::sin(alpha), cos_edge); };
   const ConeMembership inside(cone);
   if (inside(on_edge(a0))) return on_edge(a0);
   if (!inside(on_edge(a1))) return on_edge(a1);  // no direction satisfies both: stay near the axis
-  double lo = 0.0, hi = 1.0;  // on_edge(a0 + lo (a1 - a0)) is outside, at hi inside
-  for (int i = 0; i < 40; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (inside(on_edge(a0 + mid * (a1 - a0))) ? hi : lo) = mid;
-  }
-  return on_edge(a0 + hi * (a1 - a0));
+  const auto point = [&](double t) { return on_edge(a0 + t * (a1 - a0)); };
+  // Along the edge, direction . axis = sin(edge) (x cos alpha + y sin alpha) + cos(edge) z.
+  const Vec3& x = cone.axis;
+  const double q = std::cos(cone.half_angle + 1e-12) * x.norm() - cos_edge * x.z();
+  const double hi = search_crossing(inside, point, first_crossing(sin_edge * x.x(), sin_edge * x.y(), q, a0, a1 - a0));
+  return point(hi);
 }
 
 Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to) {
@@ -79,11 +127,9 @@ Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to) {
   const Vec3 side = omega > kPi - 1e-9 ? any_perpendicular(from) : Vec3((to - std::cos(omega) * from).normalized());
   const auto at = [&](double t) { return Vec3(std::cos(t * omega) * from + std::sin(t * omega) * side); };
   const ConeMembership inside(cone);
-  double lo = 0.0, hi = 1.0;  // at(lo) outside, at(hi) inside
-  for (int i = 0; i < 40; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (inside(at(mid)) ? hi : lo) = mid;
-  }
+  // Along the arc, at(t) . axis = (from . axis) cos(t omega) + (side . axis) sin(t omega).
+  const double q = std::cos(cone.half_angle + 1e-12) * cone.axis.norm() * from.norm();
+  const double hi = search_crossing(inside, at, first_crossing(from.dot(cone.axis), side.dot(cone.axis), q, 0.0, omega));
   return at(hi).normalized();
 }
 

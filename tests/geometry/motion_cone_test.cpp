@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "core/validation.hpp"
@@ -148,6 +149,70 @@ TEST(MotionCone, MembershipAnswersAsContainsEverywhere) {
     }
   }
   EXPECT_GT(near_surface, 100000);
+}
+
+}  // namespace
+}  // namespace peg3d
+
+namespace peg3d {
+namespace {
+
+// The two searches as they were written before their closed-form start: 40 halvings of [0, 1], each asking
+// contains(). The library's versions must return the same bits.
+Vec3 band_by_halving(const Cone& cone, const Vec3& d, double margin) {
+  const Vec3 c = cone.project(d, Vec3::Zero(), 0.0);
+  const Heading hc = heading_of(c);
+  if (hc.theta >= margin && hc.theta <= kPi - margin) return c;
+  const double edge = hc.theta < margin ? margin : kPi - margin;
+  const Heading ha = heading_of(cone.axis);
+  const bool axis_vertical = cone.axis.x() == 0.0 && cone.axis.y() == 0.0;
+  const double a0 = hc.alpha, a1 = axis_vertical ? hc.alpha : a0 + wrap_angle(ha.alpha - a0);
+  const auto on_edge = [&](double alpha) { return direction(Heading{alpha, edge}); };
+  if (cone.contains(on_edge(a0))) return on_edge(a0);
+  if (!cone.contains(on_edge(a1))) return on_edge(a1);
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cone.contains(on_edge(a0 + mid * (a1 - a0))) ? hi : lo) = mid;
+  }
+  return on_edge(a0 + hi * (a1 - a0));
+}
+
+Vec3 arc_by_halving(const Cone& cone, const Vec3& from, const Vec3& to) {
+  if (cone.contains(from)) return from;
+  const double omega = angle_between(from, to);
+  if (omega < 1e-12) return to;
+  const Vec3 side = omega > kPi - 1e-9 ? any_perpendicular(from) : Vec3((to - std::cos(omega) * from).normalized());
+  const auto at = [&](double t) { return Vec3(std::cos(t * omega) * from + std::sin(t * omega) * side); };
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (cone.contains(at(mid)) ? hi : lo) = mid;
+  }
+  return at(hi).normalized();
+}
+
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0; }
+
+TEST(MotionCone, BandAndArcSearchesReturnTheBitsOfPlainHalving) {
+  Rng rng(41);
+  std::uniform_real_distribution<double> half(0.0, kPi), margin(0.05, kPi / 3);
+  int band_searches = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Cone cone{testing::random_unit(rng), half(rng)};
+    const Vec3 d = testing::random_unit(rng);
+    const double m = margin(rng);
+    const Vec3 expected = band_by_halving(cone, d, m);
+    ASSERT_TRUE(same_bits(project_within_band(cone, d, m), expected)) << "trial " << trial;
+    const Heading hc = heading_of(cone.project(d, Vec3::Zero(), 0.0));
+    band_searches += hc.theta < m || hc.theta > kPi - m;
+    // Arcs towards the axis and towards any direction (which may stay outside).
+    for (const Vec3& to : {cone.axis, testing::random_unit(rng)}) {
+      const Vec3 from = testing::random_unit(rng);
+      ASSERT_TRUE(same_bits(first_inside_on_arc(cone, from, to), arc_by_halving(cone, from, to))) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(band_searches, 1000);
 }
 
 }  // namespace
