@@ -28,8 +28,53 @@ int RuleBase::rule_index(std::span<const int> sets) const {
   return l;
 }
 
+namespace {
+
+// RuleBase::fire for a rule base of N inputs known at compile time, so that the 2^N products and the sum
+// unroll: entry e takes the upper set of input i when bit i of e is set. Each strength is the product over
+// the inputs in input order and the sum runs in entry order, as in the general loop below: the same bits.
+template <int N>
+void fire_fixed(const Activation* a, const int* stride, FiredRules& out) {
+  constexpr int kCount = 1 << N;
+  double lower[N], upper[N];
+  int base = 0;
+  for (int i = 0; i < N; ++i) {
+    lower[i] = 1.0 - a[i].t;
+    upper[i] = a[i].t;
+    base += a[i].lower * stride[i];
+  }
+  out.count = kCount;
+  double sum = 0.0;
+  for (int e = 0; e < kCount; ++e) {
+    double w = 1.0;
+    int r = base;
+    for (int i = 0; i < N; ++i) {
+      const bool up = (e >> i) & 1;
+      w *= up ? upper[i] : lower[i];
+      r += up ? stride[i] : 0;
+    }
+    out.rule[e] = r;
+    out.strength[e] = w;
+    sum += w;
+  }
+  const double inv = 1.0 / sum;
+  for (int e = 0; e < kCount; ++e) out.strength[e] *= inv;
+}
+
+}  // namespace
+
 void RuleBase::fire(std::span<const double> x, FiredRules& out) const {
   assert(static_cast<int>(x.size()) == inputs());
+  if (inputs() == 4 || inputs() == 6) {  // the game's channels: four inputs per angle, or six for both
+    Activation a[6];
+    for (int i = 0; i < inputs(); ++i) a[i] = inputs_[i].activate(x[i]);
+    if (inputs() == 4) {
+      fire_fixed<4>(a, stride_.data(), out);
+    } else {
+      fire_fixed<6>(a, stride_.data(), out);
+    }
+    return;
+  }
   // Grow the list input by input: each entry splits into (lower set, 1 - t) and (upper set, t).
   out.count = 1;
   out.rule[0] = 0;

@@ -1,6 +1,10 @@
 #include "fuzzy/rule_base.hpp"
 
+#include <cmath>
+#include <cstring>
 #include <random>
+#include <span>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +55,55 @@ TEST(RuleBase, SparseAndDenseEvaluationAgree) {
       for (int i = 0; i < f.count; ++i) ASSERT_NEAR(f.strength[i], phi[f.rule[i]], 1e-12);
       for (int j = 0; j < outputs; ++j) {
         ASSERT_NEAR(ts_output(f, table, outputs, j), ts_output_dense(phi, table, outputs, j), 1e-12);
+      }
+    }
+  }
+}
+
+// Sparse firing as the general loop does it, input by input: the reference the unrolled four- and six-input
+// paths must match bit for bit.
+void fire_input_by_input(const RuleBase& rb, std::span<const double> x, FiredRules& out) {
+  std::vector<int> stride(std::size_t(rb.inputs()), 1);
+  for (int i = rb.inputs() - 2; i >= 0; --i) stride[std::size_t(i)] = stride[std::size_t(i + 1)] * rb.input(i + 1).sets();
+  out.count = 1;
+  out.rule[0] = 0;
+  out.strength[0] = 1.0;
+  for (int i = 0; i < rb.inputs(); ++i) {
+    const Activation a = rb.input(i).activate(x[std::size_t(i)]);
+    const int n = out.count;
+    for (int e = 0; e < n; ++e) {
+      const int r = out.rule[e] + a.lower * stride[std::size_t(i)];
+      const double w = out.strength[e];
+      out.rule[e] = r;
+      out.strength[e] = w * (1.0 - a.t);
+      out.rule[n + e] = r + stride[std::size_t(i)];
+      out.strength[n + e] = w * a.t;
+    }
+    out.count = 2 * n;
+  }
+  double sum = 0.0;
+  for (int e = 0; e < out.count; ++e) sum += out.strength[e];
+  const double inv = 1.0 / sum;
+  for (int e = 0; e < out.count; ++e) out.strength[e] *= inv;
+}
+
+TEST(RuleBase, EveryInputCountFiresTheBitsOfTheInputByInputLoop) {
+  Rng rng(17);
+  std::uniform_real_distribution<double> u(-4.0, 40.0);
+  for (int inputs = 1; inputs <= 8; ++inputs) {
+    std::vector<TriangularPartition> parts;
+    for (int i = 0; i < inputs; ++i) parts.emplace_back(i % 2 ? -M_PI : 0.0, i % 2 ? M_PI : 35.0, 3 + i % 4);
+    const RuleBase rb(parts);
+    for (int trial = 0; trial < 2000; ++trial) {
+      std::vector<double> x(static_cast<std::size_t>(inputs));
+      for (double& v : x) v = trial % 7 == 0 ? std::round(u(rng)) : u(rng);  // also on set centres and edges
+      FiredRules got, want;
+      rb.fire(x, got);
+      fire_input_by_input(rb, x, want);
+      ASSERT_EQ(got.count, want.count);
+      for (int e = 0; e < want.count; ++e) {
+        ASSERT_EQ(got.rule[e], want.rule[e]) << inputs << " inputs, entry " << e;
+        ASSERT_EQ(std::memcmp(&got.strength[e], &want.strength[e], sizeof(double)), 0) << inputs << " inputs, entry " << e;
       }
     }
   }
