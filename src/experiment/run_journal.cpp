@@ -170,8 +170,29 @@ std::unique_ptr<RunJournal> RunJournal::create(const std::filesystem::path& file
   }
   const nlohmann::json header{
       {"format", kJournalFormat}, {"version", kJournalVersion}, {"runs", runs}, {"setup", setup}};
-  // Atomically, so a journal always has its whole header.
-  write_file_atomically(file, header.dump() + "\n");
+  // The whole header is written under a name of this process's own, then linked to the journal's name, which
+  // fails when that name exists: of two sweeps started into one folder at the same moment (two terminals, or
+  // srun starting tasks without an MPI plug-in), exactly one gets the journal, and it always has its header.
+  static std::atomic<unsigned> creations{0};
+  const std::filesystem::path staged = file.string() + fmt::format(".{}-{}.new", ::getpid(), creations++);
+  write_file_atomically(staged, header.dump() + "\n");
+  int linked = ::link(staged.c_str(), file.c_str());
+  int link_errno = errno;
+  if (linked != 0 && (link_errno == EPERM || link_errno == EOPNOTSUPP || link_errno == ENOSYS)) {
+    // A file system without hard links: rename, exclusive only against a journal that was there before.
+    std::filesystem::rename(staged, file, ec);
+    linked = ec ? -1 : 0;
+    link_errno = ec.value();
+  }
+  std::filesystem::remove(staged, ec);
+  if (linked != 0) {
+    if (link_errno == EEXIST) {
+      throw InputError(file, 0, "",
+                       "a journal of another sweep appeared while this one started: two sweeps were started into "
+                       "one folder at once; this one stops (a journal is never mixed with another sweep's runs)");
+    }
+    throw std::runtime_error(fmt::format("{}: cannot create: {}", file.string(), std::strerror(link_errno)));
+  }
   std::unique_ptr<RunJournal> journal(new RunJournal(file, runs));
   journal->open_for_append();
   return journal;

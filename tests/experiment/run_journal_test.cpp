@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/error.hpp"
@@ -303,6 +304,38 @@ TEST_F(ExperimentRunJournal, BadFilesAndLinesAreInputErrorsNamingTheLine) {
   EXPECT_EQ(e.field(), "run 2");
   e = input_error_of([&] { j->restore(2, [](const nlohmann::json& d) { (void)d.at("missing"); }); });
   EXPECT_EQ(e.line(), 2);
+}
+
+TEST_F(ExperimentRunJournal, OfTwoSweepsStartedAtOnceIntoOneFolderExactlyOneGetsTheJournal) {
+  for (int round = 0; round < 50; ++round) {
+    std::filesystem::remove(file_);
+    std::atomic<int> created{0}, refused{0}, winner{-1};
+    std::atomic<bool> go{false};
+    {
+      std::vector<std::jthread> sweeps;
+      for (int k = 0; k < 4; ++k) {
+        sweeps.emplace_back([&, k] {
+          while (!go.load()) std::this_thread::yield();
+          try {
+            RunJournal::create(file_, 10, setup(static_cast<std::uint64_t>(k)));
+            ++created;
+            winner = k;
+          } catch (const InputError&) {
+            ++refused;
+          }
+        });
+      }
+      go = true;
+    }
+    ASSERT_EQ(created.load(), 1) << "round " << round;
+    ASSERT_EQ(refused.load(), 3) << "round " << round;
+    // The one journal is whole and nothing staged is left beside it.
+    EXPECT_NO_THROW(RunJournal::resume(file_, 10, setup(static_cast<std::uint64_t>(winner.load()))).reset())
+        << "round " << round;
+    int files = 0;
+    for ([[maybe_unused]] const auto& f : std::filesystem::directory_iterator(dir_)) ++files;
+    EXPECT_EQ(files, 1);
+  }
 }
 
 TEST_F(ExperimentRunJournal, SweepsRerunOnlyTheMissingRunsAndStopOnRequest) {
