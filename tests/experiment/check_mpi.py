@@ -39,12 +39,11 @@ def main():
     os.makedirs(work)
     os.chdir(source)
     os.environ["PEG3D_CACHE_DIR"] = os.path.join(work, "cache")
-    # OpenMPI's own allocations live until exit; under LeakSanitizer (the sanitized suite) they are not ours.
-    suppressions = os.path.join(work, "lsan.supp")
-    with open(suppressions, "w") as f:
-        f.write("".join(f"leak:{lib}\n" for lib in ("libmpi", "libopen-pal", "libopen-rte", "libpmix", "libhwloc",
-                                                    "libevent", "libucs", "libucp", "libfabric", "mca_")))
-    os.environ["LSAN_OPTIONS"] = f"suppressions={suppressions}:print_suppressions=0"
+    # Under the sanitized suite: OpenMPI keeps allocations until exit, and LeakSanitizer reports them with
+    # stacks whose frames show as "<unknown module>", which no suppression can name.
+    # Leaks are not checked in the ranks; the same code runs leak-checked in one process in every other test,
+    # and the distributed protocol in tests/experiment/distributed_sweep_test.cpp, with threads as ranks.
+    os.environ["ASAN_OPTIONS"] = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS", ""), "detect_leaks=0"]))
     t0 = time.monotonic()
 
     sweeps = {
