@@ -1,7 +1,7 @@
 // A sweep spread over a process group (experiment/distributed_sweep.hpp), with threads standing in for MPI
 // ranks: the root ends up with every run exactly as a single-process sweep computes it, whatever the ranks and
 // threads; every rank computes some; the root's journal records remote runs and resumes on another rank count;
-// a failure on another rank reaches the root naming run and rank; a stop keeps what finished.
+// a failure on another rank reaches the root naming run and rank; a rank asked to stop takes no more runs.
 #include "experiment/distributed_sweep.hpp"
 
 #include <gtest/gtest.h>
@@ -207,7 +207,7 @@ TEST(ExperimentDistributedSweep, AFailureOnAnotherRankReachesTheRootNamingRunAnd
   EXPECT_FALSE(out[1].error);  // the failing rank reported and returned
 }
 
-TEST(ExperimentDistributedSweep, ARankAskedToStopDropsItsRunAndTheOthersFinish) {
+TEST(ExperimentDistributedSweep, ARankAskedToStopTakesNoMoreRunsAndTheOthersFinish) {
   std::atomic<bool> rank1_stopped{false};
   const auto out = sweep(80, 3, [&](int r) {
     RankSetup s{1, {}, nullptr, nullptr, pause_briefly};
