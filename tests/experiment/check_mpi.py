@@ -19,7 +19,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from checks import check, failures, run, verdict  # noqa: E402
-from result_folders import journal_runs, same_results, wait_for_runs  # noqa: E402
+from result_folders import journal_runs, same_results, small_sweeps, wait_for_runs  # noqa: E402
 
 
 def mpirun(ranks):
@@ -34,7 +34,7 @@ def main():
     if shutil.which("mpirun") is None:
         print("SKIPPED: no mpirun (Debian: openmpi-bin)")
         return 77
-    paper, matchup, generalize = (os.path.join(bin_dir, p) for p in ("peg-paper", "peg-matchup", "peg-generalize"))
+    paper = os.path.join(bin_dir, "peg-paper")
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     os.chdir(source)
@@ -46,14 +46,7 @@ def main():
     os.environ["ASAN_OPTIONS"] = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS", ""), "detect_leaks=0"]))
     t0 = time.monotonic()
 
-    sweeps = {
-        "peg-paper": [paper, "--seed", "7", "--repeats", "2", "--episodes", "20", "--algorithms", "peg3d,baseline",
-                      "--no-plots", "--plain-progress"],
-        "peg-matchup": [matchup, "--seed", "7", "--repeats", "4", "--episodes", "20", "--pursuers", "facl,pn",
-                        "--evaders", "facl,flee", "--plain-progress"],
-        "peg-generalize": [generalize, "--seed", "7", "--repeats", "4", "--episodes", "20", "--eval-maps",
-                           "maps/paper.yaml", "--plain-progress"],
-    }
+    sweeps = small_sweeps(bin_dir)
     references = {}
     for name, cmd in sweeps.items():
         references[name] = os.path.join(work, f"{name}-alone")

@@ -22,7 +22,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from checks import check, failures, run, verdict  # noqa: E402
-from result_folders import journal_runs, same_results, wait_for_runs  # noqa: E402
+from result_folders import journal_runs, same_results, small_sweeps, wait_for_runs  # noqa: E402
 
 
 def start(cmd):
@@ -62,7 +62,6 @@ def killed_then_resumed(name, cmd, out, reference, threads, resume_threads, tear
 
 def main():
     bin_dir, source, work = sys.argv[1:4]
-    paper, matchup, generalize = (os.path.join(bin_dir, p) for p in ("peg-paper", "peg-matchup", "peg-generalize"))
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     os.chdir(source)
@@ -70,16 +69,7 @@ def main():
     os.environ["PEG3D_CACHE_DIR"] = os.path.join(work, "cache")
     t0 = time.monotonic()
 
-    sweeps = {
-        # name: command without --out and --threads; 16 runs each, of a few tens of milliseconds in a Release
-        # build (and small enough for the sanitizer build too)
-        "peg-paper": [paper, "--seed", "7", "--repeats", "2", "--episodes", "20", "--algorithms", "peg3d,baseline",
-                      "--no-plots", "--plain-progress"],
-        "peg-matchup": [matchup, "--seed", "7", "--repeats", "4", "--episodes", "20", "--pursuers", "facl,pn",
-                        "--evaders", "facl,flee", "--plain-progress"],
-        "peg-generalize": [generalize, "--seed", "7", "--repeats", "4", "--episodes", "20", "--eval-maps",
-                           "maps/paper.yaml", "--plain-progress"],
-    }
+    sweeps = small_sweeps(bin_dir)
     references = {}
     for name, cmd in sweeps.items():
         references[name] = os.path.join(work, f"{name}-reference")

@@ -49,3 +49,17 @@ def same_results(reference, folder, what):
         return False
     differ = [f for f in sorted(ref) if not filecmp.cmp(os.path.join(reference, f), os.path.join(folder, f), shallow=False)]
     return check(not differ, f"{what}: not byte-identical to the reference sweep: {differ}")
+
+
+def small_sweeps(bin_dir):
+    """The three experiment binaries' small sweeps, by name: commands without --out and --threads; 16 runs each,
+    of a few tens of milliseconds in a Release build (and small enough for the sanitizer build too)."""
+    paper, matchup, generalize = (os.path.join(bin_dir, p) for p in ("peg-paper", "peg-matchup", "peg-generalize"))
+    return {
+        "peg-paper": [paper, "--seed", "7", "--repeats", "2", "--episodes", "20", "--algorithms", "peg3d,baseline",
+                      "--no-plots", "--plain-progress"],
+        "peg-matchup": [matchup, "--seed", "7", "--repeats", "4", "--episodes", "20", "--pursuers", "facl,pn",
+                        "--evaders", "facl,flee", "--plain-progress"],
+        "peg-generalize": [generalize, "--seed", "7", "--repeats", "4", "--episodes", "20", "--eval-maps",
+                           "maps/paper.yaml", "--plain-progress"],
+    }
