@@ -120,7 +120,7 @@ void add_sweep_options(CLI::App& app, SweepOptions& o) {
   app.add_option("--seed", o.seed, "root seed; every run's seed derives from it")->capture_default_str();
   app.add_option("--episodes", o.episodes, "training episodes per run")->capture_default_str()->check(CLI::NonNegativeNumber);
   app.add_option("--repeats", o.repeats, "runs per scenario and algorithm")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--threads", o.threads, "worker threads (0: all cores); results do not depend on it")
+  app.add_option("--threads", o.threads, "worker threads (0: every core this process may run on; under MPI, per rank); results do not depend on it")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--set", o.sets, "override a configuration field: key=value (repeatable; --list-config shows them)");

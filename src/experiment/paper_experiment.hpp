@@ -47,7 +47,7 @@ struct SweepSettings {
   std::uint64_t seed = 1;  ///< root seed
   int episodes = 200;      ///< training episodes per run
   int repeats = 20;        ///< runs per scenario and algorithm
-  int threads = 0;         ///< worker threads, 0: all cores
+  int threads = 0;         ///< worker threads, 0: every core of the CPU affinity (resolve_thread_count)
   int trace_repeat = 0;    ///< repeat whose evaluation is recorded step by step and whose policies are kept
   SweepControl control;    ///< journal and stop request (none by default)
 };
