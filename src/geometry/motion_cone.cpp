@@ -114,7 +114,7 @@ Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, c
   const auto point = [&](double t) { return on_edge(a0 + t * (a1 - a0)); };
   // Along the edge, direction . axis = sin(edge) (x cos alpha + y sin alpha) + cos(edge) z.
   const Vec3& x = cone.axis;
-  const double q = std::cos(cone.half_angle + 1e-12) * x.norm() - cos_edge * x.z();
+  const double q = inside.cos_limit() * x.norm() - cos_edge * x.z();
   const double hi = search_crossing(inside, point, first_crossing(sin_edge * x.x(), sin_edge * x.y(), q, a0, a1 - a0));
   return point(hi);
 }
@@ -128,7 +128,7 @@ Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to) {
   const auto at = [&](double t) { return Vec3(std::cos(t * omega) * from + std::sin(t * omega) * side); };
   const ConeMembership inside(cone);
   // Along the arc, at(t) . axis = (from . axis) cos(t omega) + (side . axis) sin(t omega).
-  const double q = std::cos(cone.half_angle + 1e-12) * cone.axis.norm() * from.norm();
+  const double q = inside.cos_limit() * cone.axis.norm() * from.norm();
   const double hi = search_crossing(inside, at, first_crossing(from.dot(cone.axis), side.dot(cone.axis), q, 0.0, omega));
   return at(hi).normalized();
 }

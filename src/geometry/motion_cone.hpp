@@ -31,6 +31,8 @@ class ConeMembership {
  public:
   explicit ConeMembership(const Cone& cone, double tolerance = 1e-12);
   bool operator()(const Vec3& d) const;
+  /// cos(half angle + tolerance): the cosine of the angle to the axis at which membership ends.
+  double cos_limit() const { return cos_limit_; }
 
  private:
   const Cone& cone_;
