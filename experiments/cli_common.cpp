@@ -210,11 +210,9 @@ int sweep_main(CLI::App& app, int argc, char** argv, const std::function<int()>&
       return 1;
     }
 #else
-    const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
-    if (size == nullptr) size = std::getenv("PMI_SIZE");
-    if (size != nullptr && std::atoi(size) > 1) {
-      std::fprintf(stderr, "error: started as %s MPI ranks, but this peg3d was built without MPI: install "
-                           "libopenmpi-dev and rebuild, or run one process with --threads\n", size);
+    if (const int ranks = launched_rank_count(); ranks > 1) {
+      std::fprintf(stderr, "error: started as %d MPI ranks, but this peg3d was built without MPI: install "
+                           "libopenmpi-dev and rebuild, or run one process with --threads\n", ranks);
       return 2;
     }
 #endif
@@ -239,9 +237,8 @@ SweepSession open_sweep(const SweepOptions& o, std::size_t runs, std::size_t epi
   s.control.stop = stop_check();
   if (s.root()) {
     s.journal = open_journal(o, runs, setup);
-    s.left_ = runs - s.journal->recorded();
-    s.progress = std::make_unique<experiment::ProgressReporter>(s.left_, s.left_ * episodes_per_run, stderr,
-                                                                o.plain_progress);
+    const std::size_t left = runs - s.journal->recorded();
+    s.progress = std::make_unique<experiment::ProgressReporter>(left, left * episodes_per_run, stderr, o.plain_progress);
   } else {
     s.progress = std::make_unique<experiment::ProgressReporter>(0, 0, nullptr);
   }

@@ -113,12 +113,8 @@ struct SweepSession {
 
   /// Whether this process writes the results: it runs alone or is rank 0.
   bool root() const;
-  /// Runs left to compute when the sweep starts (all of them but those the journal holds).
-  std::size_t left() const { return left_; }
   /// Removes the journal: every result file is written.
   void complete();
-
-  std::size_t left_ = 0;
 };
 
 /// Opens a sweep of `runs` runs of `episodes_per_run` episodes each: on the root the journal (open_journal)

@@ -17,13 +17,20 @@
 
 namespace peg3d::cli {
 
+// OpenMPI's mpirun sets OMPI_COMM_WORLD_SIZE; PMIx (srun --mpi=pmix, prterun) PMIX_RANK; PMI-1/2 launchers
+// (srun --mpi=pmi2, MPICH's hydra) PMI_SIZE.
 bool launched_as_mpi_ranks() {
-  // OpenMPI's mpirun sets OMPI_COMM_WORLD_SIZE; PMIx (srun --mpi=pmix, prterun) PMIX_RANK; PMI-1/2
-  // launchers (srun --mpi=pmi2, MPICH's hydra) PMI_SIZE.
   for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"}) {
     if (const char* v = std::getenv(var); v != nullptr && *v != '\0') return true;
   }
   return false;
+}
+
+int launched_rank_count() {
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    if (const char* v = std::getenv(var); v != nullptr && *v != '\0') return std::atoi(v);
+  }
+  return 0;
 }
 
 #ifdef PEG3D_HAVE_MPI

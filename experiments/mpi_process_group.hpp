@@ -11,6 +11,8 @@ namespace peg3d::cli {
 /// Whether an MPI launcher started this process as one of several ranks (OpenMPI's mpirun, or a PMI/PMIx
 /// launcher such as Slurm's srun --mpi=pmix). A program started by hand is alone and never initializes MPI.
 bool launched_as_mpi_ranks();
+/// How many ranks the launcher says it started (OMPI_COMM_WORLD_SIZE, PMI_SIZE); 0 when it does not say.
+int launched_rank_count();
 
 #ifdef PEG3D_HAVE_MPI
 /// Initializes MPI (MPI_THREAD_SERIALIZED: on each rank one thread at a time talks to the others) on
