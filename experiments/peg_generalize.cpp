@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
     std::vector<experiment::EvalMap> evals;
     for (std::size_t m = 0; m < arenas.size(); ++m) evals.push_back({names[m], game::Sim(arenas[m], config)});
 
-    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads, {}, {}};
+    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads, {}, {}, {}};
+    s.pool = std::make_shared<const experiment::OpponentPool>(train, config);
     const std::size_t jobs = experiment::generalize_run_count(train_sim, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::generalize_setup(train_sim, evals, s);

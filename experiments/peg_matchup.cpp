@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
     const auto arena = cli::load_arena(o.map, !o.no_cache);
     // Every pairing's Sim checks the map's starts against its agents before any run.
     const std::vector<game::Sim> sims = experiment::make_matchup_sims(arena, config, s);
+    s.pool = std::make_shared<const experiment::OpponentPool>(arena, config);
     const std::size_t jobs = experiment::matchup_run_count(*arena, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::matchup_setup(*arena, config, s);

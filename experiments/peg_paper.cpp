@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     const auto& scenarios = arena->map().scenarios;
     // One Sim per algorithm; each checks every start against its agents' radii before any run.
     const std::vector<game::Sim> sims = experiment::make_sims(arena, algs);
+    const std::vector<experiment::OpponentPool> pools = experiment::make_pools(arena, algs);
     experiment::SweepSettings settings{o.seed, o.episodes, o.repeats, o.threads, 0, {}};
     const std::size_t runs = experiment::paper_run_count(*arena, algs, settings);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
@@ -53,7 +54,7 @@ int main(int argc, char** argv) {
 
     const auto run_start = std::chrono::steady_clock::now();
     experiment::PaperResults results = cli::run_stoppable(
-        sweep, [&] { return experiment::run_paper_experiment(algs, sims, settings, sweep.progress.get()); });
+        sweep, [&] { return experiment::run_paper_experiment(algs, sims, pools, settings, sweep.progress.get()); });
     const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
     if (!sweep.root()) return 0;  // the root writes the results
 

@@ -69,7 +69,7 @@ std::vector<GeneralizeRecord> run_generalization(
   const auto play_run = [&](std::size_t i) {
     const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
     const std::uint64_t seed = run_seed(s.seed, sc, rep);
-    TrialResult t = run_trial(train, {&scenarios[std::size_t(sc)], seed, s.episodes, false, s.control.stop}, progress);
+    TrialResult t = run_trial(train, {&scenarios[std::size_t(sc)], seed, s.episodes, false, s.control.stop, s.pool.get()}, progress);
     std::vector<GeneralizeRecord> records;
     for (std::size_t m = 0; m < evals.size(); ++m) {
       const game::Sim& sim = evals[m].sim;

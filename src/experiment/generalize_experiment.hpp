@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/run_journal.hpp"
+#include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
@@ -28,6 +29,8 @@ struct GeneralizeSettings {
   int repeats = 5;
   int threads = 0;
   SweepControl control;  ///< journal and stop request (none by default)
+  /// The classic opponents mixed into training (experiment/training.hpp); null: co-learning.
+  std::shared_ptr<const OpponentPool> pool;
   /// Chooses the games (by generalize_key) whose episode is recorded, for replay viewers; none when empty.
   std::function<bool(const std::string&)> keep_trace;
 };

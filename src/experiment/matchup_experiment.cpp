@@ -22,28 +22,19 @@
 
 namespace peg3d::experiment {
 
-game::AgentConfig scripted_agent(const game::AgentConfig& base, game::PolicyKind policy) {
-  game::AgentConfig a = base;
-  a.policy = policy;
-  a.motion_space = false;
-  return a;
-}
-
 game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,
                                 const MatchupSettings& s) {
   game::GameConfig c = base;
-  const auto side = [](game::AgentConfig& role, std::vector<game::AgentConfig>& agents, game::PolicyKind kind,
-                       const std::shared_ptr<game::FaclModel>& loaded) {
+  const auto side = [&c](game::Role role, game::PolicyKind kind, const std::shared_ptr<game::FaclModel>& loaded) {
     if (kind != game::PolicyKind::kFacl) {
-      role = scripted_agent(role, kind);
-      for (auto& a : agents) a = scripted_agent(a, kind);
+      c = game::with_role_playing(std::move(c), role, kind);
     } else if (loaded) {
-      role = loaded->config();
-      agents.clear();
+      (role == game::Role::kPursuer ? c.pursuer : c.evader) = loaded->config();
+      (role == game::Role::kPursuer ? c.pursuers : c.evaders).clear();
     }
   };
-  side(c.pursuer, c.pursuers, pursuer, s.pursuer_policy);
-  side(c.evader, c.evaders, evader, s.evader_policy);
+  side(game::Role::kPursuer, pursuer, s.pursuer_policy);
+  side(game::Role::kEvader, evader, s.evader_policy);
   return c;
 }
 
@@ -117,7 +108,7 @@ std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, cons
     const std::uint64_t seed = run_seed(s.seed, sc, rep);
     game::RoleModels facl_pursuers, facl_evaders;
     if (need_facl) {
-      TrialResult t = run_trial(training, {&scenario, seed, s.episodes, false, s.control.stop}, progress);
+      TrialResult t = run_trial(training, {&scenario, seed, s.episodes, false, s.control.stop, s.pool.get()}, progress);
       facl_pursuers = std::move(t.pursuer_models);
       facl_evaders = std::move(t.evader_models);
     }

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/run_journal.hpp"
+#include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
@@ -35,6 +36,8 @@ struct MatchupSettings {
   int threads = 0;
   std::shared_ptr<game::FaclModel> pursuer_policy;  ///< a saved FACL pursuer instead of training (every pursuer plays it)
   std::shared_ptr<game::FaclModel> evader_policy;   ///< a saved FACL evader instead of training (every evader plays it)
+  /// The classic opponents mixed into FACL training (experiment/training.hpp); null: co-learning.
+  std::shared_ptr<const OpponentPool> pool;
   SweepControl control;                             ///< journal and stop request (none by default)
   /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
   std::function<bool(const std::string&)> keep_trace;
@@ -51,10 +54,6 @@ struct MatchupRecord {
 
 /// A game's key: SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee.
 std::string matchup_key(const MatchupRecord& r);
-
-/// The configuration a scripted policy plays with: the base agent's kinematics and guard, its own policy,
-/// no motion space and no learning.
-game::AgentConfig scripted_agent(const game::AgentConfig& base, game::PolicyKind policy);
 
 /// The game configuration of one pairing: `base` with the pursuers' and evaders' policies replaced.
 game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,

@@ -92,6 +92,13 @@ std::vector<game::Sim> make_sims(const std::shared_ptr<const world::Arena>& aren
   return sims;
 }
 
+std::vector<OpponentPool> make_pools(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms) {
+  std::vector<OpponentPool> pools;
+  pools.reserve(algorithms.size());
+  for (const Algorithm& a : algorithms) pools.emplace_back(arena, a.config);
+  return pools;
+}
+
 std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat) {
   return derive_seed(root, {static_cast<std::uint64_t>(scenario), static_cast<std::uint64_t>(repeat)});
 }
@@ -130,7 +137,8 @@ nlohmann::ordered_json paper_run_info(const SweepSettings& s) {
 }
 
 PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
-                                  const SweepSettings& s, ProgressReporter* progress) {
+                                  const std::vector<OpponentPool>& pools, const SweepSettings& s,
+                                  ProgressReporter* progress) {
   const auto& scenarios = sims.front().arena().map().scenarios;
   const std::size_t n_alg = algorithms.size(), n_rep = static_cast<std::size_t>(s.repeats);
   const std::size_t total = scenarios.size() * n_alg * n_rep;
@@ -146,6 +154,7 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
         spec.episodes = s.episodes;
         spec.keep_trace = traced(i);
         spec.stop = s.control.stop;
+        spec.pool = &pools[alg];
         trials[i] = run_trial(sims[alg], spec, progress);
         if (!spec.keep_trace) {  // only the traced repeat's models are kept
           trials[i].pursuer_models = {};

@@ -13,6 +13,7 @@
 
 #include "experiment/result_files.hpp"
 #include "experiment/run_journal.hpp"
+#include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
@@ -72,6 +73,9 @@ nlohmann::ordered_json scenario_run_seeds(const std::vector<world::Scenario>& sc
 /// One Sim per algorithm over `arena` (each checks the map's scenarios against its configuration).
 std::vector<game::Sim> make_sims(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms);
 
+/// One opponent pool per algorithm (experiment/training.hpp; empty for co-learning), over `arena`.
+std::vector<OpponentPool> make_pools(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms);
+
 /// Runs in the sweep: scenarios x algorithms x repeats.
 std::size_t paper_run_count(const world::Arena& arena, const std::vector<Algorithm>& algorithms, const SweepSettings& settings);
 
@@ -85,11 +89,12 @@ nlohmann::json paper_setup(const world::Arena& arena, const std::vector<Algorith
 /// repeat, and where the configuration and the per-run seeds are.
 nlohmann::ordered_json paper_run_info(const SweepSettings& settings);
 
-/// Runs every scenario x algorithm x repeat; sims[k] plays algorithms[k]. Run i is scenario i / (A * R),
+/// Runs every scenario x algorithm x repeat; sims[k] plays algorithms[k], which trains with pools[k]. Run i is scenario i / (A * R),
 /// algorithm (i / R) % A, repeat i % R. With settings.control's journal, finished runs are recorded as they
 /// finish and runs it holds are read back instead of run; a stop request throws SweepInterrupted.
 PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
-                                  const SweepSettings& settings, ProgressReporter* progress = nullptr);
+                                  const std::vector<OpponentPool>& pools, const SweepSettings& settings,
+                                  ProgressReporter* progress = nullptr);
 
 /// summary.json (docs/results.md): per scenario and algorithm rates and means with 95% intervals, and paired
 /// comparisons of every pair of algorithms.

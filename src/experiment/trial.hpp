@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "experiment/parallel_runner.hpp"
+#include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
 #include "game/sim.hpp"
@@ -21,11 +22,14 @@ struct TrialSpec {
   int episodes = 200;       ///< training episodes, >= 0
   bool keep_trace = false;  ///< record every step of the evaluation episode
   StopCheck stop;           ///< polled before every episode; a stop request throws RunCancelled
+  /// The classic opponents mixed into training (experiment/training.hpp); null or empty: co-learning only.
+  const OpponentPool* pool = nullptr;
 };
 
 struct TrialResult {
   game::EpisodeResult evaluation;             ///< the greedy episode after training
   std::vector<game::EpisodeResult> training;  ///< one per training episode (the learning curve)
+  std::vector<int> training_opponent;         ///< per training episode: its pool entry, or -1 (co-learning)
   game::Trace trace;                          ///< the evaluation's steps when keep_trace
   game::RoleModels pursuer_models;            ///< the trained FACL models of each role (empty when none learns)
   game::RoleModels evader_models;
@@ -34,10 +38,18 @@ struct TrialResult {
 };
 
 /// Seeds of a trial's streams, derived from its root seed.
-enum class TrialStream : std::uint64_t { kPursuer = 1, kEvader = 2, kTrainingEpisode = 3, kEvaluation = 4 };
+enum class TrialStream : std::uint64_t {
+  kPursuer = 1,
+  kEvader = 2,
+  kTrainingEpisode = 3,
+  kEvaluation = 4,
+  kTrainingOpponent = 5,  ///< per episode: which opponent it plays (opponent pool)
+  kPoolOpponents = 6,     ///< the pool's classic policies (per entry)
+};
 std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s);
 
-/// Trains and evaluates the agents the Sim's configuration names. `progress` (optional) is told of every
+/// Trains and evaluates the agents the Sim's configuration names: co-learning, with spec.pool's classic
+/// opponents mixed in when given (its Sims must share the arena of `sim`). `progress` (optional) is told of every
 /// episode. Throws RunCancelled when spec.stop asks to stop (checked between episodes, so a run gives up
 /// within one episode's time).
 TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec, ProgressReporter* progress = nullptr);

@@ -39,6 +39,20 @@ int GameConfig::max_steps() const { return static_cast<int>(std::lround(time_lim
 
 void GameConfig::validate() const { config::validate(*this); }
 
+AgentConfig scripted_agent(const AgentConfig& base, PolicyKind policy) {
+  AgentConfig a = base;
+  a.policy = policy;
+  a.motion_space = false;
+  return a;
+}
+
+GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy) {
+  AgentConfig& all = role == Role::kPursuer ? config.pursuer : config.evader;
+  all = scripted_agent(all, policy);
+  for (AgentConfig& a : role == Role::kPursuer ? config.pursuers : config.evaders) a = scripted_agent(a, policy);
+  return config;
+}
+
 AgentConfig agent_preset(const std::string& name, Role role) {
   AgentConfig a;
   a.speed = role == Role::kPursuer ? 1.1 : 1.0;

@@ -197,6 +197,29 @@ struct TeamConfig {
   bool operator==(const TeamConfig&) const = default;
 };
 
+/// How the FACL agents of a trial train (the experiments carry it out: experiment/training.hpp,
+/// docs/learning.md). The defaults are the paper's procedure.
+enum class TrainingProcedure {
+  kCoLearning,    ///< the paper: every episode, the FACL pursuers and evaders learn against each other
+  kOpponentPool,  ///< a share of the episodes, one FACL role learns against a classic opponent of the pool
+};
+inline constexpr config::EnumNames<TrainingProcedure, 2> kTrainingProcedureNames{
+    {{TrainingProcedure::kCoLearning, "co-learning"}, {TrainingProcedure::kOpponentPool, "opponent-pool"}}};
+
+struct TrainingConfig {
+  TrainingProcedure procedure = TrainingProcedure::kCoLearning;
+  /// Opponent pool: the share of training episodes, in [0, 1], in which one FACL role (drawn uniformly with
+  /// the opponent) plays a classic opponent instead of its co-learning partner.
+  double pool_share = 0.5;
+  bool pool_pure_pursuit = true;     ///< the FACL evaders' pool includes pure pursuit
+  bool pool_pn = true;               ///< ... proportional navigation
+  bool pool_apollonius = true;       ///< ... the Apollonius interceptor
+  bool pool_flee = true;             ///< the FACL pursuers' pool includes flee
+  bool pool_flee_apollonius = true;  ///< ... flee-apollonius
+  bool pool_random = true;           ///< ... the random evader
+  bool operator==(const TrainingConfig&) const = default;
+};
+
 struct GameConfig {
   double dt = 0.1;                ///< s, sample time, > 0 (paper 0.1)
   double time_limit = 100.0;      ///< s, episode limit, >= dt (paper 100)
@@ -211,6 +234,7 @@ struct GameConfig {
   std::vector<AgentConfig> pursuers;
   std::vector<AgentConfig> evaders;  ///< likewise for evaders, starting from `evader`
   TeamConfig team;
+  TrainingConfig training;
 
   int max_steps() const;  ///< time_limit / dt, rounded
   /// The configuration of the k-th agent (k >= 0) of a role.
@@ -222,6 +246,12 @@ struct GameConfig {
   void validate() const;
   bool operator==(const GameConfig&) const = default;
 };
+
+/// The configuration a scripted policy plays with: the base agent's kinematics and guard, its own policy,
+/// no motion space and no learning.
+AgentConfig scripted_agent(const AgentConfig& base, PolicyKind policy);
+/// `config` with every agent of `role` (its default and each per-agent entry) playing the scripted `policy`.
+GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy);
 
 /// The preset names: "peg3d" (the default), "paper" (as faithful as the text allows) and "baseline" (FACL in
 /// the manner of Al-Mahbashi et al. 2020 for the pursuer).
@@ -317,6 +347,25 @@ void visit_fields(V& v, C& c) {
   v.choice("capture_reward", c.capture_reward, kCaptureRewardNames, "who receives the capture term r_s");
 }
 
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, TrainingConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.choice("procedure", c.procedure, kTrainingProcedureNames,
+           "co-learning (the paper) or opponent-pool (co-learning mixed with episodes against classic opponents)");
+  v.number("pool_share", c.pool_share, Range::closed(0, 1), "",
+           "opponent-pool: share of training episodes in which one FACL role plays a classic opponent");
+  v.flag("pool_pure_pursuit", c.pool_pure_pursuit, "opponent-pool: FACL evaders train against pure pursuit");
+  v.flag("pool_pn", c.pool_pn, "opponent-pool: FACL evaders train against proportional navigation");
+  v.flag("pool_apollonius", c.pool_apollonius, "opponent-pool: FACL evaders train against the Apollonius interceptor");
+  v.flag("pool_flee", c.pool_flee, "opponent-pool: FACL pursuers train against flee");
+  v.flag("pool_flee_apollonius", c.pool_flee_apollonius, "opponent-pool: FACL pursuers train against flee-apollonius");
+  v.flag("pool_random", c.pool_random, "opponent-pool: FACL pursuers train against the random evader");
+  v.require(c.procedure != TrainingProcedure::kOpponentPool || c.pool_pure_pursuit || c.pool_pn || c.pool_apollonius ||
+                c.pool_flee || c.pool_flee_apollonius || c.pool_random,
+            "procedure", "opponent-pool", "needs at least one pool_* opponent");
+}
+
 namespace detail {
 /// The role rules of one agent's settings (its policy plays the role; a pursuer moves).
 template <class V>
@@ -345,6 +394,7 @@ void visit_fields(V& v, C& c) {
   v.sections("pursuers", c.pursuers, c.pursuer, "per-pursuer settings, by index in the scenario");
   v.sections("evaders", c.evaders, c.evader, "per-evader settings, by index in the scenario");
   v.section("team", c.team, "how teams play");
+  v.section("training", c.training, "how FACL agents train (docs/learning.md)");
   v.require(c.time_limit >= c.dt, "time_limit", c.time_limit, "must be >= dt");
   v.require(c.time_limit / c.dt <= 1e8, "time_limit", c.time_limit, "must be at most 1e8 steps of dt");
   detail::require_role(v, c.pursuer, Role::kPursuer, "pursuer");

@@ -25,7 +25,7 @@ nlohmann::json changed(const std::string& key, const nlohmann::json& old) {
            {"facl", "random"}, {"per-step", "per-second"}, {"azimuth", "azimuth-elevation"},
            {"toward-pursuer", "away-from-pursuer"}, {"joint", "per-angle"}, {"potential-field", "distance-only"},
            {"negate", "mirror"}, {"terminate", "penalize"}, {"chase", "facing"}, {"nearest", "assigned"},
-           {"none", "all"}, {"individual", "team"}, {"exact", "octree"}}) {
+           {"none", "all"}, {"individual", "team"}, {"exact", "octree"}, {"co-learning", "opponent-pool"}}) {
     for (std::size_t i = 0; i < candidates.size(); ++i)
       if (candidates[i] == text) return candidates[1 - i];
   }
@@ -55,7 +55,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 32 + 10);  // 32 per agent, 6 game fields and 4 team fields
+  EXPECT_EQ(leaves, 2 * 32 + 18);  // 32 per agent, 6 game fields, 4 team fields and 8 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
@@ -64,6 +64,7 @@ TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
   EXPECT_EQ(config::table_field_count<GameConfig>(), static_cast<int>(config::member_count<GameConfig>()));
   EXPECT_EQ(config::table_field_count<AgentConfig>(), static_cast<int>(config::member_count<AgentConfig>()));
   EXPECT_EQ(config::table_field_count<TeamConfig>(), static_cast<int>(config::member_count<TeamConfig>()));
+  EXPECT_EQ(config::table_field_count<TrainingConfig>(), static_cast<int>(config::member_count<TrainingConfig>()));
   EXPECT_EQ(config::table_field_count<ObservationConfig>(), static_cast<int>(config::member_count<ObservationConfig>()));
   EXPECT_EQ(config::table_field_count<RewardConfig>(), static_cast<int>(config::member_count<RewardConfig>()));
   EXPECT_EQ(config::table_field_count<ObstacleGuard>(), static_cast<int>(config::member_count<ObstacleGuard>()));

@@ -1,0 +1,181 @@
+// Training procedures (experiment/training.hpp): the opponent pool's entries, its episode draw, and trials
+// that mix pool episodes into co-learning.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/hash.hpp"
+#include "core/random.hpp"
+#include "core/validation.hpp"
+#include "experiment/training.hpp"
+#include "experiment/trial.hpp"
+#include "test_arena.hpp"
+
+namespace peg3d::experiment {
+namespace {
+
+using game::PolicyKind;
+using game::Role;
+
+std::shared_ptr<const world::Arena> arena() {
+  static const auto a = testing::make_arena({20, 20, 10}, {}, {testing::scenario("S1", {2, 2, 5}, {14, 14, 5})});
+  return a;
+}
+
+game::GameConfig pool_config(double share = 0.5) {
+  game::GameConfig c = game::preset("peg3d");
+  c.time_limit = 10.0;
+  c.training.procedure = game::TrainingProcedure::kOpponentPool;
+  c.training.pool_share = share;
+  return c;
+}
+
+std::uint64_t tables_hash(const game::RoleModels& models) {
+  Fnv1a h;
+  for (const auto& m : models.models) {
+    for (int c = 0; c < m->channels(); ++c) {
+      h.add_span(m->tables(c).actor_table());
+      h.add_span(m->tables(c).critic_table());
+    }
+  }
+  return h.value();
+}
+
+TEST(OpponentPool, CoLearningHasNoOpponents) {
+  EXPECT_TRUE(OpponentPool(arena(), game::preset("peg3d")).empty());
+}
+
+TEST(OpponentPool, HoldsTheChosenClassicOpponentsOfEveryLearningRole) {
+  game::GameConfig c = pool_config();
+  c.training.pool_pn = false;
+  c.training.pool_random = false;
+  const OpponentPool pool(arena(), c);
+  ASSERT_EQ(pool.entries().size(), 4u);
+  const std::pair<Role, PolicyKind> expected[] = {{Role::kPursuer, PolicyKind::kFlee},
+                                                  {Role::kPursuer, PolicyKind::kFleeApollonius},
+                                                  {Role::kEvader, PolicyKind::kPurePursuit},
+                                                  {Role::kEvader, PolicyKind::kApollonius}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto& e = pool.entries()[k];
+    EXPECT_EQ(e.learner, expected[k].first);
+    EXPECT_EQ(e.opponent, expected[k].second);
+    // The entry's Sim: the learner's side as configured, every agent of the other side scripted.
+    const Role other = e.learner == Role::kPursuer ? Role::kEvader : Role::kPursuer;
+    EXPECT_EQ(e.sim.config().agent(other).policy, e.opponent);
+    EXPECT_FALSE(e.sim.config().agent(other).motion_space);
+    EXPECT_EQ(e.sim.config().agent(e.learner), c.agent(e.learner));
+  }
+}
+
+TEST(OpponentPool, OnlyARoleThatLearnsGetsOpponents) {
+  game::GameConfig c = pool_config();
+  c.evader = game::scripted_agent(c.evader, PolicyKind::kFlee);
+  const OpponentPool pool(arena(), c);
+  ASSERT_EQ(pool.entries().size(), 3u);
+  for (const auto& e : pool.entries()) EXPECT_EQ(e.learner, Role::kPursuer);
+}
+
+TEST(OpponentPool, DrawsPoolEpisodesAtTheConfiguredShareAndEntriesUniformly) {
+  for (const double share : {0.0, 0.3, 1.0}) {
+    const OpponentPool pool(arena(), pool_config(share));
+    const int n = 20000;
+    std::vector<int> per_entry(pool.entries().size(), 0);
+    int pooled = 0;
+    for (int e = 0; e < n; ++e) {
+      const int k = pool.choose(derive_seed(99, {std::uint64_t(e)}));
+      ASSERT_GE(k, -1);
+      ASSERT_LT(k, static_cast<int>(per_entry.size()));
+      if (k >= 0) ++pooled, ++per_entry[std::size_t(k)];
+    }
+    // Binomial: 5 standard deviations (exact at the ends).
+    EXPECT_NEAR(pooled, share * n, 5.0 * std::sqrt(n * share * (1 - share)) + 1e-9) << share;
+    for (const int c : per_entry) {
+      const double p = 1.0 / static_cast<double>(per_entry.size());
+      EXPECT_NEAR(c, pooled * p, 5.0 * std::sqrt(pooled * p * (1 - p)) + 1e-9) << share;
+    }
+  }
+}
+
+TEST(Training, ATrialWithAnOpponentPoolNeedsThePool) {
+  const game::Sim sim(arena(), pool_config());
+  EXPECT_THROW(run_trial(sim, {&arena()->map().scenarios[0], 7, 2, false, {}, nullptr}), std::logic_error);
+}
+
+TEST(Training, AZeroShareTrainsExactlyAsCoLearning) {
+  game::GameConfig colearning = game::preset("peg3d");
+  colearning.time_limit = 10.0;
+  const game::GameConfig pooled = pool_config(0.0);
+  const game::Sim a(arena(), colearning), b(arena(), pooled);
+  const OpponentPool pool(arena(), pooled);
+  const auto& s = arena()->map().scenarios[0];
+  const TrialResult ra = run_trial(a, {&s, 7, 12, false, {}, nullptr});
+  const TrialResult rb = run_trial(b, {&s, 7, 12, false, {}, &pool});
+  ASSERT_EQ(ra.training.size(), rb.training.size());
+  for (std::size_t e = 0; e < ra.training.size(); ++e) {
+    EXPECT_EQ(ra.training[e].steps, rb.training[e].steps);
+    EXPECT_EQ(ra.training[e].pursuer_return, rb.training[e].pursuer_return);
+    EXPECT_EQ(rb.training_opponent[e], -1);
+  }
+  EXPECT_EQ(tables_hash(ra.pursuer_models), tables_hash(rb.pursuer_models));
+  EXPECT_EQ(tables_hash(ra.evader_models), tables_hash(rb.evader_models));
+}
+
+TEST(Training, APoolEpisodeTeachesOnlyTheLearningRole) {
+  // Share 1 with one evader in the pool and none for the pursuers' opponents: every episode the FACL
+  // pursuer learns against flee, and the FACL evader never plays, so its tables stay as they started.
+  game::GameConfig c = pool_config(1.0);
+  c.training.pool_flee_apollonius = c.training.pool_random = false;
+  c.training.pool_pure_pursuit = c.training.pool_pn = c.training.pool_apollonius = false;
+  const game::Sim sim(arena(), c);
+  const OpponentPool pool(arena(), c);
+  ASSERT_EQ(pool.entries().size(), 1u);
+  const auto& s = arena()->map().scenarios[0];
+  const TrialResult r = run_trial(sim, {&s, 7, 6, false, {}, &pool});
+  for (const int k : r.training_opponent) EXPECT_EQ(k, 0);
+
+  game::GameConfig untrained = c;
+  untrained.training.procedure = game::TrainingProcedure::kCoLearning;
+  const TrialResult fresh = run_trial(game::Sim(arena(), untrained), {&s, 7, 0, false, {}, nullptr});
+  EXPECT_EQ(tables_hash(r.evader_models), tables_hash(fresh.evader_models));
+  EXPECT_NE(tables_hash(r.pursuer_models), tables_hash(fresh.pursuer_models));
+}
+
+TEST(Training, APooledTrialIsAFunctionOfItsSeed) {
+  const game::GameConfig c = pool_config(0.5);
+  const game::Sim sim(arena(), c);
+  const OpponentPool pool(arena(), c);
+  const auto& s = arena()->map().scenarios[0];
+  const TrialResult a = run_trial(sim, {&s, 11, 16, false, {}, &pool});
+  const TrialResult b = run_trial(sim, {&s, 11, 16, false, {}, &pool});
+  EXPECT_EQ(a.training_opponent, b.training_opponent);
+  EXPECT_EQ(tables_hash(a.pursuer_models), tables_hash(b.pursuer_models));
+  EXPECT_EQ(tables_hash(a.evader_models), tables_hash(b.evader_models));
+  int pooled = 0;
+  for (const int k : a.training_opponent) pooled += k >= 0;
+  EXPECT_GT(pooled, 0);
+  EXPECT_LT(pooled, 16);
+}
+
+TEST(TrainingConfig, AnOpponentPoolWithoutOpponentsIsRejected) {
+  game::GameConfig c = pool_config();
+  c.training.pool_pure_pursuit = c.training.pool_pn = c.training.pool_apollonius = false;
+  c.training.pool_flee = c.training.pool_flee_apollonius = c.training.pool_random = false;
+  try {
+    c.validate();
+    FAIL() << "accepted an empty pool";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.parameter(), "training.procedure");
+  }
+  c.training.pool_share = 1.5;
+  c.training.pool_flee = true;
+  try {
+    c.validate();
+    FAIL() << "accepted pool_share 1.5";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(e.parameter(), "training.pool_share");
+  }
+}
+
+}  // namespace
+}  // namespace peg3d::experiment
