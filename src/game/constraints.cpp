@@ -44,6 +44,28 @@ std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position,
   return Cone{away.normalized(), kPi - excluded};
 }
 
+ObstacleSense guarded_obstacle(const AgentConfig& config, const Vec3& position, const ObstacleSense& field,
+                               const Box& bounds) {
+  if (!config.guard.faces) return field;
+  // The faces as the guard sees them: the arena (bounds grown back by the radius) with its edges and corners
+  // rounded by warn_distance. Near one face that is the face itself; in a corner the nearest point lies on the
+  // rounding, so the agent is turned out of the corner along the diagonal instead of into the other face.
+  const double w = config.guard.warn_distance;
+  const Box arena = bounds.shrunk(-config.radius);
+  const Vec3 lo = arena.lo.array() + w, hi = arena.hi.array() - w;
+  const Vec3 centre = 0.5 * (arena.lo + arena.hi);
+  // The inner box, collapsed to the arena's middle along an axis shorter than 2 w.
+  const Vec3 inner_lo = lo.cwiseMin(centre), inner_hi = hi.cwiseMax(centre);
+  const Vec3 out = position - position.cwiseMax(inner_lo).cwiseMin(inner_hi);
+  const double r = out.norm();
+  if (!(r > 0.0)) return field;  // farther than warn_distance from every face
+  ObstacleSense face;
+  face.distance = std::max(w - r, 0.0);
+  face.point = position + out * (face.distance / r);
+  face.found = true;
+  return !field.found || face.distance < field.distance ? face : field;
+}
+
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box) {
   Vec3 along = d, axis_along = allowed.axis;
   for (int a = 0; a < 3; ++a) {
@@ -70,7 +92,7 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     }
   }
   // The guard comes last: staying clear of obstacles outranks the motion space.
-  if (const auto allowed = guard_cone(c.guard, in.self.position, in.field)) {
+  if (const auto allowed = guard_cone(c.guard, in.self.position, guarded_obstacle(c, in.self.position, in.field, in.bounds))) {
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
     // to; deciding it from the request would flip sides every step.
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);

@@ -38,6 +38,14 @@ inline constexpr double kGuardCommitAngle = 0.35;  // 20 degrees
 /// obstacle is within warn_distance, or the agent stands on the obstacle point.
 std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position, const ObstacleSense& nearest);
 
+/// The obstacle the guard keeps clear of: the map's nearest (`field`), or with guard.faces the arena's
+/// boundary when that is nearer. The boundary is taken with its edges and corners rounded by warn_distance:
+/// near one face, the face's nearest point and distance; in a corner, the nearest point of the rounding (nearer
+/// than either face), so the guard turns the agent out along the diagonal. Nothing beyond warn_distance.
+/// `bounds` is the arena shrunk by the agent's radius.
+ObstacleSense guarded_obstacle(const AgentConfig& config, const Vec3& position, const ObstacleSense& field,
+                               const Box& bounds);
+
 /// Against a face of the arena the clamp removes the motion into the face, and what remains may still
 /// approach the obstacle. `d` lies in `allowed` already (keep_within). If its part along the faces the agent
 /// touches (`box` is the arena shrunk by its radius) is not allowed, d becomes the first allowed direction on

@@ -161,12 +161,13 @@ struct RewardConfig {
   bool operator==(const RewardConfig&) const = default;
 };
 
-/// A safety layer on top of any policy: near an obstacle of the map (not the arena boundary), headings that
-/// approach it are excluded, like the motion space excludes headings that lose ground. Within
+/// A safety layer on top of any policy: near an obstacle of the map (and, with `faces`, the arena boundary),
+/// headings that approach it are excluded, like the motion space excludes headings that lose ground. Within
 /// `stop_distance` of the obstacle the heading may not approach it at all; between `stop_distance` and
 /// `warn_distance` the excluded cone about the direction to the obstacle narrows linearly to nothing.
 struct ObstacleGuard {
   bool enabled = true;
+  bool faces = false;          ///< the arena's floor, ceiling and walls are guarded against too (nearest of both)
   double stop_distance = 0.8;  ///< m, > 0; covers radius + one step + the distance field's voxel error
   double warn_distance = 2.0;  ///< m, > stop_distance
   bool operator==(const ObstacleGuard&) const = default;
@@ -309,6 +310,7 @@ template <class V, class C>
 void visit_fields(V& v, C& c) {
   using config::Range;
   v.flag("enabled", c.enabled, "exclude headings that approach a nearby obstacle of the map");
+  v.flag("faces", c.faces, "the arena's floor, ceiling and walls count as obstacles of the guard (the nearer one is guarded)");
   v.number("stop_distance", c.stop_distance, Range::positive(), "m", "closer than this, no heading may approach it");
   v.number("warn_distance", c.warn_distance, Range::positive(), "m",
            "from here to stop_distance the excluded cone widens to a half-space");

@@ -102,5 +102,38 @@ TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
   EXPECT_LE(direction(guarded).dot(Vec3::UnitX()), std::cos(kPi / 4) + 1e-9);
 }
 
+TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
+  AgentConfig c = agent_preset("peg3d", Role::kEvader);
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const ObstacleSense field;  // no obstacle of the map near
+  // 0.6 m from the wall y = 0, inside stop_distance, flying straight at it.
+  const KinematicState self{Vec3(10, 0.6, 5), Heading{-kPi / 2, kPi / 2}};
+  const Vec3 opponent(10, 20, 5);
+  const ConstraintInputs in{c, Role::kEvader, 0.1, self, opponent, 1.1, field, bounds};
+  EXPECT_FALSE(guarded_obstacle(c, self.position, field, bounds).found);  // faces off: nothing to guard
+  const Heading unguarded = constrained_heading(in, {0.0, 0.0});
+  EXPECT_LT(direction(unguarded).y(), -0.99);  // into the wall
+  c.guard.faces = true;
+  const ObstacleSense face = guarded_obstacle(c, self.position, field, bounds);
+  ASSERT_TRUE(face.found);
+  EXPECT_NEAR(face.distance, 0.6, 1e-12);
+  EXPECT_TRUE(face.point.isApprox(Vec3(10, 0, 5)));
+  // Like an obstacle 0.6 m away: the agent turns away from the wall by a full step.
+  const Heading guarded = constrained_heading(in, {0.0, 0.0});
+  EXPECT_NEAR(std::abs(wrap_angle(guarded.alpha + kPi / 2)), kPi / 4, 1e-9);
+  // In a corner, 0.6 m from two walls, the rounded corner is nearer than either wall: the guard pushes along
+  // the diagonal. With warn 2 m: the rounding's centre is 1.4 m from the point along each axis.
+  const Vec3 corner(0.6, 0.6, 5);
+  const ObstacleSense diagonal = guarded_obstacle(c, corner, field, bounds);
+  ASSERT_TRUE(diagonal.found);
+  EXPECT_NEAR(diagonal.distance, 2.0 - std::sqrt(2.0) * 1.4, 1e-12);
+  EXPECT_NEAR((corner - diagonal.point).normalized().dot(Vec3(1, 1, 0).normalized()), 1.0, 1e-12);
+  // Beyond warn_distance from every face there is nothing to guard.
+  EXPECT_FALSE(guarded_obstacle(c, Vec3(10, 10, 10), field, bounds).found);
+  // A nearer obstacle of the map is still the one guarded.
+  const ObstacleSense near{0.3, Vec3(10.3, 0.6, 5), true};
+  EXPECT_EQ(guarded_obstacle(c, self.position, near, bounds).point, near.point);
+}
+
 }  // namespace
 }  // namespace peg3d::game
