@@ -10,11 +10,41 @@
 #include <span>
 #include <vector>
 
+#include "experiment/parallel_runner.hpp"
+#include "game/episode.hpp"
 #include "game/game_config.hpp"
+#include "game/lineup.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
+
+class ProgressReporter;
+
+/// Seeds of a trial's streams, derived from its root seed.
+enum class TrialStream : std::uint64_t {
+  kPursuer = 1,
+  kEvader = 2,
+  kTrainingEpisode = 3,
+  kEvaluation = 4,
+  kTrainingOpponent = 5,  ///< per episode: which opponent it plays (opponent pool)
+  kPoolOpponents = 6,     ///< the pool's classic policies (per entry)
+};
+std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s);
+
+class OpponentPool;
+
+/// Plays `episodes` learning episodes with `lineup`: its first `pursuers` policies are pursuers, the rest
+/// evaders, at least as many of each as any scenario has (a smaller scenario plays the first ones). Episode e
+/// starts from scenarios[e % size] and, with a pool, plays the opponent pool->choose() draws for it (co-learning
+/// for -1). Every stream derives from `seed` as TrialStream says. Appends each episode's result and opponent
+/// entry (-1: co-learning) to `results` and `opponents`; tells `progress` of each episode; throws RunCancelled
+/// when `stop` asks. Throws std::logic_error when the configuration trains with an opponent pool and none is
+/// given.
+void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& lineup, int pursuers,
+                  std::span<const world::Scenario> scenarios, std::uint64_t seed, int episodes, const StopCheck& stop,
+                  ProgressReporter* progress, game::SimState& state, std::vector<game::EpisodeResult>& results,
+                  std::vector<int>& opponents);
 
 /// The classic opponents of an opponent-pool training, each with the Sim it is played in (the game
 /// configuration with every agent of the opponent's role playing it). Built once per sweep, before any run,

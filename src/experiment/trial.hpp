@@ -37,17 +37,6 @@ struct TrialResult {
   int train_captures() const;
 };
 
-/// Seeds of a trial's streams, derived from its root seed.
-enum class TrialStream : std::uint64_t {
-  kPursuer = 1,
-  kEvader = 2,
-  kTrainingEpisode = 3,
-  kEvaluation = 4,
-  kTrainingOpponent = 5,  ///< per episode: which opponent it plays (opponent pool)
-  kPoolOpponents = 6,     ///< the pool's classic policies (per entry)
-};
-std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s);
-
 /// Trains and evaluates the agents the Sim's configuration names: co-learning, with spec.pool's classic
 /// opponents mixed in when given (its Sims must share the arena of `sim`). `progress` (optional) is told of every
 /// episode. Throws RunCancelled when spec.stop asks to stop (checked between episodes, so a run gives up

@@ -46,7 +46,9 @@ std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position,
 
 ObstacleSense guarded_obstacle(const AgentConfig& config, const Vec3& position, const ObstacleSense& field,
                                const Box& bounds) {
-  if (!config.guard.faces) return field;
+  // A map obstacle within warn_distance keeps the guard whatever the faces: hitting it ends the game, touching
+  // a face does not.
+  if (!config.guard.faces || (field.found && field.distance < config.guard.warn_distance)) return field;
   // The faces as the guard sees them: the arena (bounds grown back by the radius) with its edges and corners
   // rounded by warn_distance. Near one face that is the face itself; in a corner the nearest point lies on the
   // rounding, so the agent is turned out of the corner along the diagonal instead of into the other face.
@@ -63,7 +65,7 @@ ObstacleSense guarded_obstacle(const AgentConfig& config, const Vec3& position, 
   face.distance = std::max(w - r, 0.0);
   face.point = position + out * (face.distance / r);
   face.found = true;
-  return !field.found || face.distance < field.distance ? face : field;
+  return face;
 }
 
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box) {

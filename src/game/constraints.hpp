@@ -39,7 +39,8 @@ inline constexpr double kGuardCommitAngle = 0.35;  // 20 degrees
 std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position, const ObstacleSense& nearest);
 
 /// The obstacle the guard keeps clear of: the map's nearest (`field`), or with guard.faces the arena's
-/// boundary when that is nearer. The boundary is taken with its edges and corners rounded by warn_distance:
+/// boundary when no obstacle of the map is within warn_distance (a collision ends a game; a face only stops
+/// the motion into it). The boundary is taken with its edges and corners rounded by warn_distance:
 /// near one face, the face's nearest point and distance; in a corner, the nearest point of the rounding (nearer
 /// than either face), so the guard turns the agent out along the diagonal. Nothing beyond warn_distance.
 /// `bounds` is the arena shrunk by the agent's radius.

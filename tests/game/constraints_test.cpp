@@ -130,9 +130,11 @@ TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
   EXPECT_NEAR((corner - diagonal.point).normalized().dot(Vec3(1, 1, 0).normalized()), 1.0, 1e-12);
   // Beyond warn_distance from every face there is nothing to guard.
   EXPECT_FALSE(guarded_obstacle(c, Vec3(10, 10, 10), field, bounds).found);
-  // A nearer obstacle of the map is still the one guarded.
-  const ObstacleSense near{0.3, Vec3(10.3, 0.6, 5), true};
+  // An obstacle of the map within warn_distance is the one guarded, even when a face is nearer.
+  const ObstacleSense near{1.5, Vec3(11.5, 0.6, 5), true};
   EXPECT_EQ(guarded_obstacle(c, self.position, near, bounds).point, near.point);
+  const ObstacleSense far{2.5, Vec3(12.5, 0.6, 5), true};
+  EXPECT_TRUE(guarded_obstacle(c, self.position, far, bounds).point.isApprox(Vec3(10, 0, 5)));
 }
 
 }  // namespace
