@@ -61,9 +61,11 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     throw PolicyFormatError(file, 0, "format", fmt::format("not a peg3d policy (expected \"format\": \"{}\")", kPolicyFormat));
   }
   const nlohmann::json& version = member(doc, "version", file, "version");
-  if (!version.is_number_integer() || version.get<long long>() != kPolicyVersion) {
+  if (!version.is_number_integer() || version.get<long long>() < kOldestPolicyVersion ||
+      version.get<long long>() > kPolicyVersion) {
     throw PolicyFormatError(file, 0, "version",
-                            fmt::format("policy version {} is not supported (this build reads {})", brief(version), kPolicyVersion));
+                            fmt::format("policy version {} is not supported (this build reads {} to {})", brief(version),
+                                        kOldestPolicyVersion, kPolicyVersion));
   }
   const nlohmann::json& role_node = member(doc, "role", file, "role");
   if (role_node != "pursuer" && role_node != "evader") {
@@ -82,7 +84,13 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
   AgentConfig config;
   std::shared_ptr<FaclModel> model;
   try {
-    config::from_json(member(doc, "config", file, "config"), config, {{}, /*complete=*/true, {}});
+    nlohmann::json image = member(doc, "config", file, "config");
+    // Version 1 predates guard.faces: those agents played without it.
+    if (version.get<long long>() < 2 && image.is_object() && image.contains("guard") && image["guard"].is_object() &&
+        !image["guard"].contains("faces")) {
+      image["guard"]["faces"] = false;
+    }
+    config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);
     if (config.policy != PolicyKind::kFacl) throw InvalidParameter("policy", to_string(config.policy), "must be facl");
     model = std::make_shared<FaclModel>(config, role);

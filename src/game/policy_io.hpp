@@ -3,8 +3,11 @@
 // bases) and every channel's actor and critic consequents. Doubles are written with round-trip precision,
 // so a loaded model acts exactly as the saved one.
 //
-//   {"format": "peg3d-policy", "version": 1, "role": "pursuer", "config": {...AgentConfig, every field...},
+//   {"format": "peg3d-policy", "version": 2, "role": "pursuer", "config": {...AgentConfig, every field...},
 //    "channels": [{"rules": 625, "actions": 1, "actor": [...], "critic": [...]}, ...]}
+//
+// Versions: 2 added config.guard.faces. Version 1 documents still load: their agents played without it
+// (guard.faces = false), which is what they are read with.
 
 #include <filesystem>
 #include <memory>
@@ -19,7 +22,9 @@
 namespace peg3d::game {
 
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
-inline constexpr int kPolicyVersion = 1;
+inline constexpr int kPolicyVersion = 2;
+/// The oldest version this build reads.
+inline constexpr int kOldestPolicyVersion = 1;
 
 /// A policy document that cannot be used: what() names the file and the field at fault.
 class PolicyFormatError : public InputError {

@@ -137,6 +137,23 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   expect_error(d, "role");
   expect_error(doc, "role", Role::kPursuer);  // an evader's policy cannot play the pursuer
   EXPECT_NO_THROW(policy_from_json(doc, "p.json", Role::kEvader));
+  d = doc;
+  d["config"]["guard"].erase("faces");
+  expect_error(d, "config.guard.faces");  // version 2 documents have it
+}
+
+TEST(FaclPolicy, ReadsVersionOneDocumentsAsTheyPlayed) {
+  // Version 1 predates guard.faces; its agents played without it.
+  const FaclModel m(agent_preset("peg3d", Role::kPursuer), Role::kPursuer);
+  nlohmann::json doc = policy_to_json(m);
+  EXPECT_EQ(doc["version"], 2);
+  doc["version"] = 1;
+  doc["config"]["guard"].erase("faces");
+  const auto loaded = policy_from_json(doc, "p.json", Role::kPursuer);
+  EXPECT_FALSE(loaded->config().guard.faces);
+  EXPECT_EQ(policy_to_json(*loaded)["config"], policy_to_json(m)["config"]);
+  doc["version"] = 0;
+  EXPECT_THROW(policy_from_json(doc, "p.json", Role::kPursuer), PolicyFormatError);
 }
 
 TEST(FaclPolicy, ShortTrainingCapturesMoreOftenThanBefore) {
