@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> html;
   cli::add_sweep_options(app, o);
   cli::add_html_option(app, html, "SCENARIO_ALGORITHM, e.g. S1_peg3d or '*_peg3d'; the evaluation episode of repeat 0");
-  app.add_option("--algorithms", algorithms, "algorithms to compare (peg3d, baseline, paper)")
+  app.add_option("--algorithms", algorithms, "algorithms to compare: presets (peg3d, baseline, paper, robust)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_flag("!--no-plots", plots, "skip the figures");

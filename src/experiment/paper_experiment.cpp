@@ -41,7 +41,7 @@ game::GameConfig load_game_config(const std::string& source) {
     if (source == name) return game::preset(source);
   const std::filesystem::path file(source);
   if (file.extension() != ".json") {
-    throw InputError(fmt::format("--config {}: neither a preset (peg3d, paper, baseline) nor a .json file", source));
+    throw InputError(fmt::format("--config {}: neither a preset (peg3d, paper, baseline, robust) nor a .json file", source));
   }
   const std::string text = read_input_file(file, "configuration file");
   const nlohmann::json j = parse_json_text(text, file);

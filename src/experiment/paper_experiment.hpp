@@ -39,7 +39,7 @@ std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, co
 /// Applies overrides to one configuration (no algorithm prefixes) and validates the result.
 game::GameConfig apply_game_overrides(game::GameConfig config, const std::vector<std::string>& overrides);
 
-/// The configuration named by `source`: a preset name (peg3d, paper, baseline) or a JSON file holding a
+/// The configuration named by `source`: a preset name (peg3d, paper, baseline, robust) or a JSON file holding a
 /// GameConfig, read over the peg3d preset (fields it leaves out keep the preset's values; unknown keys and
 /// wrong types are errors naming the file and field).
 game::GameConfig load_game_config(const std::string& source);

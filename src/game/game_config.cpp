@@ -61,6 +61,12 @@ AgentConfig agent_preset(const std::string& name, Role role) {
     a.motion_space = role == Role::kPursuer;  // alpha1 >= pi/2 drives the evader into the walls
     return a;
   }
+  if (name == "robust") {  // docs/learning.md: peg3d's agent, tuned to hold up against classic opponents
+    AgentConfig a = agent_preset("peg3d", role);
+    if (role == Role::kPursuer) a.reward.w_r = 1.0;  // walls repel less: a scripted evader runs along them
+    if (role == Role::kEvader) a.guard.faces = true; // kept off the faces it otherwise learns to hug
+    return a;
+  }
   if (name == "paper") {
     a.guard.enabled = false;
     a.observation.angles = AngleInputs::kAzimuth;
@@ -76,7 +82,7 @@ AgentConfig agent_preset(const std::string& name, Role role) {
     a.reward.kind = RewardKind::kDistanceOnly;
     return a;
   }
-  throw InvalidParameter("config", "\"" + name + "\"", "must be one of: peg3d, paper, baseline");
+  throw InvalidParameter("config", "\"" + name + "\"", "must be one of: peg3d, paper, baseline, robust");
 }
 
 GameConfig preset(const std::string& name) {
@@ -85,6 +91,10 @@ GameConfig preset(const std::string& name) {
   // The baseline replaces the pursuer's method only; its opponent is peg3d's evader, so the two arms of a
   // comparison differ in one thing.
   c.evader = agent_preset(name == "baseline" ? "peg3d" : name, Role::kEvader);
+  if (name == "robust") {  // co-learning mixed with classic opponents (docs/learning.md)
+    c.training.procedure = TrainingProcedure::kOpponentPool;
+    c.training.pool_share = 0.8;
+  }
   return c;
 }
 

@@ -254,9 +254,10 @@ AgentConfig scripted_agent(const AgentConfig& base, PolicyKind policy);
 /// `config` with every agent of `role` (its default and each per-agent entry) playing the scripted `policy`.
 GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy);
 
-/// The preset names: "peg3d" (the default), "paper" (as faithful as the text allows) and "baseline" (FACL in
-/// the manner of Al-Mahbashi et al. 2020 for the pursuer).
-inline constexpr const char* kPresetNames[] = {"peg3d", "paper", "baseline"};
+/// The preset names: "peg3d" (the default), "paper" (as faithful as the text allows), "baseline" (FACL in
+/// the manner of Al-Mahbashi et al. 2020 for the pursuer) and "robust" (peg3d trained with an opponent pool,
+/// docs/learning.md).
+inline constexpr const char* kPresetNames[] = {"peg3d", "paper", "baseline", "robust"};
 /// A named configuration. Throws InvalidParameter for an unknown name.
 GameConfig preset(const std::string& name);
 /// The preset's settings for one agent (the pursuer's or the evader's side of that preset).
