@@ -1,0 +1,143 @@
+#pragma once
+// The league (docs/learning.md): FACL policies trained by one or more algorithms (a configuration each,
+// with its training procedure) over several training seeds, then every pursuer (each trained one and the
+// classic guidance laws) against every evader (each trained one and the scripted evaders) on evaluation
+// maps, from every start of each map, over held-out evaluation seeds. Trained policies meet opponents of
+// other seeds and other algorithms, not only the one they learned with.
+//
+// Training run (a, t): one lineup of algorithm a learns for `episodes` episodes, episode e from the training
+// map's scenario e mod n (a policy that plays every start, not one per start), seeded derive_seed(root,
+// {1, a, t}). Evaluation game: for each evaluation map m, scenario s and evaluation seed k, every pairing
+// plays one greedy episode seeded derive_seed(root, {2, m, s, k}); the classic policies' own seeds derive
+// from it by role only, so all pairings at one start are paired comparisons.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiment/paper_experiment.hpp"
+#include "experiment/run_journal.hpp"
+#include "experiment/training.hpp"
+#include "game/episode.hpp"
+#include "game/game_config.hpp"
+#include "game/lineup.hpp"
+#include "game/sim.hpp"
+#include "world/arena.hpp"
+
+namespace peg3d::experiment {
+
+class ProgressReporter;
+
+struct LeagueSettings {
+  std::vector<game::PolicyKind> classic_pursuers{game::PolicyKind::kPurePursuit, game::PolicyKind::kProportionalNavigation,
+                                                 game::PolicyKind::kApollonius};
+  std::vector<game::PolicyKind> classic_evaders{game::PolicyKind::kFlee, game::PolicyKind::kFleeApollonius,
+                                                game::PolicyKind::kRandom};
+  std::uint64_t seed = 1;  ///< root seed
+  int train_seeds = 3;     ///< training runs per algorithm, >= 1
+  int eval_seeds = 5;      ///< evaluation games per start and pairing, >= 1
+  int episodes = 600;      ///< training episodes per run, >= 0
+  int threads = 0;
+  /// Initial headings of the evaluation games (the training keeps its configuration's): random by default,
+  /// so that the evaluation seeds give different games even between deterministic policies.
+  game::InitialHeading eval_heading = game::InitialHeading::kRandom;
+  SweepControl control;  ///< journal (training runs), stop request, ranks
+};
+
+/// One player of the league.
+struct Entrant {
+  std::string name;   ///< "ALGORITHM#SEED" for a trained policy, the policy's name for a classic one
+  std::string group;  ///< the algorithm's name (its training seeds pooled), or the classic policy's name
+  game::Role role = game::Role::kPursuer;
+  game::PolicyKind policy = game::PolicyKind::kFacl;
+  int algorithm = -1;   ///< index of its algorithm (trained entrants), else -1
+  int train_seed = -1;  ///< index of its training seed (trained entrants), else -1
+};
+
+/// The trained entrants first (algorithm-major, then training seed), then the classic ones, per role. An
+/// algorithm whose role is not played by FACL has no trained entrant of that role.
+std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, const LeagueSettings& settings,
+                                     game::Role role);
+
+/// An evaluation map and the name results give it.
+struct LeagueMap {
+  std::string name;
+  std::shared_ptr<const world::Arena> arena;
+};
+
+/// Everything a league plays, built (and every start checked against every configuration) before any run.
+class League {
+ public:
+  League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap> eval_maps, std::vector<Algorithm> algorithms,
+         LeagueSettings settings);
+
+  const LeagueSettings& settings() const { return settings_; }
+  LeagueSettings& settings() { return settings_; }
+  const std::vector<Algorithm>& algorithms() const { return algorithms_; }
+  const std::vector<LeagueMap>& eval_maps() const { return maps_; }
+  const std::vector<Entrant>& pursuers() const { return pursuers_; }
+  const std::vector<Entrant>& evaders() const { return evaders_; }
+  const world::Arena& train_arena() const { return *train_; }
+
+  std::size_t training_runs() const { return algorithms_.size() * static_cast<std::size_t>(settings_.train_seeds); }
+  /// Evaluation games in all: pursuers x evaders x starts of every evaluation map x evaluation seeds.
+  std::size_t games() const;
+
+  /// The journal header: experiment, build, map hashes, seeds, episodes, the algorithms' configurations.
+  nlohmann::json setup() const;
+
+  /// Trains every (algorithm, seed) run (journaled, spread over ranks), then, on the root, plays every game.
+  /// Returns the games in order: map, scenario, evaluation seed, pursuer, evader. Non-root ranks return an
+  /// empty list once the training is done.
+  struct Game {
+    std::string map, scenario;
+    int eval_seed = 0;
+    std::string pursuer, evader;  ///< entrant names
+    game::EpisodeResult result;
+  };
+  std::vector<Game> run(ProgressReporter* progress, bool root) const;
+
+  /// The trained models of run (algorithm a, training seed t), once run() has trained them.
+  const game::RoleModels& models(int a, int t, game::Role role) const;
+
+ private:
+  const game::Sim& sim_of(std::size_t map, int pursuer_group, int evader_group) const;
+
+  std::shared_ptr<const world::Arena> train_;
+  std::vector<LeagueMap> maps_;
+  std::vector<Algorithm> algorithms_;
+  LeagueSettings settings_;
+  std::vector<Entrant> pursuers_, evaders_;
+  std::vector<game::Sim> train_sims_;     ///< per algorithm
+  std::vector<OpponentPool> pools_;       ///< per algorithm
+  /// Per evaluation map, pursuer group and evader group (groups: algorithms, then classic policies per role).
+  std::vector<game::Sim> eval_sims_;
+  int pursuer_groups_ = 0, evader_groups_ = 0;
+  mutable std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
+};
+
+/// games.csv: one row per game (map, scenario, eval_seed, pursuer, evader, then the episode columns).
+void write_league_games_csv(const std::filesystem::path& file, const std::vector<League::Game>& games);
+
+/// The cross-play matrix, per pair of groups (trained entrants pooled over their training seeds) or of
+/// entrants: games, capture rate with its Wilson interval, mean time to capture (captured games) and mean
+/// evader survival time (every game, censored at the time limit) with t intervals, collision games, the
+/// evader's mean pinned fraction.
+nlohmann::ordered_json league_matrix(const League& league, const std::vector<League::Game>& games, bool by_group);
+/// matrix.csv from league_matrix.
+void write_league_matrix_csv(const std::filesystem::path& file, const nlohmann::ordered_json& matrix);
+
+/// The questions, answered from the games: for each trained pursuer group, its capture rate against
+/// each scripted evader beside the best classic pursuer's, and against the trained evaders of its own
+/// group; for each trained evader group, its survival time against each classic pursuer beside the best
+/// scripted evader's, paired by start and seed (paired t and Wilcoxon tests).
+nlohmann::ordered_json league_findings(const League& league, const std::vector<League::Game>& games);
+
+/// The matrix as an aligned text table (capture rate and mean survival).
+std::string league_table(const nlohmann::ordered_json& matrix);
+
+}  // namespace peg3d::experiment
