@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """End-to-end checks of the experiment binaries' command line:
 - peg-matchup plays teams on maps/pack.yaml and writes matchups.csv, agents.csv and summary.json;
+- peg-league trains teams on maps/pack.yaml and writes its matrix, findings, policies and heat-map, plays
+  on a held-out map, and rejects bad algorithms, headings, policies, maps, fields and counts;
 - every input error exits with status 2, prints 'error: ...' naming the file or flag, and writes nothing:
   a malformed policy file, an evader's policy passed as the pursuer's, a start within an agent's radius of
   an obstacle, a scenario name that climbs out of --out, a configuration file with an unknown key, a policy
@@ -125,6 +127,42 @@ def main():
         check(set(summary) == {"paper", "nameless"}, f"generalization maps {sorted(summary)}")
         check(summary.get("nameless", {}).get("runs") == 4, "the nameless map's 4 games are reported")
 
+    # peg-league: teams on pack.yaml (trained teams and classic ones in one matrix), the heat-map, the trained
+    # policies; a held-out map; input errors exit 2 and write nothing.
+    league = os.path.join(bin_dir, "peg-league")
+    lg = os.path.join(work, "league")
+    r = run([league, "--map", "maps/pack.yaml", "--out", lg, "--algorithms", "peg3d,robust", "--train-seeds", "2",
+             "--eval-seeds", "1", "--episodes", "2", "--plain-progress", "--no-cache"])
+    check(r.returncode == 0 and "warning" not in r.stderr, f"peg-league on pack.yaml: status {r.returncode}: {r.stderr[-2000:]}")
+    if r.returncode == 0:
+        games = rows(os.path.join(lg, "games.csv"))
+        # 4 trained + 3 classic per role, 4 team starts, 1 evaluation seed.
+        check(len(games) == 7 * 7 * 4, f"games.csv has {len(games)} games, expected 196")
+        matrix = rows(os.path.join(lg, "matrix.csv"))
+        check(len(matrix) == 5 * 5, f"matrix.csv has {len(matrix)} group pairings, expected 25")
+        check(all(int(m["games"]) > 0 for m in matrix), "every group pairing played")
+        check(len(rows(os.path.join(lg, "matrix_entrants.csv"))) == 49, "matrix_entrants.csv: 49 pairings")
+        summary = json.load(open(os.path.join(lg, "summary.json")))
+        check({f["algorithm"] for f in summary["findings"]["pursuers"]} == {"peg3d", "robust"}, "findings per algorithm")
+        check(os.path.exists(os.path.join(lg, "league.png")), "league.png drawn")
+        check(os.path.exists(os.path.join(lg, "policies", "robust_1_evader.json")), "trained policies saved")
+        check(not os.path.exists(os.path.join(lg, "runs.journal")), "the journal is removed once the results are written")
+    r = run([league, "--out", os.path.join(work, "league2"), "--train-seeds", "1", "--eval-seeds", "1", "--episodes", "1",
+             "--eval-maps", "maps/paper.yaml,maps/forest.yaml", "--no-plots", "--plain-progress", "--no-cache"])
+    check(r.returncode == 0, f"peg-league on a held-out map: {r.stderr[-500:]}")
+    if r.returncode == 0:
+        maps_played = {g["map"] for g in rows(os.path.join(work, "league2", "games.csv"))}
+        check(maps_played == {"paper", "forest"}, f"games on {sorted(maps_played)}")
+    for args, named in [(["--algorithms", "peg3d,nonsense"], "nonsense"), (["--eval-heading", "sideways"], "--eval-heading"),
+                        (["--evaders", "flee,pn"], "--evaders"), (["--eval-maps", os.path.join(maps, "tight.yaml")], "tight.yaml:6"),
+                        (["--set", "training.pool_share=2"], "training.pool_share"), (["--train-seeds", "0"], "--train-seeds")]:
+        shutil.rmtree(bad, ignore_errors=True)
+        r = run([league, "--out", bad, "--episodes", "1", "--plain-progress", "--no-cache", *args])
+        what = f"peg-league {' '.join(args)}"
+        check(r.returncode == 2, f"{what}: status {r.returncode}, expected 2 ({r.stderr[-500:]})")
+        check(r.stderr.startswith("error:") and named in r.stderr, f"{what}: message names {named!r}: {r.stderr[:300]!r}")
+        check(not os.path.exists(bad), f"{what}: nothing written")
+
     # Figures into a folder whose name a shell would split and unquote.
     odd = os.path.join(work, "it's a \"folder\" $HOME")
     r = run([paper, "--out", odd, "--algorithms", "peg3d", *quick])
@@ -133,7 +171,7 @@ def main():
         check(os.path.exists(os.path.join(odd, fig)), f"{fig} drawn into {odd}")
 
     # No path into the source tree; a copy of the build's bin/ and share/ runs from anywhere.
-    for name in ("peg-paper", "peg-matchup", "peg-generalize", "peg-map") if release else ():
+    for name in ("peg-paper", "peg-matchup", "peg-generalize", "peg-league", "peg-map") if release else ():
         check(os.path.realpath(source).encode() not in open(os.path.join(bin_dir, name), "rb").read(),
               f"{name} holds no path into the source tree")
     copy = os.path.join(work, "install")
