@@ -44,28 +44,35 @@ std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position,
   return Cone{away.normalized(), kPi - excluded};
 }
 
-ObstacleSense guarded_obstacle(const AgentConfig& config, const Vec3& position, const ObstacleSense& field,
-                               const Box& bounds) {
-  // A map obstacle within warn_distance keeps the guard whatever the faces: hitting it ends the game, touching
-  // a face does not.
-  if (!config.guard.faces || (field.found && field.distance < config.guard.warn_distance)) return field;
+ObstacleSense face_obstacle(const ObstacleGuard& guard, double radius, const Vec3& position, const Box& bounds) {
   // The faces as the guard sees them: the arena (bounds grown back by the radius) with its edges and corners
   // rounded by warn_distance. Near one face that is the face itself; in a corner the nearest point lies on the
   // rounding, so the agent is turned out of the corner along the diagonal instead of into the other face.
-  const double w = config.guard.warn_distance;
-  const Box arena = bounds.shrunk(-config.radius);
+  const double w = guard.warn_distance;
+  const Box arena = bounds.shrunk(-radius);
   const Vec3 lo = arena.lo.array() + w, hi = arena.hi.array() - w;
   const Vec3 centre = 0.5 * (arena.lo + arena.hi);
   // The inner box, collapsed to the arena's middle along an axis shorter than 2 w.
   const Vec3 inner_lo = lo.cwiseMin(centre), inner_hi = hi.cwiseMax(centre);
   const Vec3 out = position - position.cwiseMax(inner_lo).cwiseMin(inner_hi);
   const double r = out.norm();
-  if (!(r > 0.0)) return field;  // farther than warn_distance from every face
   ObstacleSense face;
+  if (!(r > 0.0)) return face;  // farther than warn_distance from every face: not found
   face.distance = std::max(w - r, 0.0);
   face.point = position + out * (face.distance / r);
   face.found = true;
   return face;
+}
+
+Cone allowed_by_both(const Cone& face, const Cone& obstacle) {
+  // The cone about the bisector of the two axes that fits inside both: its half-angle is each cone's minus
+  // the bisector's angle from that cone's axis.
+  const Vec3 sum = face.axis + obstacle.axis;
+  if (sum.squaredNorm() < 1e-12) return obstacle;
+  const Vec3 bisector = sum.normalized();
+  const double half = std::min(face.half_angle - angle_between(bisector, face.axis),
+                               obstacle.half_angle - angle_between(bisector, obstacle.axis));
+  return half > 1e-6 ? Cone{bisector, half} : obstacle;
 }
 
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box) {
@@ -94,7 +101,13 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     }
   }
   // The guard comes last: staying clear of obstacles outranks the motion space.
-  if (const auto allowed = guard_cone(c.guard, in.self.position, guarded_obstacle(c, in.self.position, in.field, in.bounds))) {
+  std::optional<Cone> allowed = guard_cone(c.guard, in.self.position, in.field);
+  if (c.guard.faces) {
+    if (const auto face = guard_cone(c.guard, in.self.position, face_obstacle(c.guard, c.radius, in.self.position, in.bounds))) {
+      allowed = allowed ? allowed_by_both(*face, *allowed) : face;
+    }
+  }
+  if (allowed) {
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
     // to; deciding it from the request would flip sides every step.
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);

@@ -38,14 +38,17 @@ inline constexpr double kGuardCommitAngle = 0.35;  // 20 degrees
 /// obstacle is within warn_distance, or the agent stands on the obstacle point.
 std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position, const ObstacleSense& nearest);
 
-/// The obstacle the guard keeps clear of: the map's nearest (`field`), or with guard.faces the arena's
-/// boundary when no obstacle of the map is within warn_distance (a collision ends a game; a face only stops
-/// the motion into it). The boundary is taken with its edges and corners rounded by warn_distance:
-/// near one face, the face's nearest point and distance; in a corner, the nearest point of the rounding (nearer
-/// than either face), so the guard turns the agent out along the diagonal. Nothing beyond warn_distance.
-/// `bounds` is the arena shrunk by the agent's radius.
-ObstacleSense guarded_obstacle(const AgentConfig& config, const Vec3& position, const ObstacleSense& field,
-                               const Box& bounds);
+/// With guard.faces, what the guard keeps clear of at the arena's boundary: the boundary with its edges and
+/// corners rounded by warn_distance. Near one face, the face's nearest point and distance; in a corner, the
+/// nearest point of the rounding (nearer than either face), so the guard turns the agent out along the
+/// diagonal. Not found beyond warn_distance from every face. `bounds` is the arena shrunk by `radius`.
+ObstacleSense face_obstacle(const ObstacleGuard& guard, double radius, const Vec3& position, const Box& bounds);
+
+/// The headings allowed by both the face's and the obstacle's guard cones, as one cone: the widest cone about
+/// the bisector of their axes that lies inside both. When none does (the two exclude each other's every
+/// heading, or the axes are opposite), the obstacle's cone alone: a collision ends a game, a face only stops
+/// the motion into it.
+Cone allowed_by_both(const Cone& face, const Cone& obstacle);
 
 /// Against a face of the arena the clamp removes the motion into the face, and what remains may still
 /// approach the obstacle. `d` lies in `allowed` already (keep_within). If its part along the faces the agent
@@ -68,7 +71,8 @@ struct ConstraintInputs {
 };
 
 /// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),
-/// then the guard (when enabled). When a constraint moved the direction, the agent turns towards the
+/// then the guard (when enabled): the map's nearest obstacle and, with guard.faces, the arena's faces too
+/// (allowed_by_both when both are near). When a constraint moved the direction, the agent turns towards the
 /// constrained direction within the same steering bound. With `moving`, also stores direction(heading)
 /// there, computed once for the constraints and the move (the same bits as calling direction again).
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving = nullptr);

@@ -105,16 +105,15 @@ TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
 TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
   AgentConfig c = agent_preset("peg3d", Role::kEvader);
   const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
-  const ObstacleSense field;  // no obstacle of the map near
+  ObstacleSense field;  // no obstacle of the map near
   // 0.6 m from the wall y = 0, inside stop_distance, flying straight at it.
   const KinematicState self{Vec3(10, 0.6, 5), Heading{-kPi / 2, kPi / 2}};
   const Vec3 opponent(10, 20, 5);
   const ConstraintInputs in{c, Role::kEvader, 0.1, self, opponent, 1.1, field, bounds};
-  EXPECT_FALSE(guarded_obstacle(c, self.position, field, bounds).found);  // faces off: nothing to guard
   const Heading unguarded = constrained_heading(in, {0.0, 0.0});
-  EXPECT_LT(direction(unguarded).y(), -0.99);  // into the wall
+  EXPECT_LT(direction(unguarded).y(), -0.99);  // faces off: into the wall
   c.guard.faces = true;
-  const ObstacleSense face = guarded_obstacle(c, self.position, field, bounds);
+  const ObstacleSense face = face_obstacle(c.guard, c.radius, self.position, bounds);
   ASSERT_TRUE(face.found);
   EXPECT_NEAR(face.distance, 0.6, 1e-12);
   EXPECT_TRUE(face.point.isApprox(Vec3(10, 0, 5)));
@@ -124,17 +123,32 @@ TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
   // In a corner, 0.6 m from two walls, the rounded corner is nearer than either wall: the guard pushes along
   // the diagonal. With warn 2 m: the rounding's centre is 1.4 m from the point along each axis.
   const Vec3 corner(0.6, 0.6, 5);
-  const ObstacleSense diagonal = guarded_obstacle(c, corner, field, bounds);
+  const ObstacleSense diagonal = face_obstacle(c.guard, c.radius, corner, bounds);
   ASSERT_TRUE(diagonal.found);
   EXPECT_NEAR(diagonal.distance, 2.0 - std::sqrt(2.0) * 1.4, 1e-12);
   EXPECT_NEAR((corner - diagonal.point).normalized().dot(Vec3(1, 1, 0).normalized()), 1.0, 1e-12);
   // Beyond warn_distance from every face there is nothing to guard.
-  EXPECT_FALSE(guarded_obstacle(c, Vec3(10, 10, 10), field, bounds).found);
-  // An obstacle of the map within warn_distance is the one guarded, even when a face is nearer.
-  const ObstacleSense near{1.5, Vec3(11.5, 0.6, 5), true};
-  EXPECT_EQ(guarded_obstacle(c, self.position, near, bounds).point, near.point);
-  const ObstacleSense far{2.5, Vec3(12.5, 0.6, 5), true};
-  EXPECT_TRUE(guarded_obstacle(c, self.position, far, bounds).point.isApprox(Vec3(10, 0, 5)));
+  EXPECT_FALSE(face_obstacle(c.guard, c.radius, Vec3(10, 10, 10), bounds).found);
+}
+
+TEST(Constraints, WithFacesTheMapsObstacleStillHasTheLastWord) {
+  // 0.6 m from the wall y = 0 and 0.5 m from an obstacle along +x, both inside stop_distance: the face
+  // forbids -y, the obstacle +x. Holding still and asking for no turn, the agent turns (a bounded step at a
+  // time) until it approaches neither; the obstacle, guarded last, is never approached once turned.
+  AgentConfig c = agent_preset("peg3d", Role::kEvader);
+  c.guard.faces = true;
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const ObstacleSense obstacle{0.5, Vec3(10.5, 0.6, 5), true};
+  for (const double alpha : {0.0, -0.5, -1.0, -kPi / 2}) {
+    KinematicState self{Vec3(10, 0.6, 5), Heading{alpha, kPi / 2}};
+    Vec3 d;
+    for (int step = 0; step < 4; ++step) {
+      const ConstraintInputs in{c, Role::kEvader, 0.1, self, Vec3(20, 20, 5), 1.1, obstacle, bounds};
+      self.heading = constrained_heading(in, {0.0, 0.0}, &d);
+    }
+    EXPECT_LE(d.x(), 1e-9) << alpha;   // not towards the obstacle
+    EXPECT_GE(d.y(), -1e-9) << alpha;  // nor into the wall
+  }
 }
 
 }  // namespace
