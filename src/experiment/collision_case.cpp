@@ -220,8 +220,7 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   world::BuildOptions options;
   if (use_cache) options.cache_dir = world::default_cache_dir();
   const auto arena = world::Arena::build(world::load_map(c.map), options);
-  const game::GameConfig config = apply_game_overrides(load_game_config(c.config), c.overrides);
-  const game::Sim sim(arena, config);
+  game::GameConfig config = apply_game_overrides(load_game_config(c.config), c.overrides);
   const auto& scenarios = arena->map().scenarios;
   const world::Scenario* scenario = c.scenario.empty() ? &scenarios.front() : arena->map().find_scenario(c.scenario);
   if (scenario == nullptr) throw InputError(c.file, c.scenario_line, "scenario", "'" + shown(c.scenario) + "' is not a scenario of " + c.map.string());
@@ -240,6 +239,20 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     }
     if (!found) throw InputError(c.file, d.line, "agents." + d.label, "no agent of scenario '" + scenario->name + "' has this label");
   }
+  // A saved policy plays with the agent configuration it was saved with (its guard, steering, observation), as
+  // in peg-matchup: its agent's entry in the game configuration becomes that one.
+  std::vector<std::shared_ptr<game::FaclModel>> saved(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const AgentDriver* d = driver_of[std::size_t(i)];
+    if (d == nullptr || d->kind != AgentDriver::Kind::kPolicy) continue;
+    const game::Role role = i < p ? game::Role::kPursuer : game::Role::kEvader;
+    const std::size_t rank = std::size_t(i < p ? i : i - p);
+    saved[std::size_t(i)] = load_policy(d->policy, role);
+    auto& entries = role == game::Role::kPursuer ? config.pursuers : config.evaders;
+    if (entries.size() <= rank) entries.resize(rank + 1, role == game::Role::kPursuer ? config.pursuer : config.evader);
+    entries[rank] = saved[std::size_t(i)]->config();
+  }
+  const game::Sim sim(arena, config);
   game::Lineup lineup;
   for (int i = 0; i < n; ++i) {
     const game::Role role = i < p ? game::Role::kPursuer : game::Role::kEvader;
@@ -253,7 +266,7 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     } else if (d->kind == AgentDriver::Kind::kWaypoints) {
       lineup.add(std::make_unique<game::WaypointFollower>(d->waypoints));
     } else if (d->kind == AgentDriver::Kind::kPolicy) {
-      lineup.add(std::make_unique<game::FaclPolicy>(std::shared_ptr<const game::FaclModel>(load_policy(d->policy, role))));
+      lineup.add(std::make_unique<game::FaclPolicy>(std::shared_ptr<const game::FaclModel>(saved[std::size_t(i)])));
     } else {
       game::AgentConfig a = config.agent(role, rank);
       a.policy = d->scripted;

@@ -59,12 +59,12 @@ AgentConfig agent_preset(const std::string& name, Role role) {
   if (name == "peg3d") {
     a.steering.polar_margin = kPi / 3;  // climb and dive limited to 30 degrees (docs/paper-notes.md)
     a.motion_space = role == Role::kPursuer;  // alpha1 >= pi/2 drives the evader into the walls
+    a.guard.faces = role == Role::kEvader;    // else the evader learns to hug the walls (docs/paper-notes.md)
     return a;
   }
   if (name == "robust") {  // docs/learning.md: peg3d's agent, tuned to hold up against classic opponents
     AgentConfig a = agent_preset("peg3d", role);
     if (role == Role::kPursuer) a.reward.w_r = 1.0;  // walls repel less: a scripted evader runs along them
-    if (role == Role::kEvader) a.guard.faces = true; // kept off the faces it otherwise learns to hug
     return a;
   }
   if (name == "paper") {

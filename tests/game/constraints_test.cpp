@@ -104,6 +104,7 @@ TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
 
 TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
   AgentConfig c = agent_preset("peg3d", Role::kEvader);
+  c.guard.faces = false;
   const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
   ObstacleSense field;  // no obstacle of the map near
   // 0.6 m from the wall y = 0, inside stop_distance, flying straight at it.
