@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """End-to-end checks of sweeps spread over MPI ranks (README, "Sweeps on a cluster"):
-- peg-paper, peg-matchup and peg-generalize under `mpirun -np 2` (peg-paper also on 3 ranks) write result
+- peg-paper, peg-matchup, peg-generalize and peg-league under `mpirun -np 2` (peg-paper also on 3 ranks) write result
   files byte-identical to a single-process sweep with the same seed, and only the root writes;
 - a sweep interrupted under mpirun (SIGINT to mpirun, which ends the ranks with SIGTERM) keeps its finished
   runs in the root's journal and writes no result file; --resume on 3 ranks finishes it identically, and a
@@ -61,6 +61,18 @@ def main():
                       f"{name} on {ranks} ranks: one rank reports results, not {r.stdout.count('results in')}")
                 if same_results(references[name], out, f"{name} on {ranks} ranks"):
                     print(f"{name}: {ranks} ranks wrote the single-process results, byte for byte")
+
+    # peg-league: its training runs spread over the ranks, its games played on the root.
+    league = [os.path.join(bin_dir, "peg-league"), "--seed", "7", "--train-seeds", "3", "--eval-seeds", "1",
+              "--episodes", "20", "--no-plots", "--plain-progress"]
+    alone, spread = os.path.join(work, "league-alone"), os.path.join(work, "league-2-ranks")
+    r = run(league + ["--out", alone, "--threads", "2"])
+    check(r.returncode == 0, f"peg-league alone: status {r.returncode}: {r.stderr[-800:]}")
+    r = run(mpirun(2) + league + ["--out", spread, "--threads", "1"])
+    if check(r.returncode == 0, f"peg-league on 2 ranks: status {r.returncode}: {r.stderr[-1500:]}"):
+        check(r.stdout.count("results in") == 1, "peg-league on 2 ranks: one rank reports results")
+        if same_results(alone, spread, "peg-league on 2 ranks"):
+            print("peg-league: 2 ranks wrote the single-process results, byte for byte")
 
     # Interrupted under mpirun, resumed on 3 ranks.
     bigger = [paper, "--seed", "7", "--repeats", "4", "--episodes", "60", "--algorithms", "peg3d,baseline",
