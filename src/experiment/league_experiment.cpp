@@ -192,40 +192,49 @@ std::vector<League::Game> League::run(ProgressReporter* progress, bool root) con
     if (e.algorithm >= 0) return e.algorithm;
     return n_alg + static_cast<int>(std::find(classic.begin(), classic.end(), e.policy) - classic.begin());
   };
-  run_indexed(
-      starts.size(), s.threads,
-      [&](std::size_t j) {
-        const Start& st = starts[j];
-        const world::Scenario& scenario = maps_[st.map].arena->map().scenarios[st.scenario];
-        const int np = static_cast<int>(scenario.pursuers.size()), ne = static_cast<int>(scenario.evaders.size());
-        const std::uint64_t seed = derive_seed(s.seed, {2, st.map, st.scenario, static_cast<std::uint64_t>(st.seed)});
-        game::SimState state(sim_of(st.map, 0, 0));
-        for (std::size_t p = 0; p < pursuers_.size(); ++p) {
-          for (std::size_t e = 0; e < evaders_.size(); ++e) {
-            throw_if_stopped(s.control.stop);
-            const Entrant& P = pursuers_[p];
-            const Entrant& E = evaders_[e];
-            const game::Sim& sim =
-                sim_of(st.map, group_of(P, s.classic_pursuers), group_of(E, s.classic_evaders));
-            game::Lineup lineup;
-            if (P.algorithm >= 0) {
-              game::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
-            } else {
-              game::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
+  // A stop during the games keeps the training runs (journaled): --resume reads them back and plays the games.
+  const auto interrupted = [&] {
+    const RunJournal* journal = s.control.journal;
+    return SweepInterrupted(training_runs(), training_runs(), journal ? journal->file() : std::filesystem::path());
+  };
+  try {
+    run_indexed(
+        starts.size(), s.threads,
+        [&](std::size_t j) {
+          const Start& st = starts[j];
+          const world::Scenario& scenario = maps_[st.map].arena->map().scenarios[st.scenario];
+          const int np = static_cast<int>(scenario.pursuers.size()), ne = static_cast<int>(scenario.evaders.size());
+          const std::uint64_t seed = derive_seed(s.seed, {2, st.map, st.scenario, static_cast<std::uint64_t>(st.seed)});
+          game::SimState state(sim_of(st.map, 0, 0));
+          for (std::size_t p = 0; p < pursuers_.size(); ++p) {
+            for (std::size_t e = 0; e < evaders_.size(); ++e) {
+              throw_if_stopped(s.control.stop);
+              const Entrant& P = pursuers_[p];
+              const Entrant& E = evaders_[e];
+              const game::Sim& sim =
+                  sim_of(st.map, group_of(P, s.classic_pursuers), group_of(E, s.classic_evaders));
+              game::Lineup lineup;
+              if (P.algorithm >= 0) {
+                game::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
+              } else {
+                game::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
+              }
+              if (E.algorithm >= 0) {
+                game::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
+              } else {
+                game::add_configured(lineup, sim.config(), game::Role::kEvader, ne, derive_seed(seed, {2}));
+              }
+              Game& g = games[j * pairings + p * evaders_.size() + e];
+              g = {maps_[st.map].name, scenario.name, st.seed, P.name, E.name, evaluate(sim, state, scenario, lineup, seed)};
+              if (progress) progress->episode_done();
             }
-            if (E.algorithm >= 0) {
-              game::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
-            } else {
-              game::add_configured(lineup, sim.config(), game::Role::kEvader, ne, derive_seed(seed, {2}));
-            }
-            Game& g = games[j * pairings + p * evaders_.size() + e];
-            g = {maps_[st.map].name, scenario.name, st.seed, P.name, E.name, evaluate(sim, state, scenario, lineup, seed)};
-            if (progress) progress->episode_done();
           }
-        }
-      },
-      s.control.stop);
-  throw_if_stopped(s.control.stop);
+        },
+        s.control.stop);
+  } catch (const RunCancelled&) {
+    throw interrupted();
+  }
+  if (s.control.stop && s.control.stop()) throw interrupted();
   return games;
 }
 

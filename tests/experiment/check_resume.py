@@ -6,6 +6,7 @@
   peg-generalize once each;
 - SIGINT stops a sweep within 2 s with status 130, says what was kept and prints the command that resumes
   it; that command finishes the sweep identically; SIGTERM exits with 143;
+- peg-league stopped with SIGTERM while it plays its games keeps its training runs and resumes identically;
 - a finished sweep removes its journal; an existing journal without --resume, --resume without a journal and
   --resume with another seed are input errors (status 2) that name the problem.
 
@@ -118,6 +119,26 @@ def main():
         _, err = proc.communicate(timeout=30)
         check(proc.returncode == 143, f"SIGTERM exit status {proc.returncode}, expected 143: {err[-500:]}")
         check("resume with:" in err, "SIGTERM: prints the resume command")
+
+    # peg-league stopped while it plays its games (every training run journaled): status 143, no result file;
+    # --resume trains nothing again and plays the games, with the uninterrupted league's results.
+    league = [os.path.join(bin_dir, "peg-league"), "--seed", "9", "--train-seeds", "2", "--eval-seeds", "40",
+              "--episodes", "5", "--no-plots", "--plain-progress"]
+    league_ref, stopped = os.path.join(work, "league-reference"), os.path.join(work, "league-stopped")
+    r = run(league + ["--out", league_ref, "--threads", "2"])
+    check(r.returncode == 0, f"peg-league: status {r.returncode}: {r.stderr[-800:]}")
+    proc = subprocess.Popen(league + ["--out", stopped, "--threads", "1"], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    if check(wait_for_runs(proc, stopped, 4), f"peg-league ended before its 4 training runs were journaled: {proc.poll()}"):
+        time.sleep(0.5)  # into the games
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=60)
+        check(proc.returncode == 143, f"peg-league stopped in its games: status {proc.returncode}: {err[-500:]}")
+        check(not os.path.exists(os.path.join(stopped, "games.csv")), "no result file after the stop")
+        r = run(league + ["--out", stopped, "--threads", "2", "--resume"])
+        check(r.returncode == 0 and "4 of 4 runs" in r.stderr, f"peg-league --resume: {r.stderr[-500:]}")
+        if same_results(league_ref, stopped, "peg-league stopped in its games and resumed"):
+            print("peg-league: stopped in its games, resumed identically")
 
     # Input errors, status 2, nothing run: a journal without --resume, another seed with --resume.
     base = sweeps["peg-matchup"] + ["--out", out, "--threads", "2"]
