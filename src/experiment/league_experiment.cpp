@@ -40,9 +40,14 @@ double evader_survival(const game::EpisodeResult& r) {
 
 nlohmann::ordered_json num(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
 
+/// The inverse of num(): a JSON number, or NaN for null.
+double number_or_nan(const nlohmann::ordered_json& j) { return j.is_number() ? j.get<double>() : std::nan(""); }
+
 nlohmann::ordered_json mean_json(const MeanInterval& m) {
   return {{"mean", num(m.mean)}, {"lo", num(m.lo)}, {"hi", num(m.hi)}, {"n", m.n}};
 }
+
+nlohmann::ordered_json rate_json(const ProportionInterval& r) { return {{"rate", num(r.rate)}, {"lo", r.lo}, {"hi", r.hi}}; }
 
 }  // namespace
 
@@ -251,37 +256,38 @@ void write_league_games_csv(const std::filesystem::path& file, const std::vector
 }
 
 nlohmann::ordered_json league_matrix(const League& league, const std::vector<League::Game>& games, bool by_group) {
-  std::map<std::string, std::string> group;
+  std::map<std::string, std::string> key_of;  // entrant name -> its row or column key
   std::vector<std::string> p_keys, e_keys;
   const auto add = [&](const std::vector<Entrant>& entrants, std::vector<std::string>& keys) {
     for (const Entrant& x : entrants) {
       const std::string key = by_group ? x.group : x.name;
-      group[x.name] = key;
+      key_of[x.name] = key;
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
     }
   };
   add(league.pursuers(), p_keys);
   add(league.evaders(), e_keys);
+  // One pass over the games, each into its cell (in game order, so the sums are as a scan per cell gives).
+  std::map<std::pair<std::string, std::string>, std::vector<const game::EpisodeResult*>> cells;
+  for (const League::Game& g : games) cells[{key_of.at(g.pursuer), key_of.at(g.evader)}].push_back(&g.result);
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const std::string& p : p_keys) {
     for (const std::string& e : e_keys) {
-      std::size_t n = 0, captured = 0, collided = 0;
+      std::size_t captured = 0, collided = 0;
       std::vector<double> capture_time, survival, pinned;
-      for (const League::Game& g : games) {
-        if (group[g.pursuer] != p || group[g.evader] != e) continue;
-        ++n;
-        captured += g.result.captured();
-        collided += g.result.collisions > 0;
-        if (g.result.captured()) capture_time.push_back(g.result.duration);
-        survival.push_back(evader_survival(g.result));
-        pinned.push_back(g.result.pinned_fraction(game::Role::kEvader));
+      const auto& cell = cells[{p, e}];
+      for (const game::EpisodeResult* r : cell) {
+        captured += r->captured();
+        collided += r->collisions > 0;
+        if (r->captured()) capture_time.push_back(r->duration);
+        survival.push_back(evader_survival(*r));
+        pinned.push_back(r->pinned_fraction(game::Role::kEvader));
       }
-      const ProportionInterval rate = wilson_interval(captured, n);
       out.push_back({{"pursuer", p},
                      {"evader", e},
-                     {"games", n},
+                     {"games", cell.size()},
                      {"captures", captured},
-                     {"capture_rate", {{"rate", num(rate.rate)}, {"lo", rate.lo}, {"hi", rate.hi}}},
+                     {"capture_rate", rate_json(wilson_interval(captured, cell.size()))},
                      {"capture_time_s", mean_json(mean_interval(capture_time))},
                      {"evader_survival_s", mean_json(mean_interval(survival))},
                      {"collision_games", collided},
@@ -297,24 +303,23 @@ void write_league_matrix_csv(const std::filesystem::path& file, const nlohmann::
                                "capture_rate_hi", "capture_time_s", "capture_time_lo", "capture_time_hi",
                                "evader_survival_s", "evader_survival_lo", "evader_survival_hi", "collision_games",
                                "evader_pinned_fraction"});
-  const auto d = [](const nlohmann::ordered_json& j) { return j.is_number() ? j.get<double>() : std::nan(""); };
   for (const auto& r : matrix) {
     csv.row()
         .add(r["pursuer"].get<std::string>())
         .add(r["evader"].get<std::string>())
         .add(r["games"].get<std::size_t>())
         .add(r["captures"].get<std::size_t>())
-        .add(d(r["capture_rate"]["rate"]))
-        .add(d(r["capture_rate"]["lo"]))
-        .add(d(r["capture_rate"]["hi"]))
-        .add(d(r["capture_time_s"]["mean"]))
-        .add(d(r["capture_time_s"]["lo"]))
-        .add(d(r["capture_time_s"]["hi"]))
-        .add(d(r["evader_survival_s"]["mean"]))
-        .add(d(r["evader_survival_s"]["lo"]))
-        .add(d(r["evader_survival_s"]["hi"]))
+        .add(number_or_nan(r["capture_rate"]["rate"]))
+        .add(number_or_nan(r["capture_rate"]["lo"]))
+        .add(number_or_nan(r["capture_rate"]["hi"]))
+        .add(number_or_nan(r["capture_time_s"]["mean"]))
+        .add(number_or_nan(r["capture_time_s"]["lo"]))
+        .add(number_or_nan(r["capture_time_s"]["hi"]))
+        .add(number_or_nan(r["evader_survival_s"]["mean"]))
+        .add(number_or_nan(r["evader_survival_s"]["lo"]))
+        .add(number_or_nan(r["evader_survival_s"]["hi"]))
         .add(r["collision_games"].get<std::size_t>())
-        .add(d(r["evader_pinned_fraction"]))
+        .add(number_or_nan(r["evader_pinned_fraction"]))
         .end();
   }
   out.commit();
@@ -332,9 +337,6 @@ nlohmann::ordered_json league_findings(const League& league, const std::vector<L
       for (const auto& e : es)
         for (const auto& [key, r] : at[{p, e}]) ++n, c += r->captured();
     return wilson_interval(c, n);
-  };
-  const auto rate_json = [](const ProportionInterval& r) {
-    return nlohmann::ordered_json{{"rate", num(r.rate)}, {"lo", r.lo}, {"hi", r.hi}};
   };
   const auto members = [](const std::vector<Entrant>& entrants, const std::string& group) {
     std::vector<std::string> out;
@@ -424,18 +426,17 @@ nlohmann::ordered_json league_findings(const League& league, const std::vector<L
 }
 
 std::string league_table(const nlohmann::ordered_json& matrix) {
-  const auto d = [](const nlohmann::ordered_json& j) { return j.is_number() ? j.get<double>() : std::nan(""); };
   std::string s = fmt::format("{:<18} {:<18} {:>6} {:>22} {:>12} {:>20} {:>6} {:>8}\n", "pursuer", "evader", "games",
                               "capture rate [95% CI]", "capture t", "survival t [95% CI]", "coll.", "E pinned");
   for (const auto& r : matrix) {
     s += fmt::format("{:<18} {:<18} {:>6} {:>22} {:>12.1f} {:>20} {:>6} {:>8.3f}\n", r["pursuer"].get<std::string>(),
                      r["evader"].get<std::string>(), r["games"].get<std::size_t>(),
-                     fmt::format("{:.2f} [{:.2f}, {:.2f}]", d(r["capture_rate"]["rate"]), d(r["capture_rate"]["lo"]),
-                                 d(r["capture_rate"]["hi"])),
-                     d(r["capture_time_s"]["mean"]),
-                     fmt::format("{:.1f} [{:.1f}, {:.1f}]", d(r["evader_survival_s"]["mean"]),
-                                 d(r["evader_survival_s"]["lo"]), d(r["evader_survival_s"]["hi"])),
-                     r["collision_games"].get<std::size_t>(), d(r["evader_pinned_fraction"]));
+                     fmt::format("{:.2f} [{:.2f}, {:.2f}]", number_or_nan(r["capture_rate"]["rate"]), number_or_nan(r["capture_rate"]["lo"]),
+                                 number_or_nan(r["capture_rate"]["hi"])),
+                     number_or_nan(r["capture_time_s"]["mean"]),
+                     fmt::format("{:.1f} [{:.1f}, {:.1f}]", number_or_nan(r["evader_survival_s"]["mean"]),
+                                 number_or_nan(r["evader_survival_s"]["lo"]), number_or_nan(r["evader_survival_s"]["hi"])),
+                     r["collision_games"].get<std::size_t>(), number_or_nan(r["evader_pinned_fraction"]));
   }
   return s;
 }

@@ -63,7 +63,7 @@ AgentConfig agent_preset(const std::string& name, Role role) {
     return a;
   }
   if (name == "robust") {  // docs/learning.md: peg3d's agent, tuned to hold up against classic opponents
-    AgentConfig a = agent_preset("peg3d", role);
+    a = agent_preset("peg3d", role);
     if (role == Role::kPursuer) a.reward.w_r = 1.0;  // walls repel less: a scripted evader runs along them
     return a;
   }
