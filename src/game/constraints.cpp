@@ -75,18 +75,34 @@ Cone allowed_by_both(const Cone& face, const Cone& obstacle) {
   return half > 1e-6 ? Cone{bisector, half} : obstacle;
 }
 
-bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box) {
-  Vec3 along = d, axis_along = allowed.axis;
+bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box, double polar_margin,
+                       const Heading& current) {
+  Vec3 along = d, axis_along = allowed.axis, inward = Vec3::Zero();
   for (int a = 0; a < 3; ++a) {
     const bool at_lo = position[a] <= box.lo[a] + 1e-9, at_hi = position[a] >= box.hi[a] - 1e-9;
     if ((at_lo && along[a] < 0.0) || (at_hi && along[a] > 0.0)) along[a] = 0.0;
     if (at_lo || at_hi) axis_along[a] = 0.0;
+    inward[a] = at_lo ? 1.0 : at_hi ? -1.0 : 0.0;
   }
-  if (along.squaredNorm() > 1e-12 && axis_along.squaredNorm() > 1e-12 && !allowed.contains(along.normalized())) {
-    d = first_inside_on_arc(allowed, along.normalized(), axis_along.normalized());
-    return true;
+  if (along.squaredNorm() <= 1e-12 || axis_along.squaredNorm() <= 1e-12 || allowed.contains(along.normalized())) {
+    return false;
   }
-  return false;
+  const Vec3 slide_from = along.normalized(), slide_to = axis_along.normalized();
+  if (angle_between(slide_from, slide_to) < kPi - 1e-6) {
+    const Vec3 slide = first_inside_on_arc(allowed, slide_from, slide_to);
+    const double theta = heading_of(slide).theta;
+    if (theta >= polar_margin && theta <= kPi - polar_margin) {
+      d = slide;
+      return true;
+    }
+  }
+  // No allowed slide within the climb limit (the obstacle lies straight ahead along the face, or the only
+  // allowed slides are steeper than the limit): leave the face instead, in the widest cone about the bisector
+  // of the faces' inward normal and the guard's axis, within the climb limit. Turning towards a slide outside
+  // the limit would keep the heading's azimuth and run into the obstacle.
+  d = project_within_band(allowed_by_both(Cone{inward.normalized(), kPi / 2}, allowed), d, polar_margin,
+                          direction(current), kGuardCommitAngle);
+  return true;
 }
 
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving) {
@@ -111,7 +127,7 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
     // to; deciding it from the request would flip sides every step.
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);
-    changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds);
+    changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds, margin, in.self.heading);
   }
   if (!changed) {
     if (moving) *moving = d;  // direction(requested), untouched

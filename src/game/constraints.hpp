@@ -44,18 +44,22 @@ std::optional<Cone> guard_cone(const ObstacleGuard& guard, const Vec3& position,
 /// diagonal. Not found beyond warn_distance from every face. `bounds` is the arena shrunk by `radius`.
 ObstacleSense face_obstacle(const ObstacleGuard& guard, double radius, const Vec3& position, const Box& bounds);
 
-/// The headings allowed by both the face's and the obstacle's guard cones, as one cone: the widest cone about
-/// the bisector of their axes that lies inside both. When none does (the two exclude each other's every
-/// heading, or the axes are opposite), the obstacle's cone alone: a collision ends a game, a face only stops
-/// the motion into it.
+/// The headings allowed by two guard cones, as one cone: the widest cone about the bisector of their axes
+/// that lies inside both. When none does (the two exclude each other's every heading, or the axes are
+/// opposite), `obstacle` alone: a collision ends a game, a face only stops the motion into it. `face` is a
+/// face's cone or, against a face the agent touches, the half-space leaving it (guard_along_faces).
 Cone allowed_by_both(const Cone& face, const Cone& obstacle);
 
 /// Against a face of the arena the clamp removes the motion into the face, and what remains may still
 /// approach the obstacle. `d` lies in `allowed` already (keep_within). If its part along the faces the agent
 /// touches (`box` is the arena shrunk by its radius) is not allowed, d becomes the first allowed direction on
 /// the arc, within those faces, towards the obstacle-free side (the face-plane part of the allowed cone's
-/// axis). Returns whether d changed.
-bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box);
+/// axis). When that arc has no allowed direction within the climb limit (`polar_margin`), as when the
+/// obstacle stands straight ahead along the face, d leaves the face instead: the direction nearest to d, within
+/// the limit, in the widest cone about the bisector of the faces' inward normal and the allowed cone's axis
+/// (allowed_by_both), the side taken from `current` like keep_within. Returns whether d changed.
+bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box, double polar_margin,
+                       const Heading& current);
 
 /// Everything one agent's constrained heading depends on, at the start of a step. It refers to the caller's
 /// data (built once per agent and step in the hot loop, so nothing is copied).

@@ -71,13 +71,42 @@ TEST(Constraints, AgainstAFaceTheGuardTurnsTheMotionAlongIt) {
   const Vec3 start = Vec3(0.6, 0.3, -0.8).normalized();
   ASSERT_TRUE(allowed.contains(start));
   Vec3 d = start;
-  EXPECT_TRUE(guard_along_faces(allowed, d, Vec3(10, 10, 0.25), box));
+  EXPECT_TRUE(guard_along_faces(allowed, d, Vec3(10, 10, 0.25), box, 0.0, heading_of(start)));
   EXPECT_NEAR(d.x(), 0.0, 1e-8);
   EXPECT_NEAR(d.y(), 1.0, 1e-8);
   EXPECT_NEAR(d.z(), 0.0, 1e-12);
   Vec3 free = start;  // away from every face the allowed direction stands
-  EXPECT_FALSE(guard_along_faces(allowed, free, Vec3(10, 10, 5), box));
+  EXPECT_FALSE(guard_along_faces(allowed, free, Vec3(10, 10, 5), box, 0.0, heading_of(start)));
   EXPECT_EQ(free, start);
+}
+
+TEST(Constraints, AgainstAWallWithTheObstacleAheadAlongItTheGuardLeavesTheWall) {
+  // The forest case: a pursuer against the wall x = 34.75, flying along it (-y) at the 30 degree climb limit
+  // towards a trunk 0.6 m ahead, inside stop_distance. Every allowed slide along the wall is steeper than the
+  // limit, and the nearest one points straight up, where the azimuth is undefined: turning towards it kept
+  // the heading, and the pursuer slid into the trunk. Now it turns off the wall, away from the trunk: the
+  // first step may still approach (a quarter turn at most per step), the second may not.
+  AgentConfig c = agent_preset("peg3d", Role::kPursuer);
+  c.motion_space = false;
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  KinematicState self{Vec3(34.75, 10, 5), heading_of(Vec3(0.0, -std::sqrt(0.75), 0.5))};
+  const Vec3 trunk(34.6, 9.4, 5);  // the nearest point of the trunk
+  double before = (self.position - trunk).norm();
+  for (int step = 0; step < 2; ++step) {
+    const ObstacleSense sense{(self.position - trunk).norm(), trunk, true};
+    const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 0, 5), 1.0, sense, bounds};
+    Vec3 moving;
+    self.heading = constrained_heading(in, {0.0, 0.0}, &moving);
+    EXPECT_GE(self.heading.theta, kPi / 3 - 1e-12);
+    EXPECT_LE(self.heading.theta, 2 * kPi / 3 + 1e-12);
+    EXPECT_LT(moving.x(), -0.5) << "step " << step;  // off the wall
+    self.position += 0.11 * moving;
+    const double after = (self.position - trunk).norm();
+    if (step > 0) {
+      EXPECT_GE(after, before) << "step " << step;
+    }
+    before = after;
+  }
 }
 
 TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
