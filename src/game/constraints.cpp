@@ -105,6 +105,44 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
   return true;
 }
 
+bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Vec3& current) {
+  if (second.contains(d)) return false;
+  const auto in_band = [&](const Vec3& v) {
+    const double theta = heading_of(v).theta;
+    return theta >= polar_margin && theta <= kPi - polar_margin;
+  };
+  const Vec3 p = project_within_band(second, d, polar_margin, current, kGuardCommitAngle);
+  if (first.contains(p, 1e-9) && second.contains(p, 1e-9) && in_band(p)) {
+    d = p;
+    return true;
+  }
+  // Both cones bind: the answer lies where their surfaces cross.
+  std::optional<Vec3> best;
+  for (const Vec3& u : boundary_crossings(first, second)) {
+    if (in_band(u) && (!best || u.dot(d) > best->dot(d))) best = u;
+  }
+  if (!best) return false;
+  d = *best;
+  return true;
+}
+
+namespace {
+// The guard's cone of the second obstacle: the one nearest to the point look_ahead ahead along d, when it is
+// another than the nearest one and nearer than stop_distance (then a half-space). Probed only near an obstacle.
+std::optional<Cone> second_obstacle_cone(const ConstraintInputs& in, const Vec3& d) {
+  const ObstacleGuard& g = in.config.guard;
+  if (in.probe == nullptr || !(g.look_ahead > 0.0) || !in.field.found || !(in.field.distance < g.warn_distance)) {
+    return std::nullopt;
+  }
+  const Vec3& p = in.self.position;
+  const ObstacleSense ahead = in.probe->nearest(p + g.look_ahead * d);
+  if (!ahead.found || (ahead.point - in.field.point).squaredNorm() < 1e-18) return std::nullopt;
+  const double distance = (ahead.point - p).norm();
+  if (!(distance < g.stop_distance)) return std::nullopt;
+  return guard_cone(g, p, ObstacleSense{distance, ahead.point, true});
+}
+}  // namespace
+
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving) {
   const AgentConfig& c = in.config;
   const double margin = c.steering.polar_margin;
@@ -127,6 +165,9 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     // Heading (almost) straight at the obstacle, the side to pass it on is the side the agent already leans
     // to; deciding it from the request would flip sides every step.
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);
+    if (const auto second = second_obstacle_cone(in, d)) {
+      changed |= keep_within_both(*allowed, *second, d, margin, direction(in.self.heading));
+    }
     changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds, margin, in.self.heading);
   }
   if (!changed) {

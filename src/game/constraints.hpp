@@ -61,6 +61,22 @@ Cone allowed_by_both(const Cone& face, const Cone& obstacle);
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box, double polar_margin,
                        const Heading& current);
 
+/// Where the guard looks for a second obstacle: the map's obstacle nearest to a point, sensed as the agent's
+/// nearest one is (AgentView::field).
+class ObstacleProbe {
+ public:
+  virtual ObstacleSense nearest(const Vec3& p) const = 0;
+
+ protected:
+  ~ObstacleProbe() = default;
+};
+
+/// Brings d, inside `first` already, into `second` too: the direction of `second` nearest to d within the
+/// climb limit if it lies in `first`, else the nearest direction on both cones' surfaces within the limit.
+/// When none exists the two exclude each other and d stays (`first` has the last word). Returns whether d
+/// changed.
+bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Vec3& current);
+
 /// Everything one agent's constrained heading depends on, at the start of a step. It refers to the caller's
 /// data (built once per agent and step in the hot loop, so nothing is copied).
 struct ConstraintInputs {
@@ -72,11 +88,12 @@ struct ConstraintInputs {
   double opponent_speed;        ///< m/s
   const ObstacleSense& field;   ///< the map's nearest obstacle (arena faces excluded)
   const Box& bounds;            ///< the arena shrunk by the agent's radius (where its centre may go)
+  const ObstacleProbe* probe;   ///< for guard.look_ahead; null: the nearest obstacle only
 };
 
 /// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),
 /// then the guard (when enabled): the map's nearest obstacle and, with guard.faces, the arena's faces too
-/// (allowed_by_both when both are near). When a constraint moved the direction, the agent turns towards the
+/// (allowed_by_both when both are near), then a second obstacle ahead (guard.look_ahead, keep_within_both). When a constraint moved the direction, the agent turns towards the
 /// constrained direction within the same steering bound. With `moving`, also stores direction(heading)
 /// there, computed once for the constraints and the move (the same bits as calling direction again).
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving = nullptr);

@@ -170,6 +170,11 @@ struct ObstacleGuard {
   bool faces = false;          ///< the arena's floor, ceiling and walls are guarded against too (nearest of both)
   double stop_distance = 0.8;  ///< m, > 0; covers radius + one step + the distance field's voxel error
   double warn_distance = 2.0;  ///< m, > stop_distance
+  /// m, in [0, stop_distance): the guard also keeps clear of a second obstacle, the one nearest to the point
+  /// this far ahead along the guarded heading, once it is nearer than stop_distance (sliding past one trunk
+  /// into the next). Shorter than stop_distance so that a point inside the obstacle still counts. 0: the
+  /// nearest obstacle only.
+  double look_ahead = 0.6;
   bool operator==(const ObstacleGuard&) const = default;
 };
 
@@ -316,6 +321,9 @@ void visit_fields(V& v, C& c) {
   v.number("warn_distance", c.warn_distance, Range::positive(), "m",
            "from here to stop_distance the excluded cone widens to a half-space");
   v.require(c.warn_distance > c.stop_distance, "warn_distance", c.warn_distance, "must be > guard.stop_distance");
+  v.number("look_ahead", c.look_ahead, Range::non_negative(), "m",
+           "also keep clear of the obstacle nearest to the point this far ahead once within stop_distance (0: off)");
+  v.require(c.look_ahead < c.stop_distance, "look_ahead", c.look_ahead, "must be < guard.stop_distance");
 }
 
 template <class V, class C>

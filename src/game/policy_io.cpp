@@ -85,10 +85,12 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
   std::shared_ptr<FaclModel> model;
   try {
     nlohmann::json image = member(doc, "config", file, "config");
-    // Version 1 predates guard.faces: those agents played without it.
-    if (version.get<long long>() < 2 && image.is_object() && image.contains("guard") && image["guard"].is_object() &&
-        !image["guard"].contains("faces")) {
-      image["guard"]["faces"] = false;
+    // Fields that older versions predate, as those agents played: version 1 without guard.faces, versions
+    // 1 and 2 without guard.look_ahead.
+    if (image.is_object() && image.contains("guard") && image["guard"].is_object()) {
+      nlohmann::json& guard = image["guard"];
+      if (version.get<long long>() < 2 && !guard.contains("faces")) guard["faces"] = false;
+      if (version.get<long long>() < 3 && !guard.contains("look_ahead")) guard["look_ahead"] = 0.0;
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);

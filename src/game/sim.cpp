@@ -117,6 +117,29 @@ Heading level(const Vec3& d) {
   return {d.x() == 0.0 && d.y() == 0.0 ? 0.0 : std::atan2(d.y(), d.x()), kPi / 2};
 }
 
+// The map's obstacle nearest to p at the state's time: its shapes only (whether the arena's faces count is the
+// agent's observation setting, not the map's) and, on a map with movers, the nearer of them and the field.
+ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p) {
+  const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(p) : sim.arena().nearest_shape(p);
+  if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
+    // Moving obstacles where they are now, exactly.
+    const world::MoverPoint m = movers->nearest(p, st.time, n.distance);
+    if (m.mover >= 0) return {m.distance, m.point, true};
+  }
+  return {n.distance, n.point, n.found};
+}
+
+// The guard's look ahead senses as the agent does.
+class StateProbe final : public ObstacleProbe {
+ public:
+  StateProbe(const Sim& sim, const SimState& st) : sim_(sim), st_(st) {}
+  ObstacleSense nearest(const Vec3& p) const override { return sense_obstacle(sim_, st_, p); }
+
+ private:
+  const Sim& sim_;
+  const SimState& st_;
+};
+
 // Rebuilds the agent's view from its position and its opponent's state.
 void perceive_agent(const Sim& sim, SimState& st, int i) {
   AgentState& a = st.agents[std::size_t(i)];
@@ -132,15 +155,7 @@ void perceive_agent(const Sim& sim, SimState& st, int i) {
   v.dt = sim.config().dt;
   v.time = st.time;
   v.arena = sim.arena().bounds();
-  // The map's shapes only: whether the arena's faces count is the agent's observation setting, not the map's.
-  const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(a.kinematics.position)
-                                                   : sim.arena().nearest_shape(a.kinematics.position);
-  v.field = {n.distance, n.point, n.found};
-  if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
-    // Moving obstacles where they are now, exactly; the nearer of them and the static field counts.
-    const world::MoverPoint m = movers->nearest(a.kinematics.position, st.time, n.distance);
-    if (m.mover >= 0) v.field = {m.distance, m.point, true};
-  }
+  v.field = sense_obstacle(sim, st, a.kinematics.position);
   v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());
 }
@@ -423,6 +438,7 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   ev.terminal = ev.truncated = false;
 
   // 1. Every active agent's heading and move, all from the state at t.
+  const StateProbe probe(sim, st);
   for (int i = 0; i < n; ++i) {
     const StepProfile::Scope profiled(StepProfile::kConstraints);
     const AgentState& a = st.agents[std::size_t(i)];
@@ -440,7 +456,7 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
     const ConstraintInputs in{*a.config,     a.role,       g.dt, a.kinematics, o.kinematics.position, o.config->speed,
-                              a.view.field, a.bounds};
+                              a.view.field, a.bounds,       &probe};
     Vec3 d;
     const Heading h = constrained_heading(in, e.command, &d);
     st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, d, a.config->speed, g.dt, a.bounds);

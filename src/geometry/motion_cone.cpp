@@ -133,6 +133,21 @@ Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to) {
   return at(hi).normalized();
 }
 
+Directions boundary_crossings(const Cone& a, const Cone& b) {
+  // u = x a + y b + z (a x b) with u . a = cos(ha), u . b = cos(hb), |u| = 1 (unit axes).
+  const Vec3 n = a.axis.cross(b.axis);
+  const double k = a.axis.dot(b.axis), s2 = n.squaredNorm();
+  if (s2 < 1e-18) return {};
+  const double ca = std::cos(a.half_angle), cb = std::cos(b.half_angle);
+  const double x = (ca - cb * k) / s2, y = (cb - ca * k) / s2;
+  const Vec3 m = x * a.axis + y * b.axis;
+  const double z2 = (1.0 - m.squaredNorm()) / s2;
+  if (z2 < -1e-12) return {};
+  if (z2 <= 1e-12) return {{m.normalized(), Vec3::Zero()}, 1};
+  const double z = std::sqrt(z2);
+  return {{Vec3(m + z * n).normalized(), Vec3(m - z * n).normalized()}, 2};
+}
+
 double pursuer_cone_half_angle(double pursuer_speed, double evader_speed) {
   require_positive("pursuer_speed", pursuer_speed);
   require_non_negative("evader_speed", evader_speed);

@@ -3,6 +3,8 @@
 // alpha2* = asin(vE / vP) of the line P->E; the evader keeps alpha1 >= pi/2 from the line E->P, i.e.
 // within pi/2 of the direction P->E pointing away from the pursuer. Both are cones about an axis.
 
+#include <array>
+
 #include "geometry/vector.hpp"
 
 namespace peg3d {
@@ -50,6 +52,18 @@ Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, c
 /// Walks the great-circle arc from the unit direction `from` to the unit direction `to` and returns the first
 /// direction inside the cone (to within 1e-9 of the arc). `to` must lie inside; if `from` does it is returned.
 Vec3 first_inside_on_arc(const Cone& cone, const Vec3& from, const Vec3& to);
+
+/// Up to two unit directions (no allocation: it serves the game's step).
+struct Directions {
+  std::array<Vec3, 2> at;
+  int count = 0;
+  const Vec3* begin() const { return at.data(); }
+  const Vec3* end() const { return at.data() + count; }
+};
+
+/// The unit directions on the surfaces of both cones (where their boundary circles cross): none, one (they
+/// touch) or two. Cones with (anti)parallel axes have none or a whole circle in common; both give none.
+Directions boundary_crossings(const Cone& a, const Cone& b);
 
 /// alpha2* = asin(vE / vP) (eq. 6), rad. For vE >= vP the cone opens to a half-space (pi/2).
 /// Throws InvalidParameter on a non-positive pursuer speed, a negative evader speed or non-finite ones.

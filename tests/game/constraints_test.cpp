@@ -2,6 +2,7 @@
 #include "game/constraints.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -94,7 +95,7 @@ TEST(Constraints, AgainstAWallWithTheObstacleAheadAlongItTheGuardLeavesTheWall) 
   double before = (self.position - trunk).norm();
   for (int step = 0; step < 2; ++step) {
     const ObstacleSense sense{(self.position - trunk).norm(), trunk, true};
-    const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 0, 5), 1.0, sense, bounds};
+    const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 0, 5), 1.0, sense, bounds, nullptr};
     Vec3 moving;
     self.heading = constrained_heading(in, {0.0, 0.0}, &moving);
     EXPECT_GE(self.heading.theta, kPi / 3 - 1e-12);
@@ -109,13 +110,97 @@ TEST(Constraints, AgainstAWallWithTheObstacleAheadAlongItTheGuardLeavesTheWall) 
   }
 }
 
+// A map of vertical trunks, sensed exactly: the guard's probe for the tests.
+class Trunks final : public ObstacleProbe {
+ public:
+  struct Trunk {
+    double x, y, radius;
+  };
+  explicit Trunks(std::vector<Trunk> trunks) : trunks_(std::move(trunks)) {}
+  ObstacleSense nearest(const Vec3& p) const override {
+    ObstacleSense best;
+    for (const Trunk& t : trunks_) {
+      const Vec3 axis(t.x, t.y, p.z());
+      const double r = (p - axis).norm();
+      const Vec3 point = r > 0.0 ? Vec3(axis + (p - axis) * (t.radius / r)) : axis;
+      const double d = std::max(r - t.radius, 0.0);
+      if (!best.found || d < best.distance) best = {d, point, true};
+    }
+    return best;
+  }
+
+ private:
+  std::vector<Trunk> trunks_;
+};
+
+TEST(Constraints, TheLookAheadKeepsClearOfTheNextTrunkWhileSlidingPastTheNearest) {
+  // The forest case: flying +x past trunk A (0.54 m to the side, the one the distance field reports as the
+  // nearest) into trunk B, 0.40 m ahead. Guarding A alone lets it slide on into B; the look ahead (0.6 m
+  // along the heading) finds B within stop_distance and turns the agent off it, still clear of A.
+  AgentConfig c = agent_preset("peg3d", Role::kPursuer);
+  c.motion_space = false;
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const Trunks map({{5.8, 20.9, 0.3}, {6.45, 21.74, 0.25}});
+  const KinematicState self{Vec3(5.8, 21.74, 3.4), Heading{0.0, kPi / 2}};
+  const Vec3 a(5.8, 21.2, 3.4), b(6.2, 21.74, 3.4);  // the trunks' nearest points
+  const ObstacleSense field{(self.position - a).norm(), a, true};
+  ASSERT_NEAR(field.distance, 0.54, 1e-9);
+  // The distance to B after each of two steps. Heading straight at B, the first step may still approach it
+  // (a quarter turn at most per step); the second may not.
+  const auto steps = [&](const ObstacleProbe* probe) {
+    KinematicState k = self;
+    std::vector<double> to_b;
+    for (int step = 0; step < 2; ++step) {
+      const ObstacleSense sensed = step == 0 ? field : ObstacleSense{(k.position - a).norm(), a, true};
+      const ConstraintInputs in{c, Role::kPursuer, 0.1, k, Vec3(30, 5, 3), 1.0, sensed, bounds, probe};
+      Vec3 moving;
+      k.heading = constrained_heading(in, {0.0, 0.0}, &moving);
+      k.position += 0.11 * moving;
+      to_b.push_back((k.position - b).norm());
+      EXPECT_GE((k.position - a).norm(), 0.54 - 0.11) << "step " << step;  // A stays guarded either way
+    }
+    return to_b;
+  };
+  const double start = (self.position - b).norm();
+  const auto unguarded = steps(nullptr);  // the nearest only: on into B
+  EXPECT_LT(unguarded[1], unguarded[0]);
+  EXPECT_LT(unguarded[1], start - 0.15);
+  const auto guarded = steps(&map);
+  EXPECT_GE(guarded[1], guarded[0] - 1e-9);  // B is no longer approached
+  c.guard.look_ahead = 0.0;  // off: as without a probe
+  EXPECT_EQ(steps(&map), unguarded);
+}
+
+TEST(Constraints, KeepWithinBothMeetsTheSecondConeWhereTheFirstAllows) {
+  // The first cone allows y >= 0, the second x <= 0; d = (1, 0.1, 0) lies in the first only. Its projection
+  // into the second, (0, 1, 0), lies in the first too.
+  const Cone first{Vec3::UnitY(), kPi / 2}, second{-Vec3::UnitX(), kPi / 2};
+  Vec3 d = Vec3(1, 0.1, 0).normalized();
+  EXPECT_TRUE(keep_within_both(first, second, d, 0.0, d));
+  EXPECT_TRUE(d.isApprox(Vec3::UnitY(), 1e-12));
+  // Where the projection leaves the first cone, the answer is where the surfaces cross. The first cone is
+  // 60 degrees about (0.6, 0.8, 0): on the plane x = 0 its surface has 0.8 y = cos 60, so y = 0.625 and
+  // z = +-0.781; the crossing nearer to e is the upper one.
+  const Cone tilted{Vec3(0.6, 0.8, 0), kPi / 3};
+  Vec3 e = Vec3(0.9, 0.1, 0.42).normalized();
+  ASSERT_TRUE(tilted.contains(e));
+  EXPECT_TRUE(keep_within_both(tilted, second, e, 0.0, e));
+  EXPECT_NEAR(e.x(), 0.0, 1e-12);
+  EXPECT_NEAR(e.y(), 0.625, 1e-12);
+  EXPECT_NEAR(e.z(), std::sqrt(1 - 0.625 * 0.625), 1e-12);
+  // Two cones that exclude each other: d stays (the first, the nearest obstacle's, has the last word).
+  Vec3 f = Vec3(1, 1, 0).normalized();
+  EXPECT_FALSE(keep_within_both(Cone{Vec3(1, 1, 0).normalized(), kPi / 8}, second, f, 0.0, f));
+  EXPECT_TRUE(f.isApprox(Vec3(1, 1, 0).normalized()));
+}
+
 TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
   AgentConfig c = agent_preset("peg3d", Role::kPursuer);
   const KinematicState self{Vec3(5, 5, 5), Heading{0.0, kPi / 2}};  // flying along +x
   const Vec3 opponent(15, 5, 5);                                     // straight ahead
   ObstacleSense field;                                               // nothing near
   const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
-  const ConstraintInputs in{c, Role::kPursuer, 0.1, self, opponent, 1.0, field, bounds};
+  const ConstraintInputs in{c, Role::kPursuer, 0.1, self, opponent, 1.0, field, bounds, nullptr};
   // Nothing in the way: the request, bounded.
   const Heading plain = constrained_heading(in, {0.3, 0.0});
   EXPECT_DOUBLE_EQ(plain.alpha, 0.3);
@@ -139,7 +224,7 @@ TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
   // 0.6 m from the wall y = 0, inside stop_distance, flying straight at it.
   const KinematicState self{Vec3(10, 0.6, 5), Heading{-kPi / 2, kPi / 2}};
   const Vec3 opponent(10, 20, 5);
-  const ConstraintInputs in{c, Role::kEvader, 0.1, self, opponent, 1.1, field, bounds};
+  const ConstraintInputs in{c, Role::kEvader, 0.1, self, opponent, 1.1, field, bounds, nullptr};
   const Heading unguarded = constrained_heading(in, {0.0, 0.0});
   EXPECT_LT(direction(unguarded).y(), -0.99);  // faces off: into the wall
   c.guard.faces = true;
@@ -173,7 +258,7 @@ TEST(Constraints, WithFacesTheMapsObstacleStillHasTheLastWord) {
     KinematicState self{Vec3(10, 0.6, 5), Heading{alpha, kPi / 2}};
     Vec3 d;
     for (int step = 0; step < 4; ++step) {
-      const ConstraintInputs in{c, Role::kEvader, 0.1, self, Vec3(20, 20, 5), 1.1, obstacle, bounds};
+      const ConstraintInputs in{c, Role::kEvader, 0.1, self, Vec3(20, 20, 5), 1.1, obstacle, bounds, nullptr};
       self.heading = constrained_heading(in, {0.0, 0.0}, &d);
     }
     EXPECT_LE(d.x(), 1e-9) << alpha;   // not towards the obstacle

@@ -140,20 +140,33 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"]["guard"].erase("faces");
   expect_error(d, "config.guard.faces");  // version 2 documents have it
+  d = doc;
+  d["config"]["guard"].erase("look_ahead");
+  expect_error(d, "config.guard.look_ahead");  // version 3 documents have it
 }
 
-TEST(FaclPolicy, ReadsVersionOneDocumentsAsTheyPlayed) {
-  // Version 1 predates guard.faces; its agents played without it.
-  const FaclModel m(agent_preset("peg3d", Role::kPursuer), Role::kPursuer);
+TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
+  // Version 1 predates guard.faces and guard.look_ahead, version 2 the look ahead; their agents played
+  // without them.
+  const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
-  EXPECT_EQ(doc["version"], 2);
+  EXPECT_EQ(doc["version"], 3);
+  doc["version"] = 2;
+  doc["config"]["guard"].erase("look_ahead");
+  const auto two = policy_from_json(doc, "p.json", Role::kEvader);
+  EXPECT_EQ(two->config().guard.look_ahead, 0.0);
+  EXPECT_TRUE(two->config().guard.faces);
   doc["version"] = 1;
   doc["config"]["guard"].erase("faces");
-  const auto loaded = policy_from_json(doc, "p.json", Role::kPursuer);
-  EXPECT_FALSE(loaded->config().guard.faces);
-  EXPECT_EQ(policy_to_json(*loaded)["config"], policy_to_json(m)["config"]);
+  const auto one = policy_from_json(doc, "p.json", Role::kEvader);
+  EXPECT_FALSE(one->config().guard.faces);
+  EXPECT_EQ(one->config().guard.look_ahead, 0.0);
+  AgentConfig as_played = m.config();
+  as_played.guard.faces = false;
+  as_played.guard.look_ahead = 0.0;
+  EXPECT_EQ(one->config(), as_played);
   doc["version"] = 0;
-  EXPECT_THROW(policy_from_json(doc, "p.json", Role::kPursuer), PolicyFormatError);
+  EXPECT_THROW(policy_from_json(doc, "p.json", Role::kEvader), PolicyFormatError);
 }
 
 TEST(FaclPolicy, ShortTrainingCapturesMoreOftenThanBefore) {

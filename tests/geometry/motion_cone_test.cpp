@@ -127,6 +127,28 @@ namespace {
 
 // ConeMembership answers as contains() for every direction, far from the surface and on it: directions
 // drawn at random, and directions placed at the cone's angle plus offsets down to a few ulps.
+TEST(MotionCone, BoundaryCrossingsOfTwoHalfSpacesAreTheirCommonEdge) {
+  // Two half-spaces x >= 0 and y >= 0: their boundary planes meet in the z axis.
+  const auto both = boundary_crossings(Cone{Vec3::UnitX(), kPi / 2}, Cone{Vec3::UnitY(), kPi / 2});
+  ASSERT_EQ(both.count, 2);
+  EXPECT_TRUE(both.at[0].isApprox(Vec3::UnitZ(), 1e-12));
+  EXPECT_TRUE(both.at[1].isApprox(-Vec3::UnitZ(), 1e-12));
+  // Cones of 60 degrees about x and y: u . x = u . y = 1/2, so u = (1/2, 1/2, +-1/sqrt(2)).
+  const auto narrow = boundary_crossings(Cone{Vec3::UnitX(), kPi / 3}, Cone{Vec3::UnitY(), kPi / 3});
+  ASSERT_EQ(narrow.count, 2);
+  for (const Vec3& u : narrow) {
+    EXPECT_NEAR(u.x(), 0.5, 1e-12);
+    EXPECT_NEAR(u.y(), 0.5, 1e-12);
+    EXPECT_NEAR(std::abs(u.z()), std::sqrt(0.5), 1e-12);
+  }
+  // Cones of 45 degrees about x and y only touch, along (1, 1, 0); 30 degree ones do not meet.
+  const auto touch = boundary_crossings(Cone{Vec3::UnitX(), kPi / 4}, Cone{Vec3::UnitY(), kPi / 4});
+  ASSERT_EQ(touch.count, 1);
+  EXPECT_TRUE(touch.at[0].isApprox(Vec3(1, 1, 0).normalized(), 1e-6));
+  EXPECT_EQ(boundary_crossings(Cone{Vec3::UnitX(), kPi / 6}, Cone{Vec3::UnitY(), kPi / 6}).count, 0);
+  EXPECT_EQ(boundary_crossings(Cone{Vec3::UnitX(), kPi / 2}, Cone{-Vec3::UnitX(), kPi / 2}).count, 0);
+}
+
 TEST(MotionCone, MembershipAnswersAsContainsEverywhere) {
   std::mt19937_64 rng(5);
   std::normal_distribution<double> gauss;
