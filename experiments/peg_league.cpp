@@ -21,13 +21,13 @@ int main(int argc, char** argv) {
   cli::SweepOptions o;
   o.map = "maps/paper.yaml";
   o.out = "results/league";
-  o.episodes = 600;
+  o.episodes = experiment::LeagueSettings{}.episodes;
   std::vector<std::string> algorithms{"peg3d", "robust"};
   std::vector<std::filesystem::path> eval_maps;
   std::vector<std::string> pursuers{"pure-pursuit", "pn", "apollonius"};
   std::vector<std::string> evaders{"flee", "flee-apollonius", "random"};
   experiment::LeagueSettings s;
-  std::string eval_heading = "random";
+  std::string eval_heading = "random", train_heading = "random";
   bool plots = true, list_config = false;
   cli::add_sweep_options(app, o);
   app.remove_option(app.get_option("--repeats"));  // training seeds and evaluation seeds instead
@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--eval-maps", eval_maps, "maps the games are played on (default: the training map)")->delimiter(',');
   app.add_option("--eval-heading", eval_heading, "initial headings of the evaluation games: random, chase, facing, plus-x")
+      ->capture_default_str();
+  app.add_option("--train-heading", train_heading,
+                 "initial headings of the training episodes: random, chase, facing, plus-x, or config (each "
+                 "algorithm's initial_heading)")
       ->capture_default_str();
   app.add_option("--pursuers", pursuers, "classic pursuers in the league: pure-pursuit, pn, apollonius, random")
       ->delimiter(',')
@@ -77,6 +81,13 @@ int main(int argc, char** argv) {
       throw InvalidParameter("--eval-heading", "\"" + eval_heading + "\"", "must be random, chase, facing or plus-x");
     }
     s.eval_heading = *heading;
+    if (train_heading == "config") {
+      s.train_heading.reset();
+    } else if (const auto* h = config::enum_value(game::kInitialHeadingNames, train_heading)) {
+      s.train_heading = *h;
+    } else {
+      throw InvalidParameter("--train-heading", "\"" + train_heading + "\"", "must be random, chase, facing, plus-x or config");
+    }
     s.seed = o.seed;
     s.episodes = o.episodes;
     s.threads = o.threads;

@@ -75,8 +75,10 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
   pursuers_ = league_entrants(algorithms_, settings_, game::Role::kPursuer);
   evaders_ = league_entrants(algorithms_, settings_, game::Role::kEvader);
   for (const Algorithm& a : algorithms_) {
-    train_sims_.emplace_back(train_, a.config);
-    pools_.emplace_back(train_, a.config);
+    game::GameConfig training = a.config;
+    if (settings_.train_heading) training.initial_heading = *settings_.train_heading;
+    train_sims_.emplace_back(train_, training);
+    pools_.emplace_back(train_, training);
   }
   // Groups: the algorithms, then the classic policies of the role.
   const int n_alg = static_cast<int>(algorithms_.size());
@@ -138,6 +140,9 @@ nlohmann::json League::setup() const {
           {"train_seeds", settings_.train_seeds},
           {"eval_seeds", settings_.eval_seeds},
           {"eval_heading", config::enum_name(game::kInitialHeadingNames, settings_.eval_heading)},
+          {"train_heading", settings_.train_heading
+                                ? nlohmann::json(config::enum_name(game::kInitialHeadingNames, *settings_.train_heading))
+                                : nlohmann::json("config")},
           {"classic_pursuers", std::move(pursuers)},
           {"classic_evaders", std::move(evaders)},
           {"algorithms", std::move(algs)}};

@@ -154,6 +154,7 @@ def main():
         maps_played = {g["map"] for g in rows(os.path.join(work, "league2", "games.csv"))}
         check(maps_played == {"paper", "forest"}, f"games on {sorted(maps_played)}")
     for args, named in [(["--algorithms", "peg3d,nonsense"], "nonsense"), (["--eval-heading", "sideways"], "--eval-heading"),
+                        (["--train-heading", "backwards"], "--train-heading"),
                         (["--evaders", "flee,pn"], "--evaders"), (["--eval-maps", os.path.join(maps, "tight.yaml")], "tight.yaml:6"),
                         (["--set", "training.pool_share=2"], "training.pool_share"), (["--train-seeds", "0"], "--train-seeds")]:
         shutil.rmtree(bad, ignore_errors=True)

@@ -3,7 +3,10 @@
 // the games as they are.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "experiment/league_experiment.hpp"
 #include "test_arena.hpp"
@@ -98,6 +101,28 @@ TEST(League, ClassicGamesDoNotDependOnWhoElsePlays) {
     }
   }
   EXPECT_EQ(compared, 3 * 3 * 2 * 2);
+}
+
+TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
+  // The trained pursuer's tables after training: with train_heading nullopt the algorithm's own
+  // initial_heading applies, so an algorithm set to random matches train_heading = random on a chase one.
+  const auto pursuer_table = [](const Algorithm& a, std::optional<game::InitialHeading> heading) {
+    LeagueSettings s = small();
+    s.train_seeds = 1;
+    s.train_heading = heading;
+    const League l = league({a}, s);
+    l.run(nullptr, true);
+    const auto table = l.models(0, 0, Role::kPursuer).models.at(0)->tables(0).actor_table();
+    return std::vector<double>(table.begin(), table.end());
+  };
+  Algorithm chase = algorithm("a", "peg3d"), random = chase;
+  ASSERT_EQ(chase.config.initial_heading, game::InitialHeading::kChase);
+  random.config.initial_heading = game::InitialHeading::kRandom;
+  const auto from_chase = pursuer_table(chase, std::nullopt);
+  const auto from_random = pursuer_table(chase, game::InitialHeading::kRandom);
+  EXPECT_NE(from_chase, from_random);
+  EXPECT_EQ(pursuer_table(random, std::nullopt), from_random);
+  EXPECT_EQ(LeagueSettings{}.train_heading, game::InitialHeading::kRandom);  // the league's default
 }
 
 TEST(League, MatrixCountsTheGamesOfEachPairing) {
