@@ -75,6 +75,14 @@ Cone allowed_by_both(const Cone& face, const Cone& obstacle) {
   return half > 1e-6 ? Cone{bisector, half} : obstacle;
 }
 
+namespace {
+// Whether the direction keeps the climb limit: its polar angle within [polar_margin, pi - polar_margin].
+bool within_climb_limit(const Vec3& v, double polar_margin) {
+  const double theta = heading_of(v).theta;
+  return theta >= polar_margin && theta <= kPi - polar_margin;
+}
+}  // namespace
+
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box, double polar_margin,
                        const Heading& current) {
   Vec3 along = d, axis_along = allowed.axis, inward = Vec3::Zero();
@@ -90,8 +98,7 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
   const Vec3 slide_from = along.normalized(), slide_to = axis_along.normalized();
   if (angle_between(slide_from, slide_to) < kPi - 1e-6) {
     const Vec3 slide = first_inside_on_arc(allowed, slide_from, slide_to);
-    const double theta = heading_of(slide).theta;
-    if (theta >= polar_margin && theta <= kPi - polar_margin) {
+    if (within_climb_limit(slide, polar_margin)) {
       d = slide;
       return true;
     }
@@ -107,19 +114,15 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
 
 bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Vec3& current) {
   if (second.contains(d)) return false;
-  const auto in_band = [&](const Vec3& v) {
-    const double theta = heading_of(v).theta;
-    return theta >= polar_margin && theta <= kPi - polar_margin;
-  };
   const Vec3 p = project_within_band(second, d, polar_margin, current, kGuardCommitAngle);
-  if (first.contains(p, 1e-9) && second.contains(p, 1e-9) && in_band(p)) {
+  if (first.contains(p, 1e-9) && second.contains(p, 1e-9) && within_climb_limit(p, polar_margin)) {
     d = p;
     return true;
   }
   // Both cones bind: the answer lies where their surfaces cross.
   std::optional<Vec3> best;
   for (const Vec3& u : boundary_crossings(first, second)) {
-    if (in_band(u) && (!best || u.dot(d) > best->dot(d))) best = u;
+    if (within_climb_limit(u, polar_margin) && (!best || u.dot(d) > best->dot(d))) best = u;
   }
   if (!best) return false;
   d = *best;
