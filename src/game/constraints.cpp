@@ -112,9 +112,10 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
   return true;
 }
 
-bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Vec3& current) {
+bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Heading& current) {
   if (second.contains(d)) return false;
-  const Vec3 p = project_within_band(second, d, polar_margin, current, kGuardCommitAngle);
+  // The heading's direction only when a projection needs it, as keep_within_heading.
+  const Vec3 p = project_within_band(second, d, polar_margin, direction(current), kGuardCommitAngle);
   if (first.contains(p, 1e-9) && second.contains(p, 1e-9) && within_climb_limit(p, polar_margin)) {
     d = p;
     return true;
@@ -169,7 +170,7 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     // to; deciding it from the request would flip sides every step.
     changed |= keep_within_heading(*allowed, d, margin, in.self.heading, kGuardCommitAngle);
     if (const auto second = second_obstacle_cone(in, d)) {
-      changed |= keep_within_both(*allowed, *second, d, margin, direction(in.self.heading));
+      changed |= keep_within_both(*allowed, *second, d, margin, in.self.heading);
     }
     changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds, margin, in.self.heading);
   }

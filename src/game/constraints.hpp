@@ -73,9 +73,9 @@ class ObstacleProbe {
 
 /// Brings d, inside `first` already, into `second` too: the direction of `second` nearest to d within the
 /// climb limit if it lies in `first`, else the nearest direction on both cones' surfaces within the limit.
-/// When none exists the two exclude each other and d stays (`first` has the last word). Returns whether d
-/// changed.
-bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Vec3& current);
+/// When none exists the two exclude each other and d stays (`first` has the last word). The side to turn to is
+/// taken from `current` like keep_within. Returns whether d changed.
+bool keep_within_both(const Cone& first, const Cone& second, Vec3& d, double polar_margin, const Heading& current);
 
 /// Everything one agent's constrained heading depends on, at the start of a step. It refers to the caller's
 /// data (built once per agent and step in the hot loop, so nothing is copied).
@@ -93,8 +93,9 @@ struct ConstraintInputs {
 
 /// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),
 /// then the guard (when enabled): the map's nearest obstacle and, with guard.faces, the arena's faces too
-/// (allowed_by_both when both are near), then a second obstacle ahead (guard.look_ahead, keep_within_both). When a constraint moved the direction, the agent turns towards the
-/// constrained direction within the same steering bound. With `moving`, also stores direction(heading)
+/// (allowed_by_both when both are near), then a second obstacle ahead (guard.look_ahead, keep_within_both).
+/// When a constraint moved the direction, the agent turns towards the constrained direction within the same
+/// steering bound. With `moving`, also stores direction(heading)
 /// there, computed once for the constraints and the move (the same bits as calling direction again).
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving = nullptr);
 

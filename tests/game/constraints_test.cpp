@@ -176,7 +176,7 @@ TEST(Constraints, KeepWithinBothMeetsTheSecondConeWhereTheFirstAllows) {
   // into the second, (0, 1, 0), lies in the first too.
   const Cone first{Vec3::UnitY(), kPi / 2}, second{-Vec3::UnitX(), kPi / 2};
   Vec3 d = Vec3(1, 0.1, 0).normalized();
-  EXPECT_TRUE(keep_within_both(first, second, d, 0.0, d));
+  EXPECT_TRUE(keep_within_both(first, second, d, 0.0, heading_of(d)));
   EXPECT_TRUE(d.isApprox(Vec3::UnitY(), 1e-12));
   // Where the projection leaves the first cone, the answer is where the surfaces cross. The first cone is
   // 60 degrees about (0.6, 0.8, 0): on the plane x = 0 its surface has 0.8 y = cos 60, so y = 0.625 and
@@ -184,13 +184,13 @@ TEST(Constraints, KeepWithinBothMeetsTheSecondConeWhereTheFirstAllows) {
   const Cone tilted{Vec3(0.6, 0.8, 0), kPi / 3};
   Vec3 e = Vec3(0.9, 0.1, 0.42).normalized();
   ASSERT_TRUE(tilted.contains(e));
-  EXPECT_TRUE(keep_within_both(tilted, second, e, 0.0, e));
+  EXPECT_TRUE(keep_within_both(tilted, second, e, 0.0, heading_of(e)));
   EXPECT_NEAR(e.x(), 0.0, 1e-12);
   EXPECT_NEAR(e.y(), 0.625, 1e-12);
   EXPECT_NEAR(e.z(), std::sqrt(1 - 0.625 * 0.625), 1e-12);
   // Two cones that exclude each other: d stays (the first, the nearest obstacle's, has the last word).
   Vec3 f = Vec3(1, 1, 0).normalized();
-  EXPECT_FALSE(keep_within_both(Cone{Vec3(1, 1, 0).normalized(), kPi / 8}, second, f, 0.0, f));
+  EXPECT_FALSE(keep_within_both(Cone{Vec3(1, 1, 0).normalized(), kPi / 8}, second, f, 0.0, heading_of(f)));
   EXPECT_TRUE(f.isApprox(Vec3(1, 1, 0).normalized()));
 }
 
