@@ -145,6 +145,21 @@ std::optional<Cone> second_obstacle_cone(const ConstraintInputs& in, const Vec3&
   if (!(distance < g.stop_distance)) return std::nullopt;
   return guard_cone(g, p, ObstacleSense{distance, ahead.point, true});
 }
+// The guard's promise, no approach to an obstacle within stop_distance, kept for the motion. The turn bound
+// can leave the heading short of the guarded direction, still approaching the nearest obstacle (two trunks,
+// one on each side, the nearest alternating between them step by step). Then the motion loses its part
+// towards the nearest obstacle, as the clamp removes the motion into a face: for that step the agent slides
+// past, slower.
+void hold_clear_of_obstacle(const ConstraintInputs& in, Vec3& m) {
+  const ObstacleGuard& g = in.config.guard;
+  if (!g.enabled || !in.field.found || !(in.field.distance < g.stop_distance)) return;
+  const Vec3 to = in.field.point - in.self.position;
+  if (to.squaredNorm() == 0.0) return;
+  const Vec3 n = to.normalized();
+  const double approach = m.dot(n);
+  if (approach > 0.0) m -= approach * n;
+}
+
 }  // namespace
 
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving) {
@@ -175,13 +190,19 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds, margin, in.self.heading);
   }
   if (!changed) {
-    if (moving) *moving = d;  // direction(requested), untouched
+    if (moving) {
+      *moving = d;  // direction(requested), untouched
+      hold_clear_of_obstacle(in, *moving);
+    }
     return requested;
   }
   // Turn towards the constrained direction within the same steering bound.
   const AngleErrors e = angle_errors(in.self.heading, d);
   const Heading turned = bounded_steer(in.self.heading, {e.azimuth, e.elevation}, c.steering, in.dt);
-  if (moving) *moving = direction(turned);
+  if (moving) {
+    *moving = direction(turned);
+    hold_clear_of_obstacle(in, *moving);
+  }
   return turned;
 }
 

@@ -85,8 +85,8 @@ TEST(Constraints, AgainstAWallWithTheObstacleAheadAlongItTheGuardLeavesTheWall) 
   // The forest case: a pursuer against the wall x = 34.75, flying along it (-y) at the 30 degree climb limit
   // towards a trunk 0.6 m ahead, inside stop_distance. Every allowed slide along the wall is steeper than the
   // limit, and the nearest one points straight up, where the azimuth is undefined: turning towards it kept
-  // the heading, and the pursuer slid into the trunk. Now it turns off the wall, away from the trunk: the
-  // first step may still approach (a quarter turn at most per step), the second may not.
+  // the heading, and the pursuer slid into the trunk. Now it turns off the wall, away from the trunk. The
+  // first step's heading may still approach (a quarter turn at most per step), its motion may not.
   AgentConfig c = agent_preset("peg3d", Role::kPursuer);
   c.motion_space = false;
   const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
@@ -100,12 +100,10 @@ TEST(Constraints, AgainstAWallWithTheObstacleAheadAlongItTheGuardLeavesTheWall) 
     self.heading = constrained_heading(in, {0.0, 0.0}, &moving);
     EXPECT_GE(self.heading.theta, kPi / 3 - 1e-12);
     EXPECT_LE(self.heading.theta, 2 * kPi / 3 + 1e-12);
-    EXPECT_LT(moving.x(), -0.5) << "step " << step;  // off the wall
+    EXPECT_LT(direction(self.heading).x(), -0.5) << "step " << step;  // off the wall
     self.position += 0.11 * moving;
     const double after = (self.position - trunk).norm();
-    if (step > 0) {
-      EXPECT_GE(after, before) << "step " << step;
-    }
+    EXPECT_GE(after, before - 1e-12) << "step " << step;
     before = after;
   }
 }
@@ -214,6 +212,33 @@ TEST(Constraints, ConstrainedHeadingTurnsWithinTheBoundAndTheGuardComesLast) {
   const Heading guarded = constrained_heading(in, {0.0, 0.0});
   EXPECT_NEAR(std::abs(guarded.alpha), kPi / 4, 1e-9);
   EXPECT_LE(direction(guarded).dot(Vec3::UnitX()), std::cos(kPi / 4) + 1e-9);
+}
+
+TEST(Constraints, WhenTheTurnBoundLeavesTheHeadingApproachingTheMotionHoldsOff) {
+  // Flying straight at an obstacle 0.5 m ahead (inside stop_distance): the allowed half-space lies a quarter
+  // turn away, one step turns only an eighth, so the heading still approaches. The guard's promise then holds
+  // for the motion: its part towards the obstacle is removed and the agent slides past, slower. The forest's
+  // two-trunk corners were where pursuers, turning too slowly, collided.
+  AgentConfig c = agent_preset("peg3d", Role::kPursuer);
+  c.motion_space = false;
+  const KinematicState self{Vec3(5, 5, 5), Heading{0.0, kPi / 2}};
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const ObstacleSense field{0.5, Vec3(5.5, 5, 5), true};
+  const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(15, 5, 5), 1.0, field, bounds, nullptr};
+  Vec3 moving;
+  const Heading h = constrained_heading(in, {0.0, 0.0}, &moving);
+  EXPECT_NEAR(std::abs(h.alpha), kPi / 4, 1e-9);  // the heading turns as far as one step allows
+  EXPECT_NEAR(moving.x(), 0.0, 1e-12);            // no approach
+  EXPECT_NEAR(moving.y(), direction(h).y(), 1e-12);  // the rest of the motion is the heading's
+  EXPECT_NEAR(moving.z(), direction(h).z(), 1e-12);
+  EXPECT_GT(moving.y() * h.alpha, 0.0);              // sliding to the side it turns to
+
+  // Beyond stop_distance the guard only turns (the cone is narrower than a half-space there): the motion is
+  // the heading's direction, whole.
+  const ObstacleSense farther{1.0, Vec3(6.0, 5, 5), true};
+  const ConstraintInputs far_in{c, Role::kPursuer, 0.1, self, Vec3(15, 5, 5), 1.0, farther, bounds, nullptr};
+  const Heading g = constrained_heading(far_in, {0.0, 0.0}, &moving);
+  EXPECT_EQ(moving, direction(g));
 }
 
 TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {
