@@ -1,5 +1,6 @@
 #include "game/facl_policy.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <stdexcept>
 
@@ -27,8 +28,9 @@ fuzzy::RuleBase rule_base_of(const std::vector<int>& features, const Observation
 }  // namespace
 
 Features features_of(const Percept& p) {
-  return {p.target_distance, p.target.azimuth,      p.target.elevation,
-          p.obstacle.distance, p.to_obstacle.azimuth, p.to_obstacle.elevation};
+  return {p.target_distance,   p.target.azimuth,      p.target.elevation,
+          p.obstacle.distance,  p.to_obstacle.azimuth, p.to_obstacle.elevation,
+          p.opponent_heading.azimuth, p.opponent_heading.elevation};
 }
 
 FaclModel::FaclModel(const AgentConfig& config, Role role) : config_(config), role_(role) {
@@ -44,6 +46,14 @@ FaclModel::FaclModel(const AgentConfig& config, Role role) : config_(config), ro
     specs = {{{0, 1, 3, 4}, {0, 1}, 2}};
   } else {
     specs = {{{0, 1, 2, 3, 4, 5}, {0, 1}, 2}};
+  }
+  if (config.observation.opponent_heading) {
+    for (Spec& s : specs) {
+      const bool azimuth = std::find(s.features.begin(), s.features.end(), 1) != s.features.end();
+      const bool elevation = std::find(s.features.begin(), s.features.end(), 2) != s.features.end();
+      if (azimuth) s.features.push_back(6);
+      if (elevation) s.features.push_back(7);
+    }
   }
   channels_.reserve(specs.size());
   for (const Spec& s : specs) {

@@ -11,10 +11,13 @@
 // Features (all clamped into their partitions):
 //   0 d_PE [0, target_range]   1 target azimuth error [-pi, pi]    2 target elevation error [-pi, pi]
 //   3 d_O  [0, obstacle_range] 4 obstacle azimuth error [-pi, pi]  5 obstacle elevation error [-pi, pi]
+//   6 opponent heading's azimuth error [-pi, pi]   7 its elevation error [-pi, pi]   (observation.opponent_heading)
 // Channels by structure and angle inputs:
 //   joint,  azimuth            -> one learner over {0,1,3,4}       -> (d_alpha, d_theta)   (the paper)
 //   joint,  azimuth-elevation  -> one learner over {0,1,2,3,4,5}   -> (d_alpha, d_theta)
 //   per-angle                  -> {0,1,3,4} -> d_alpha  and  {0,2,3,5} -> d_theta
+// With opponent_heading, each channel also takes 6 (azimuth channels) or 7 (the elevation channel), or both
+// (joint azimuth-elevation).
 
 #include <array>
 #include <memory>
@@ -25,10 +28,10 @@
 
 namespace peg3d::game {
 
-inline constexpr int kFeatureCount = 6;
+inline constexpr int kFeatureCount = 8;
 using Features = std::array<double, kFeatureCount>;
 
-/// The six features of a percept.
+/// The features of a percept (6 and 7 are 0 unless the percept observed the opponent's heading).
 Features features_of(const Percept& p);
 
 /// The learned part of a FACL agent. Acting reads it; only a learning FaclPolicy writes it.

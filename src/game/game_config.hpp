@@ -143,6 +143,10 @@ struct ObservationConfig {
   AngleInputs angles = AngleInputs::kAzimuthElevation;
   EvaderReference evader_reference = EvaderReference::kAwayFromPursuer;
   bool boundary_is_obstacle = true;  ///< floor, ceiling and walls count in d_O, its direction and r_O
+  /// The opponent's heading as an input: its signed azimuth (and, with azimuth-elevation, elevation) error
+  /// from the opponent's heading to the line P->E. 0 when a pursuer heads straight at the evader or an evader
+  /// flees straight away; an interceptor's lead shows as the pursuer's error. Adds one input per channel.
+  bool opponent_heading = false;
   double target_range = 35.0;        ///< m, d_PE partition [0, target_range], > 0 (paper 35)
   double obstacle_range = 5.0;       ///< m, d_O partition [0, obstacle_range], > 0 (paper 35)
   int sets = 5;                      ///< triangular sets per input, in [2, 64] (paper 5)
@@ -270,11 +274,13 @@ AgentConfig agent_preset(const std::string& name, Role role);
 
 /// The most rules one FACL channel may have (2^20: 24 MB of tables); bounds what a config or policy can allocate.
 inline constexpr long long kMaxFaclRules = 1LL << 20;
-/// Rules of each FACL channel: sets^inputs, inputs 4 (azimuth, or one channel per angle) or 6 (joint azimuth-elevation).
+/// Rules of each FACL channel: sets^inputs, inputs 4 (azimuth, or one channel per angle) or 6 (joint
+/// azimuth-elevation), plus one per observed angle of the opponent's heading.
 constexpr long long facl_rules(const AgentConfig& c) {
-  const bool six = c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
+  const bool joint_both = c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
+  const int inputs = (joint_both ? 6 : 4) + (c.observation.opponent_heading ? (joint_both ? 2 : 1) : 0);
   long long rules = 1;
-  for (int i = 0; i < (six ? 6 : 4); ++i) rules *= c.observation.sets;
+  for (int i = 0; i < inputs; ++i) rules *= c.observation.sets;
   return rules;
 }
 
@@ -290,6 +296,8 @@ void visit_fields(V& v, C& c) {
            "line the evader's target angle is measured from (paper: toward-pursuer)");
   v.flag("boundary_is_obstacle", c.boundary_is_obstacle,
          "the arena's floor, ceiling and walls count as the nearest obstacle in d_O and r_O");
+  v.flag("opponent_heading", c.opponent_heading,
+         "the opponent's heading, as its angle errors to the line P->E, is one more input of each FACL channel");
   v.number("target_range", c.target_range, Range::positive(), "m", "d_PE is partitioned over [0, target_range] (paper 35)");
   v.number("obstacle_range", c.obstacle_range, Range::positive(), "m",
            "d_O is partitioned over [0, obstacle_range] (paper 35)");

@@ -38,6 +38,11 @@ Percept perceive(Role role, const AgentConfig& config, const KinematicState& sel
     reference = -to_other;
   }
   if (out.target_distance > 0.0) out.target = angle_errors(self.heading, reference);
+  // Both roles see the opponent's heading against the same line, P->E: an interceptor's lead and an evader's
+  // turn away from straight flight both read as departures from 0.
+  if (config.observation.opponent_heading && out.target_distance > 0.0) {
+    out.opponent_heading = angle_errors(other.heading, role == Role::kPursuer ? to_other : Vec3(-to_other));
+  }
 
   out.obstacle = field;
   if (config.observation.boundary_is_obstacle) {

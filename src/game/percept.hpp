@@ -21,6 +21,8 @@ struct Percept {
   AngleErrors target;            ///< rad, from the heading to the reference line (E->P or P->E for the evader)
   ObstacleSense obstacle;        ///< the nearest obstacle after merging the arena boundary when configured
   AngleErrors to_obstacle;       ///< rad, from the heading to the obstacle; (pi, 0) when none is in range
+  AngleErrors opponent_heading;  ///< rad, from the opponent's heading to the line P->E; only with
+                                 ///< observation.opponent_heading (else 0, 0)
   bool pinned = false;           ///< centre within max(radius, 0.1 m) of the floor, ceiling or a wall
 };
 

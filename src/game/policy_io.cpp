@@ -86,11 +86,15 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
   try {
     nlohmann::json image = member(doc, "config", file, "config");
     // Fields that older versions predate, as those agents played: version 1 without guard.faces, versions
-    // 1 and 2 without guard.look_ahead.
+    // 1 and 2 without guard.look_ahead, versions 1 to 3 without observation.opponent_heading.
     if (image.is_object() && image.contains("guard") && image["guard"].is_object()) {
       nlohmann::json& guard = image["guard"];
       if (version.get<long long>() < 2 && !guard.contains("faces")) guard["faces"] = false;
       if (version.get<long long>() < 3 && !guard.contains("look_ahead")) guard["look_ahead"] = 0.0;
+    }
+    if (image.is_object() && image.contains("observation") && image["observation"].is_object()) {
+      nlohmann::json& observation = image["observation"];
+      if (version.get<long long>() < 4 && !observation.contains("opponent_heading")) observation["opponent_heading"] = false;
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);

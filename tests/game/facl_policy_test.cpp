@@ -32,6 +32,25 @@ void train_randomly(FaclPolicy& p, Rng& rng, int steps) {
   }
 }
 
+TEST(FaclPolicy, TheOpponentsHeadingIsOneMoreInputOfEachChannel) {
+  AgentConfig c = agent_preset("peg3d", Role::kEvader);  // per-angle: {0,1,3,4} and {0,2,3,5}
+  c.observation.opponent_heading = true;
+  const FaclModel per_angle(c, Role::kEvader);
+  EXPECT_EQ(per_angle.features(0), (std::vector<int>{0, 1, 3, 4, 6}));
+  EXPECT_EQ(per_angle.features(1), (std::vector<int>{0, 2, 3, 5, 7}));
+  EXPECT_EQ(per_angle.tables(0).rules().rules(), facl_rules(c));
+  EXPECT_EQ(facl_rules(c), 5 * 5 * 5 * 5 * 5);
+  c.structure = FaclStructure::kJoint;
+  EXPECT_EQ(FaclModel(c, Role::kEvader).features(0), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  c.observation.angles = AngleInputs::kAzimuth;
+  EXPECT_EQ(FaclModel(c, Role::kEvader).features(0), (std::vector<int>{0, 1, 3, 4, 6}));
+  // The features carry the percept's opponent heading.
+  Percept q;
+  q.opponent_heading = {0.25, -0.5};
+  EXPECT_EQ(features_of(q)[6], 0.25);
+  EXPECT_EQ(features_of(q)[7], -0.5);
+}
+
 TEST(FaclPolicy, SavedAndLoadedPoliciesActIdentically) {
   for (const char* name : {"peg3d", "paper"}) {
     const AgentConfig c = agent_preset(name, Role::kPursuer);
@@ -143,14 +162,22 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"]["guard"].erase("look_ahead");
   expect_error(d, "config.guard.look_ahead");  // version 3 documents have it
+  d = doc;
+  d["config"]["observation"].erase("opponent_heading");
+  expect_error(d, "config.observation.opponent_heading");  // version 4 documents have it
 }
 
 TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
-  // Version 1 predates guard.faces and guard.look_ahead, version 2 the look ahead; their agents played
-  // without them.
+  // Version 1 predates guard.faces, guard.look_ahead and observation.opponent_heading, version 2 the look
+  // ahead, version 3 the opponent's heading; their agents played without them.
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
-  EXPECT_EQ(doc["version"], 3);
+  EXPECT_EQ(doc["version"], 4);
+  doc["version"] = 3;
+  doc["config"]["observation"].erase("opponent_heading");
+  const auto three = policy_from_json(doc, "p.json", Role::kEvader);
+  EXPECT_FALSE(three->config().observation.opponent_heading);
+  EXPECT_EQ(three->config().guard.look_ahead, m.config().guard.look_ahead);
   doc["version"] = 2;
   doc["config"]["guard"].erase("look_ahead");
   const auto two = policy_from_json(doc, "p.json", Role::kEvader);

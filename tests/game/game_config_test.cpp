@@ -55,7 +55,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 34 + 18);  // 34 per agent, 6 game fields, 4 team fields and 8 training fields
+  EXPECT_EQ(leaves, 2 * 35 + 18);  // 35 per agent, 6 game fields, 4 team fields and 8 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {

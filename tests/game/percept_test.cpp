@@ -33,6 +33,27 @@ TEST(Percept, HandPlacedScene) {
   EXPECT_NEAR(std::abs(qp.target.azimuth), kPi, 1e-12);
 }
 
+TEST(Percept, TheOpponentsHeadingIsMeasuredFromTheLinePursuerToEvader) {
+  // The pursuer at (10, 10, 5), the evader 10 m along +y. P->E is +y for both roles.
+  AgentConfig pc = agent_preset("peg3d", Role::kPursuer);
+  AgentConfig ec = agent_preset("peg3d", Role::kEvader);
+  const KinematicState e{{10, 20, 5}, {kPi / 2 - 0.4, kPi / 2 + 0.2}};  // fleeing, 0.4 rad right, a little down
+  // An interceptor leading by 0.3 rad to the left (towards +x is right of +y): azimuth pi/2 + 0.3, level.
+  const KinematicState p{{10, 10, 5}, {kPi / 2 + 0.3, kPi / 2}};
+  const ObstacleSense none{5.0, Vec3::Zero(), false};
+  EXPECT_EQ(perceive(Role::kEvader, ec, e, p, none, kArena, 5.0).opponent_heading.azimuth, 0.0);  // off: 0
+  ec.observation.opponent_heading = pc.observation.opponent_heading = true;
+  const Percept qe = perceive(Role::kEvader, ec, e, p, none, kArena, 5.0);
+  EXPECT_NEAR(qe.opponent_heading.azimuth, -0.3, 1e-12);  // from the pursuer's heading back to P->E
+  EXPECT_NEAR(qe.opponent_heading.elevation, 0.0, 1e-12);
+  const Percept qp = perceive(Role::kPursuer, pc, p, e, none, kArena, 5.0);
+  EXPECT_NEAR(qp.opponent_heading.azimuth, 0.4, 1e-12);  // from the evader's heading to P->E
+  EXPECT_NEAR(qp.opponent_heading.elevation, -0.2, 1e-12);
+  // A pure pursuer heading straight at the evader reads 0.
+  const KinematicState pp{{10, 10, 5}, {kPi / 2, kPi / 2}};
+  EXPECT_NEAR(perceive(Role::kEvader, ec, e, pp, none, kArena, 5.0).opponent_heading.azimuth, 0.0, 1e-12);
+}
+
 TEST(Percept, BoundaryCountsAsObstacleWhenConfigured) {
   AgentConfig c = agent_preset("peg3d", Role::kPursuer);
   const KinematicState p{{10, 10, 1.5}, {0.0, kPi / 2}};  // 1.5 m above the floor
