@@ -145,6 +145,7 @@ std::optional<Cone> second_obstacle_cone(const ConstraintInputs& in, const Vec3&
   if (!(distance < g.stop_distance)) return std::nullopt;
   return guard_cone(g, p, ObstacleSense{distance, ahead.point, true});
 }
+
 // The guard's promise, no approach to an obstacle within stop_distance, kept for the motion. The turn bound
 // can leave the heading short of the guarded direction, still approaching the nearest obstacle (two trunks,
 // one on each side, the nearest alternating between them step by step). Then the motion loses its part

@@ -97,8 +97,8 @@ struct ConstraintInputs {
 /// When a constraint moved the direction, the agent turns towards the constrained direction within the same
 /// steering bound. With `moving`, also stores the step's motion per unit speed there: direction(heading),
 /// computed once for the constraints and the move (the same bits as calling direction again), except that
-/// within stop_distance of a map obstacle its part towards that obstacle, and towards the one look_ahead
-/// ahead, is removed (the turn bound can leave the heading still approaching; the agent slides past).
+/// within stop_distance of the map's nearest obstacle its part towards that obstacle is removed (the turn
+/// bound can leave the heading still approaching; the agent slides past).
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving = nullptr);
 
 }  // namespace peg3d::game

@@ -277,7 +277,8 @@ inline constexpr long long kMaxFaclRules = 1LL << 20;
 /// Rules of each FACL channel: sets^inputs, inputs 4 (azimuth, or one channel per angle) or 6 (joint
 /// azimuth-elevation), plus one per observed angle of the opponent's heading.
 constexpr long long facl_rules(const AgentConfig& c) {
-  const bool joint_both = c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
+  const bool joint_both =
+      c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
   const int inputs = (joint_both ? 6 : 4) + (c.observation.opponent_heading ? (joint_both ? 2 : 1) : 0);
   long long rules = 1;
   for (int i = 0; i < inputs; ++i) rules *= c.observation.sets;

@@ -94,7 +94,9 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     }
     if (image.is_object() && image.contains("observation") && image["observation"].is_object()) {
       nlohmann::json& observation = image["observation"];
-      if (version.get<long long>() < 4 && !observation.contains("opponent_heading")) observation["opponent_heading"] = false;
+      if (version.get<long long>() < 4 && !observation.contains("opponent_heading")) {
+        observation["opponent_heading"] = false;
+      }
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);
