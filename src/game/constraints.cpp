@@ -75,14 +75,6 @@ Cone allowed_by_both(const Cone& face, const Cone& obstacle) {
   return half > 1e-6 ? Cone{bisector, half} : obstacle;
 }
 
-namespace {
-// Whether the direction keeps the climb limit: its polar angle within [polar_margin, pi - polar_margin].
-bool within_climb_limit(const Vec3& v, double polar_margin) {
-  const double theta = heading_of(v).theta;
-  return theta >= polar_margin && theta <= kPi - polar_margin;
-}
-}  // namespace
-
 bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const Box& box, double polar_margin,
                        const Heading& current) {
   Vec3 along = d, axis_along = allowed.axis, inward = Vec3::Zero();

@@ -47,6 +47,16 @@ inline Heading heading_of(const Vec3& d) {
   return {horizontal > 0.0 ? std::atan2(d.y(), d.x()) : 0.0, std::atan2(horizontal, d.z())};
 }
 
+/// Whether a polar angle keeps the climb limit: theta within [polar_margin, pi - polar_margin]
+/// (SteeringConfig::polar_margin).
+inline bool within_climb_limit(double theta, double polar_margin) {
+  return theta >= polar_margin && theta <= kPi - polar_margin;
+}
+/// Whether a non-zero direction keeps the climb limit.
+inline bool within_climb_limit(const Vec3& d, double polar_margin) {
+  return within_climb_limit(heading_of(d).theta, polar_margin);
+}
+
 /// Signed errors that turn a heading towards a direction: d_alpha = wrap(azimuth(d) - alpha) in (-pi, pi] and
 /// d_theta = polar(d) - theta in [-pi, pi]. Steering by exactly these errors points the heading along d. A
 /// vertical d has no azimuth; its azimuth error is 0.

@@ -97,7 +97,7 @@ Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, c
                          double commit_angle) {
   const Vec3 c = cone.project(d, hint, commit_angle);
   const Heading hc = heading_of(c);
-  if (hc.theta >= polar_margin && hc.theta <= kPi - polar_margin) return c;
+  if (within_climb_limit(hc.theta, polar_margin)) return c;
   // Search the band's edge circle between c's azimuth and the axis's azimuth (the edge point nearest to
   // the axis) for the first direction inside the cone.
   const double edge = hc.theta < polar_margin ? polar_margin : kPi - polar_margin;

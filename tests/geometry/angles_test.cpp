@@ -53,4 +53,16 @@ TEST(WrapAngle, StaysInTheHalfOpenInterval) {
 }
 
 }  // namespace
+TEST(ClimbLimit, KeepsThePolarAngleWithinTheMarginOfEitherPole) {
+  const double margin = kPi / 3;  // 30 degrees of climb or dive
+  EXPECT_TRUE(within_climb_limit(kPi / 2, margin));
+  EXPECT_TRUE(within_climb_limit(margin, margin));  // the edges belong to the band
+  EXPECT_TRUE(within_climb_limit(kPi - margin, margin));
+  EXPECT_FALSE(within_climb_limit(margin - 1e-9, margin));
+  EXPECT_FALSE(within_climb_limit(kPi - margin + 1e-9, margin));
+  EXPECT_TRUE(within_climb_limit(Vec3(1, 0, 0.5), margin));   // 26.6 degrees up
+  EXPECT_FALSE(within_climb_limit(Vec3(1, 0, 0.6), margin));  // 31.0 degrees up
+  EXPECT_TRUE(within_climb_limit(Vec3(0, 0, -1), 0.0));       // no margin: straight down is allowed
+}
+
 }  // namespace peg3d
