@@ -182,21 +182,17 @@ Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3*
     }
     changed |= guard_along_faces(*allowed, d, in.self.position, in.bounds, margin, in.self.heading);
   }
-  if (!changed) {
-    if (moving) {
-      *moving = d;  // direction(requested), untouched
-      hold_clear_of_obstacle(in, *moving);
-    }
-    return requested;
+  Heading h = requested;
+  if (changed) {
+    // Turn towards the constrained direction within the same steering bound.
+    const AngleErrors e = angle_errors(in.self.heading, d);
+    h = bounded_steer(in.self.heading, {e.azimuth, e.elevation}, c.steering, in.dt);
   }
-  // Turn towards the constrained direction within the same steering bound.
-  const AngleErrors e = angle_errors(in.self.heading, d);
-  const Heading turned = bounded_steer(in.self.heading, {e.azimuth, e.elevation}, c.steering, in.dt);
   if (moving) {
-    *moving = direction(turned);
+    *moving = changed ? direction(h) : d;  // unchanged, d is direction(requested)
     hold_clear_of_obstacle(in, *moving);
   }
-  return turned;
+  return h;
 }
 
 }  // namespace peg3d::game
