@@ -8,8 +8,8 @@ Writes into RESULTS_DIR (each PNG saved to a temporary name, then renamed):
                     (trajectories/<scenario>_<algorithm>.csv, map.json; runs.csv for the outcome if present)
   comparison.png    Fig. 5: mean pursuer path length and capture time per scenario and algorithm with 95%
                     intervals, capture counts and paired p-values (summary.json)
-  learning.png      capture rate and episode time over the training episodes, mean +- 1 standard error over
-                    repeats (learning_curves.csv)
+  learning.png      capture rate and episode time over the co-learning training episodes (opponent-pool
+                    episodes are left out), mean +- 1 standard error over repeats (learning_curves.csv)
   apollonius.png    Fig. 2: the generalized Apollonius surfaces for several speed ratios a and the pursuer's
                     motion cone (apollonius.json)
 
@@ -680,20 +680,28 @@ def mean_and_se(values):
 
 
 def read_learning_curves(results):
+    """Per (scenario, algorithm): capture flags and episode times, repeats x episodes. Opponent-pool episodes
+    (a FACL role against a classic opponent) are left out as nan, so that the curves show co-learning alone;
+    also returns how many were left out."""
     path = os.path.join(results, "learning_curves.csv")
-    index, rows = read_csv(path, ("scenario", "algorithm", "repeat", "episode", "captured", "episode_time_s"))
+    index, rows = read_csv(path, ("scenario", "algorithm", "repeat", "episode", "pool_opponent", "captured",
+                                  "episode_time_s"))
     i_s, i_a, i_r, i_e = index["scenario"], index["algorithm"], index["repeat"], index["episode"]
-    i_c, i_t = index["captured"], index["episode_time_s"]
+    i_o, i_c, i_t = index["pool_opponent"], index["captured"], index["episode_time_s"]
     groups = {}
+    pool_episodes = 0
     for line, row in enumerate(rows, start=2):
         where = f"{path}:{line}"
         repeat = parse_int(row[i_r], f"{where}: repeat")
         episode = parse_int(row[i_e], f"{where}: episode")
         if repeat < 0 or episode < 0:
             raise InputError(f"{where}: negative repeat or episode")
-        groups.setdefault((row[i_s], row[i_a]), []).append(
-            (repeat, episode, parse_flag(row[i_c], f"{where}: captured"),
-             parse_float(row[i_t], f"{where}: episode_time_s")))
+        captured = parse_flag(row[i_c], f"{where}: captured")
+        time = parse_float(row[i_t], f"{where}: episode_time_s")
+        if row[i_o] != "":
+            pool_episodes += 1
+            captured = time = math.nan
+        groups.setdefault((row[i_s], row[i_a]), []).append((repeat, episode, captured, time))
     curves = {}
     for key, items in groups.items():
         repeats = sorted({r for r, _, _, _ in items})
@@ -705,11 +713,11 @@ def read_learning_curves(results):
             captured[slot[r], e] = c
             times[slot[r], e] = t
         curves[key] = (captured, times)
-    return curves
+    return curves, pool_episodes
 
 
 def plot_learning(results):
-    curves = read_learning_curves(results)
+    curves, pool_episodes = read_learning_curves(results)
     scenarios = sorted({s for s, _ in curves}, key=natural_key)
     algorithms = order_algorithms(a for _, a in curves)
     n = max(len(scenarios), 1)
@@ -765,7 +773,8 @@ def plot_learning(results):
         over = f"mean over {counts} repeat{'s' if repeat_counts != {1} else ''}"
     else:
         over = "no data"
-    fig.suptitle(f"Training episodes: {w}-episode trailing moving average, {over}", fontsize=12,
+    which = "Co-learning episodes (opponent-pool episodes left out)" if pool_episodes else "Training episodes"
+    fig.suptitle(f"{which}: {w}-episode trailing moving average, {over}", fontsize=12,
                  y=1 - 0.12 / fig_h, va="top")
     save_figure(fig, os.path.join(results, "learning.png"))
 

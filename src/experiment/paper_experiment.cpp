@@ -166,7 +166,9 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
       // trained models.
       [&](std::size_t i) {
         const TrialResult& t = trials[i];
-        nlohmann::json data{{"evaluation", episode_to_json(t.evaluation)}, {"training", episodes_to_json(t.training)}};
+        nlohmann::json data{{"evaluation", episode_to_json(t.evaluation)},
+                            {"training", episodes_to_json(t.training)},
+                            {"training_opponent", t.training_opponent}};
         if (traced(i)) {
           data["trace"] = trace_to_json(t.trace);
           data["pursuer_models"] = role_models_to_json(t.pursuer_models);
@@ -178,6 +180,7 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
         TrialResult& t = trials[i];
         t.evaluation = episode_from_json(data.at("evaluation"));
         t.training = episodes_from_json(data.at("training"));
+        t.training_opponent = data.at("training_opponent").get<std::vector<int>>();
         if (traced(i)) {
           t.trace = trace_from_json(data.at("trace"));
           t.pursuer_models = role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);
@@ -205,7 +208,12 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
       }
     }
     r.runs.push_back(std::move(rec));
-    r.curves.push_back(std::move(t.training));
+    LearningCurve curve{std::move(t.training), {}};
+    const OpponentPool& pool = pools[alg];
+    for (const int k : t.training_opponent) {
+      curve.pool_opponents.emplace_back(k < 0 ? "" : game::to_string(pool.entries()[static_cast<std::size_t>(k)].opponent));
+    }
+    r.curves.push_back(std::move(curve));
   }
   return r;
 }

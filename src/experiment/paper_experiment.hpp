@@ -55,7 +55,7 @@ struct SweepSettings {
 
 struct PaperResults {
   std::vector<RunRecord> runs;                            ///< scenario-major, then algorithm, then repeat
-  std::vector<std::vector<game::EpisodeResult>> curves;   ///< training episodes of each run
+  std::vector<LearningCurve> curves;                      ///< training episodes of each run
   std::map<std::string, game::Trace> traces;              ///< "<scenario>_<algorithm>" -> steps
   /// "<scenario>_<algorithm>_<role>" (a second model of a role: "<role>1", ...) -> trained model
   std::map<std::string, std::shared_ptr<const game::FaclModel>> policies;

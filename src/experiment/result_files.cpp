@@ -4,6 +4,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -59,14 +60,16 @@ void write_runs_csv(const std::filesystem::path& file, const std::vector<RunReco
 }
 
 void write_learning_curves_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs,
-                               const std::vector<std::vector<game::EpisodeResult>>& curves) {
+                               const std::vector<LearningCurve>& curves) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), with_episode_columns({"scenario", "algorithm", "repeat", "episode"}));
+  CsvWriter csv(out.stream(), with_episode_columns({"scenario", "algorithm", "repeat", "episode", "pool_opponent"}));
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    for (std::size_t k = 0; k < curves[i].size(); ++k) {
+    const LearningCurve& c = curves[i];
+    if (c.pool_opponents.size() != c.episodes.size()) throw std::logic_error("learning curve: one opponent per episode");
+    for (std::size_t k = 0; k < c.episodes.size(); ++k) {
       auto row = csv.row();
-      row.add(runs[i].scenario).add(runs[i].algorithm).add(runs[i].repeat).add(k);
-      add_episode_cells(row, curves[i][k]);
+      row.add(runs[i].scenario).add(runs[i].algorithm).add(runs[i].repeat).add(k).add(c.pool_opponents[k]);
+      add_episode_cells(row, c.episodes[k]);
       row.end();
     }
   }

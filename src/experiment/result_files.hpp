@@ -37,9 +37,16 @@ void add_episode_cells(CsvWriter::Row& row, const game::EpisodeResult& e);
 /// runs.csv: one row per record, in the given order.
 void write_runs_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs);
 
+/// The training episodes of one run, each with the classic opponent it was played against.
+struct LearningCurve {
+  std::vector<game::EpisodeResult> episodes;
+  /// per episode: the policy name of the opponent-pool opponent (experiment/training.hpp), "" for co-learning
+  std::vector<std::string> pool_opponents;
+};
+
 /// learning_curves.csv: `curves[i]` holds the training episodes of `runs[i]`.
 void write_learning_curves_csv(const std::filesystem::path& file, const std::vector<RunRecord>& runs,
-                               const std::vector<std::vector<game::EpisodeResult>>& curves);
+                               const std::vector<LearningCurve>& curves);
 
 /// `folder / (name + extension)` for a name made of map-given parts (scenario names): throws InputError when
 /// the name could leave the folder or hide a file (see world::is_safe_name; '_' joins the parts).

@@ -19,7 +19,7 @@ EPISODE = ["outcome", "captured", "capture_time_s", "episode_time_s", "final_dis
            "evader_path_m", "collisions", "evader_pinned_fraction", "pursuer_pinned_fraction", "pursuer_return",
            "evader_return"]
 RUNS = ["scenario", "algorithm", "repeat", "seed", "train_captures"] + EPISODE
-CURVES = ["scenario", "algorithm", "repeat", "episode"] + EPISODE
+CURVES = ["scenario", "algorithm", "repeat", "episode", "pool_opponent"] + EPISODE
 TRAJ = ["t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "evader_z", "pursuer_alpha",
         "pursuer_theta", "evader_alpha", "evader_theta", "distance"] + [
             f"{a}_{c}" for a in ("pursuer", "evader") for c in (
@@ -99,6 +99,21 @@ def main():
     for name in DETERMINISTIC:
         same = open(os.path.join(a, name), "rb").read() == open(os.path.join(b, name), "rb").read()
         check(same, f"{name} identical for the same seed with 2 threads and 1 thread")
+
+    # The opponent pool's episodes are told apart from co-learning ones, so that learning.png can leave them out.
+    with open(os.path.join(a, "learning_curves.csv")) as f:
+        check(all(row["pool_opponent"] == "" for row in csv.DictReader(f)), "co-learning: no pool opponent")
+    pooled = os.path.join(work, "pooled")
+    r = run(binary, pooled, "--algorithms", "robust", "--no-plots")
+    check(r.returncode == 0, f"robust run exit status {r.returncode}: {r.stderr[-2000:]}")
+    opponents = []
+    if r.returncode == 0:
+        with open(os.path.join(pooled, "learning_curves.csv")) as f:
+            opponents = [row["pool_opponent"] for row in csv.DictReader(f)]
+    classic = {"pure-pursuit", "pn", "apollonius", "flee", "flee-apollonius", "random"}
+    check(len(opponents) == 4 * 2 * 3, f"robust: {len(opponents)} training episodes, expected 24")
+    check("" in opponents and set(opponents) - {""} and set(opponents) <= classic | {""},
+          f"robust: pool opponents {sorted(set(opponents))}")
 
     bad = os.path.join(work, "bad")
     for args in (["--set", "pursuer.speed=-1"], ["--set", "pursuer.nosuchfield=1"], ["--repeats", "0"],

@@ -53,10 +53,11 @@ def same_results(reference, folder, what):
 
 def small_sweeps(bin_dir):
     """The three experiment binaries' small sweeps, by name: commands without --out and --threads; 16 runs each,
-    of a few tens of milliseconds in a Release build (and small enough for the sanitizer build too)."""
+    of a few tens of milliseconds in a Release build (and small enough for the sanitizer build too). peg-paper's
+    robust arm trains with the opponent pool, so its episodes' opponents must survive the journal too."""
     paper, matchup, generalize = (os.path.join(bin_dir, p) for p in ("peg-paper", "peg-matchup", "peg-generalize"))
     return {
-        "peg-paper": [paper, "--seed", "7", "--repeats", "2", "--episodes", "20", "--algorithms", "peg3d,baseline",
+        "peg-paper": [paper, "--seed", "7", "--repeats", "2", "--episodes", "20", "--algorithms", "peg3d,robust",
                       "--no-plots", "--plain-progress"],
         "peg-matchup": [matchup, "--seed", "7", "--repeats", "4", "--episodes", "20", "--pursuers", "facl,pn",
                         "--evaders", "facl,flee", "--plain-progress"],
