@@ -143,10 +143,13 @@ TEST(GameConfig, PresetsDifferWhereDocumented) {
   EXPECT_EQ(baseline.evader, peg3d.evader);  // same opponent
   EXPECT_EQ(peg3d.team, TeamConfig{});       // one against one needs no team settings
   // robust: peg3d's agents with the opponent pool, a pursuer less repelled by the walls that sees where the
-  // evader is heading (docs/learning.md); its evader is peg3d's.
+  // evader is heading, and the team capture reward (docs/learning.md); its evader is peg3d's.
   const GameConfig robust = preset("robust");
   EXPECT_EQ(robust.training.procedure, TrainingProcedure::kOpponentPool);
   EXPECT_DOUBLE_EQ(robust.training.pool_share, 0.8);
+  TeamConfig team;
+  team.capture_reward = CaptureReward::kTeam;
+  EXPECT_EQ(robust.team, team);
   AgentConfig pursuer = peg3d.pursuer;
   pursuer.reward.w_r = 1.0;
   pursuer.observation.opponent_heading = true;
