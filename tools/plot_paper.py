@@ -658,14 +658,18 @@ def plot_comparison(results):
 
 
 def trailing_mean(values, window):
-    """Mean of the last `window` finite values along axis 1 (fewer at the start); nan where none."""
-    valid = np.isfinite(values)
-    sums = np.cumsum(np.where(valid, values, 0.0), axis=1)
-    counts = np.cumsum(valid, axis=1).astype(float)
-    sums[:, window:] = sums[:, window:] - sums[:, :-window]
-    counts[:, window:] = counts[:, window:] - counts[:, :-window]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(counts > 0, sums / np.maximum(counts, 1), np.nan)
+    """Per row, at each column: the mean of the last `window` finite values up to it (fewer at the start), nan
+    before the first. Gaps (the opponent-pool episodes) are skipped, so a sparse co-learning curve still
+    averages `window` episodes."""
+    out = np.full(values.shape, np.nan)
+    for r in range(values.shape[0]):
+        valid = np.isfinite(values[r])
+        sums = np.concatenate(([0.0], np.cumsum(values[r][valid])))
+        k = np.cumsum(valid)  # finite values up to and including each column
+        lo = np.maximum(k - window, 0)
+        seen = k > 0
+        out[r, seen] = (sums[k[seen]] - sums[lo[seen]]) / (k[seen] - lo[seen])
+    return out
 
 
 def mean_and_se(values):
@@ -774,7 +778,7 @@ def plot_learning(results):
     else:
         over = "no data"
     which = "Co-learning episodes (opponent-pool episodes left out)" if pool_episodes else "Training episodes"
-    fig.suptitle(f"{which}: {w}-episode trailing moving average, {over}", fontsize=12,
+    fig.suptitle(f"{which}: trailing mean of {w} episodes, {over}", fontsize=12,
                  y=1 - 0.12 / fig_h, va="top")
     save_figure(fig, os.path.join(results, "learning.png"))
 

@@ -51,9 +51,21 @@ def run(binary, out, *extra):
     return run_program(cmd)
 
 
+def check_trailing_mean(source):
+    """learning.png's average: the last `window` finite values, skipping the gaps of opponent-pool episodes."""
+    sys.path.insert(0, os.path.join(source, "tools"))
+    import numpy as np
+    import plot_paper
+    nan = float("nan")
+    got = plot_paper.trailing_mean(np.array([[1.0, 2.0, 3.0, 4.0], [nan, 1.0, nan, 3.0]]), 2)
+    check(got[0].tolist() == [1.0, 1.5, 2.5, 3.5], f"trailing mean without gaps: {got[0].tolist()}")
+    check(np.isnan(got[1][0]) and got[1][1:].tolist() == [1.0, 1.0, 2.0], f"trailing mean over gaps: {got[1].tolist()}")
+
+
 def main():
     binary, source, work = sys.argv[1:4]
     os.chdir(source)
+    check_trailing_mean(source)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     a, b = os.path.join(work, "a"), os.path.join(work, "b")
