@@ -1,5 +1,6 @@
 #include "experiment/paper_experiment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -8,6 +9,7 @@
 
 #include "core/config_json.hpp"
 #include "core/config_overrides.hpp"
+#include "core/error.hpp"
 #include "core/input_files.hpp"
 #include "core/random.hpp"
 #include "experiment/parallel_runner.hpp"
@@ -181,6 +183,13 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
         t.evaluation = episode_from_json(data.at("evaluation"));
         t.training = episodes_from_json(data.at("training"));
         t.training_opponent = data.at("training_opponent").get<std::vector<int>>();
+        const int entries = static_cast<int>(pools[(i / n_rep) % n_alg].entries().size());
+        const bool fits = t.training_opponent.size() == t.training.size() &&
+                          std::all_of(t.training_opponent.begin(), t.training_opponent.end(),
+                                      [&](int k) { return k >= -1 && k < entries; });
+        if (!fits) {
+          throw InputError({}, 0, "training_opponent", "needs one entry per training episode, each -1 or a pool entry");
+        }
         if (traced(i)) {
           t.trace = trace_from_json(data.at("trace"));
           t.pursuer_models = role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);

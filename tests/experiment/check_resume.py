@@ -12,6 +12,7 @@
 
 usage: check_resume.py BUILD_BIN_DIR SOURCE_DIR WORK_DIR
 """
+import json
 import os
 import re
 import shlex
@@ -119,6 +120,24 @@ def main():
         _, err = proc.communicate(timeout=30)
         check(proc.returncode == 143, f"SIGTERM exit status {proc.returncode}, expected 143: {err[-500:]}")
         check("resume with:" in err, "SIGTERM: prints the resume command")
+
+    # A journaled run whose pool opponents do not fit its training (edited by hand): status 2, naming the field.
+    edited = os.path.join(work, "paper-edited")
+    proc = start(sweeps["peg-paper"] + ["--out", edited, "--threads", "2"])
+    if check(wait_for_runs(proc, edited, 1), "peg-paper (edited journal): the sweep ended before a run was journaled"):
+        proc.kill()
+        proc.wait()
+        journal = os.path.join(edited, "runs.journal")
+        with open(journal) as f:
+            lines = f.read().splitlines()
+        record = json.loads(lines[1])
+        record["data"]["training_opponent"][0] = 99
+        lines[1] = json.dumps(record)
+        with open(journal, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        r = run(sweeps["peg-paper"] + ["--out", edited, "--threads", "2", "--resume"])
+        check(r.returncode == 2 and "training_opponent" in r.stderr and "runs.journal:2" in r.stderr,
+              f"an edited journal's pool opponents: status {r.returncode}, {r.stderr[-300:]!r}")
 
     # peg-league stopped while it plays its games (every training run journaled): status 143, no result file;
     # --resume trains nothing again and plays the games, with the uninterrupted league's results.
