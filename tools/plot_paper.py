@@ -701,11 +701,11 @@ def read_learning_curves(results):
         if repeat < 0 or episode < 0:
             raise InputError(f"{where}: negative repeat or episode")
         captured = parse_flag(row[i_c], f"{where}: captured")
-        time = parse_float(row[i_t], f"{where}: episode_time_s")
+        seconds = parse_float(row[i_t], f"{where}: episode_time_s")
         if row[i_o] != "":
             pool_episodes += 1
-            captured = time = math.nan
-        groups.setdefault((row[i_s], row[i_a]), []).append((repeat, episode, captured, time))
+            captured = seconds = math.nan
+        groups.setdefault((row[i_s], row[i_a]), []).append((repeat, episode, captured, seconds))
     curves = {}
     for key, items in groups.items():
         repeats = sorted({r for r, _, _, _ in items})
