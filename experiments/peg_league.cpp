@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
       }
     }
     experiment::write_league_games_csv(o.out / "games.csv", games);
+    experiment::write_league_learning_curves_csv(o.out / "learning_curves.csv", league);
     experiment::write_league_matrix_csv(o.out / "matrix.csv", matrix);
     experiment::write_league_matrix_csv(o.out / "matrix_entrants.csv", entrants);
     experiment::write_json(o.out / "summary.json",

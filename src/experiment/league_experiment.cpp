@@ -111,6 +111,8 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
   }
   trained_pursuers_.resize(training_runs());
   trained_evaders_.resize(training_runs());
+  training_.resize(training_runs());
+  opponents_.resize(training_runs());
 }
 
 const game::Sim& League::sim_of(std::size_t map, int pursuer_group, int evader_group) const {
@@ -153,6 +155,11 @@ const game::RoleModels& League::models(int a, int t, game::Role role) const {
   return role == game::Role::kPursuer ? trained_pursuers_[run] : trained_evaders_[run];
 }
 
+LearningCurve League::curve(int a, int t) const {
+  const std::size_t run = std::size_t(a) * std::size_t(settings_.train_seeds) + std::size_t(t);
+  return {training_[run], pool_opponent_names(pools_[std::size_t(a)], opponents_[run])};
+}
+
 std::vector<League::Game> League::run(ProgressReporter* progress, bool root) const {
   const LeagueSettings& s = settings_;
   const auto& scenarios = train_->map().scenarios;
@@ -170,19 +177,22 @@ std::vector<League::Game> League::run(ProgressReporter* progress, bool root) con
         game::add_configured(lineup, sim.config(), game::Role::kEvader, max_e, stream_seed(seed, TrialStream::kEvader),
                              &trained_evaders_[i]);
         game::SimState state(sim);
-        std::vector<game::EpisodeResult> results;
-        std::vector<int> opponents;
         train_lineup(sim, &pools_[a], lineup, max_p, scenarios, seed, s.episodes, s.control.stop, progress, state,
-                     results, opponents);
+                     training_[i], opponents_[i]);
         if (progress) progress->run_done();
       },
       [&](std::size_t i) {
         return nlohmann::json{{"pursuers", role_models_to_json(trained_pursuers_[i])},
-                              {"evaders", role_models_to_json(trained_evaders_[i])}};
+                              {"evaders", role_models_to_json(trained_evaders_[i])},
+                              {"training", episodes_to_json(training_[i])},
+                              {"training_opponent", opponents_[i]}};
       },
       [&](std::size_t i, const nlohmann::json& data) {
         trained_pursuers_[i] = role_models_from_json(data.at("pursuers"), game::Role::kPursuer);
         trained_evaders_[i] = role_models_from_json(data.at("evaders"), game::Role::kEvader);
+        training_[i] = episodes_from_json(data.at("training"));
+        opponents_[i] = data.at("training_opponent").get<std::vector<int>>();
+        check_journaled_opponents(pools_[i / std::size_t(s.train_seeds)], opponents_[i], training_[i].size());
       });
   if (!root) return {};
 
@@ -246,6 +256,25 @@ std::vector<League::Game> League::run(ProgressReporter* progress, bool root) con
   }
   if (s.control.stop && s.control.stop()) throw interrupted();
   return games;
+}
+
+void write_league_learning_curves_csv(const std::filesystem::path& file, const League& league) {
+  AtomicFile out(file);
+  CsvWriter csv(out.stream(),
+                with_episode_columns({"algorithm", "train_seed", "episode", "scenario", "pool_opponent"}));
+  const auto& scenarios = league.train_arena().map().scenarios;
+  for (std::size_t a = 0; a < league.algorithms().size(); ++a) {
+    for (int t = 0; t < league.settings().train_seeds; ++t) {
+      const LearningCurve c = league.curve(static_cast<int>(a), t);
+      for (std::size_t e = 0; e < c.episodes.size(); ++e) {
+        auto row = csv.row();
+        row.add(league.algorithms()[a].name).add(t).add(e).add(scenarios[e % scenarios.size()].name).add(c.pool_opponents[e]);
+        add_episode_cells(row, c.episodes[e]);
+        row.end();
+      }
+    }
+  }
+  out.commit();
 }
 
 void write_league_games_csv(const std::filesystem::path& file, const std::vector<League::Game>& games) {

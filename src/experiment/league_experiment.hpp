@@ -107,6 +107,9 @@ class League {
 
   /// The trained models of run (algorithm a, training seed t), once run() has trained them.
   const game::RoleModels& models(int a, int t, game::Role role) const;
+  /// The training episodes of run (algorithm a, training seed t) with their pool opponents, once run() has
+  /// trained them.
+  LearningCurve curve(int a, int t) const;
 
  private:
   const game::Sim& sim_of(std::size_t map, int pursuer_group, int evader_group) const;
@@ -122,7 +125,13 @@ class League {
   std::vector<game::Sim> eval_sims_;
   int pursuer_groups_ = 0, evader_groups_ = 0;
   mutable std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
+  mutable std::vector<std::vector<game::EpisodeResult>> training_;  ///< per training run: its episodes
+  mutable std::vector<std::vector<int>> opponents_;                 ///< per training run: each episode's pool entry
 };
+
+/// learning_curves.csv: one row per training episode of every run (algorithm, train_seed, episode, the
+/// scenario it started from, pool_opponent, then the episode columns).
+void write_league_learning_curves_csv(const std::filesystem::path& file, const League& league);
 
 /// games.csv: one row per game (map, scenario, eval_seed, pursuer, evader, then the episode columns).
 void write_league_games_csv(const std::filesystem::path& file, const std::vector<League::Game>& games);

@@ -1,6 +1,5 @@
 #include "experiment/paper_experiment.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -183,13 +182,7 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
         t.evaluation = episode_from_json(data.at("evaluation"));
         t.training = episodes_from_json(data.at("training"));
         t.training_opponent = data.at("training_opponent").get<std::vector<int>>();
-        const int entries = static_cast<int>(pools[(i / n_rep) % n_alg].entries().size());
-        const bool fits = t.training_opponent.size() == t.training.size() &&
-                          std::all_of(t.training_opponent.begin(), t.training_opponent.end(),
-                                      [&](int k) { return k >= -1 && k < entries; });
-        if (!fits) {
-          throw InputError({}, 0, "training_opponent", "needs one entry per training episode, each -1 or a pool entry");
-        }
+        check_journaled_opponents(pools[(i / n_rep) % n_alg], t.training_opponent, t.training.size());
         if (traced(i)) {
           t.trace = trace_from_json(data.at("trace"));
           t.pursuer_models = role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);
@@ -217,12 +210,7 @@ PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, cons
       }
     }
     r.runs.push_back(std::move(rec));
-    LearningCurve curve{std::move(t.training), {}};
-    const OpponentPool& pool = pools[alg];
-    for (const int k : t.training_opponent) {
-      curve.pool_opponents.emplace_back(k < 0 ? "" : game::to_string(pool.entries()[static_cast<std::size_t>(k)].opponent));
-    }
-    r.curves.push_back(std::move(curve));
+    r.curves.push_back({std::move(t.training), pool_opponent_names(pools[alg], t.training_opponent)});
   }
   return r;
 }

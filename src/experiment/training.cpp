@@ -5,6 +5,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "core/error.hpp"
 #include "core/random.hpp"
 #include "experiment/progress_reporter.hpp"
 
@@ -104,6 +107,29 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
                                  stream(TrialStream::kTrainingEpisode, std::size_t(e))));
     opponents.push_back(k);
     if (progress) progress->episode_done();
+  }
+}
+
+std::vector<std::string> pool_opponent_names(const OpponentPool& pool, std::span<const int> opponents) {
+  std::vector<std::string> names;
+  names.reserve(opponents.size());
+  for (const int k : opponents) {
+    if (k < -1 || k >= static_cast<int>(pool.entries().size())) throw std::logic_error("not an opponent-pool entry");
+    names.emplace_back(k < 0 ? "" : game::to_string(pool.entries()[std::size_t(k)].opponent));
+  }
+  return names;
+}
+
+void check_journaled_opponents(const OpponentPool& pool, std::span<const int> opponents, std::size_t episodes) {
+  if (opponents.size() != episodes) {
+    throw InputError({}, 0, "training_opponent",
+                     fmt::format("has {} entries for {} training episodes", opponents.size(), episodes));
+  }
+  const int entries = static_cast<int>(pool.entries().size());
+  for (const int k : opponents) {
+    if (k < -1 || k >= entries) {
+      throw InputError({}, 0, "training_opponent", fmt::format("{} is neither -1 nor one of the pool's {} entries", k, entries));
+    }
   }
 }
 

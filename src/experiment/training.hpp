@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "experiment/parallel_runner.hpp"
@@ -73,5 +74,13 @@ class OpponentPool {
   game::TrainingConfig training_;
   std::vector<Entry> entries_;
 };
+
+/// The policy name of each training episode's opponent-pool opponent, "" for a co-learning episode (-1), as
+/// learning_curves.csv writes them. Throws std::logic_error for an entry that is neither.
+std::vector<std::string> pool_opponent_names(const OpponentPool& pool, std::span<const int> opponents);
+
+/// Checks a run's opponents read back from a journal: one per training episode, each -1 or an entry of `pool`.
+/// Throws InputError (field training_opponent) otherwise.
+void check_journaled_opponents(const OpponentPool& pool, std::span<const int> opponents, std::size_t episodes);
 
 }  // namespace peg3d::experiment

@@ -147,6 +147,15 @@ def main():
         check(os.path.exists(os.path.join(lg, "league.png")), "league.png drawn")
         check(os.path.exists(os.path.join(lg, "policies", "robust_1_evader.json")), "trained policies saved")
         check(not os.path.exists(os.path.join(lg, "runs.journal")), "the journal is removed once the results are written")
+        # Every training episode: 2 algorithms x 2 training seeds x 2 episodes, from the scenarios in turn.
+        curves = rows(os.path.join(lg, "learning_curves.csv"))
+        check(len(curves) == 8, f"learning_curves.csv has {len(curves)} episodes, expected 8")
+        check([(c["algorithm"], c["train_seed"], c["episode"], c["scenario"]) for c in curves[:2]] ==
+              [("peg3d", "0", "0", "3v2-corners"), ("peg3d", "0", "1", "3v2-cross")], "learning_curves.csv order")
+        check(all(c["pool_opponent"] == "" for c in curves if c["algorithm"] == "peg3d"), "peg3d co-learns")
+        check(any(c["pool_opponent"] for c in curves if c["algorithm"] == "robust"), "robust meets the pool")
+        check({c["pool_opponent"] for c in curves} <= {"", "pure-pursuit", "pn", "apollonius", "flee",
+                                                      "flee-apollonius", "random"}, "pool opponents by policy name")
     r = run([league, "--out", os.path.join(work, "league2"), "--train-seeds", "1", "--eval-seeds", "1", "--episodes", "1",
              "--eval-maps", "maps/paper.yaml,maps/forest.yaml", "--no-plots", "--plain-progress", "--no-cache"])
     check(r.returncode == 0, f"peg-league on a held-out map: {r.stderr[-500:]}")
