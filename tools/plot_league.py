@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Draws the cross-play heat-maps of a peg-league result folder (formats: docs/results.md).
+"""Draws the cross-play heat-maps and the learning curves of a peg-league result folder (formats: docs/results.md).
 
 Usage: tools/plot_league.py RESULTS_DIR
 
@@ -7,6 +7,9 @@ Reads RESULTS_DIR/matrix.csv (one row per pursuer group and evader group) and wr
 (saved to a temporary name, then renamed): two heat-maps side by side, pursuers down, evaders across,
   left   capture rate, each cell with the rate and its 95% Wilson interval
   right  mean evader survival time (s, censored at the time limit), each cell with its 95% t interval
+Reads RESULTS_DIR/learning_curves.csv, when there is one, and writes RESULTS_DIR/league_learning.png: per
+algorithm, the capture rate and the episode time of its co-learning training episodes (opponent-pool episodes
+left out), a trailing mean of LEARNING_WINDOW episodes, mean +- 1 standard error over the training seeds.
 
 Exit status: 0 when the figure was written, 2 (with "error: ..." on stderr) when RESULTS_DIR or matrix.csv is
 missing or malformed. Runs under Debian's /usr/bin/python3 with python3-numpy and python3-matplotlib.
@@ -24,7 +27,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_paper import algorithm_color, mean_and_se, trailing_mean  # noqa: E402
+
 DPI = 130
+LEARNING_WINDOW = 50
 COLUMNS = ("pursuer", "evader", "games", "capture_rate", "capture_rate_lo", "capture_rate_hi", "evader_survival_s",
            "evader_survival_lo", "evader_survival_hi")
 
@@ -37,17 +44,23 @@ def number(text):
     return float("nan") if text in ("", "nan") else float(text)
 
 
-def read_matrix(path):
+def read_rows(path, columns):
+    """The rows of a CSV file as dicts; InputError when it cannot be read, or has rows without `columns`."""
     try:
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
     except OSError as e:
         raise InputError(f"{path}: {e.strerror}") from e
-    if not rows:
-        raise InputError(f"{path}: no rows")
-    missing = [c for c in COLUMNS if c not in rows[0]]
+    missing = [c for c in columns if rows and c not in rows[0]]
     if missing:
         raise InputError(f"{path}: missing columns {', '.join(missing)}")
+    return rows
+
+
+def read_matrix(path):
+    rows = read_rows(path, COLUMNS)
+    if not rows:
+        raise InputError(f"{path}: no rows")
     pursuers, evaders, cells = [], [], {}
     for i, r in enumerate(rows, start=2):
         try:
@@ -85,6 +98,58 @@ def heat_map(ax, pursuers, evaders, cells, key, lo, hi, fmt, cmap, vmin, vmax, t
     plt.colorbar(image, ax=ax, fraction=0.046, pad=0.04)
 
 
+def read_learning_curves(path):
+    """Per algorithm: (capture flags, episode times), training seeds x episodes, nan for opponent-pool episodes."""
+    rows = read_rows(path, ("algorithm", "train_seed", "episode", "pool_opponent", "captured", "episode_time_s"))
+    items = {}
+    for i, r in enumerate(rows, start=2):
+        try:
+            seed, episode = int(r["train_seed"]), int(r["episode"])
+            captured, seconds = number(r["captured"]), number(r["episode_time_s"])
+        except ValueError as e:
+            raise InputError(f"{path}:{i}: {e}") from e
+        if seed < 0 or episode < 0:
+            raise InputError(f"{path}:{i}: negative train_seed or episode")
+        if r["pool_opponent"] != "":
+            captured = seconds = float("nan")
+        items.setdefault(r["algorithm"], []).append((seed, episode, captured, seconds))
+    curves = {}
+    for algorithm, entries in items.items():
+        seeds = sorted({e[0] for e in entries})
+        slot = {s: k for k, s in enumerate(seeds)}
+        n = max(e[1] for e in entries) + 1
+        captured, times = np.full((len(seeds), n), np.nan), np.full((len(seeds), n), np.nan)
+        for seed, episode, c, t in entries:
+            captured[slot[seed], episode] = c
+            times[slot[seed], episode] = t
+        curves[algorithm] = (captured, times)
+    return curves
+
+
+def plot_learning(curves, path):
+    fig, (ax_rate, ax_time) = plt.subplots(2, 1, figsize=(8.0, 6.5), sharex=True)
+    for algorithm, (captured, times) in curves.items():
+        episodes = np.arange(captured.shape[1])
+        for ax, values in ((ax_rate, captured), (ax_time, times)):
+            mean, se = mean_and_se(trailing_mean(values, LEARNING_WINDOW))
+            color = algorithm_color(algorithm)
+            ax.plot(episodes, mean, color=color, lw=1.5, label=algorithm)
+            if np.any(np.isfinite(se)):
+                ax.fill_between(episodes, mean - se, mean + se, color=color, alpha=0.2, lw=0)
+    ax_rate.set_ylim(-0.03, 1.03)
+    ax_rate.set_ylabel("capture rate")
+    ax_time.set_ylabel("episode time (s)")
+    ax_time.set_xlabel("training episode")
+    for ax in (ax_rate, ax_time):
+        ax.grid(color="#e3e3e3")
+    ax_rate.legend(fontsize=9, frameon=False)
+    ax_rate.set_title(f"Co-learning training episodes (opponent-pool episodes left out)\ntrailing mean of "
+                      f"{LEARNING_WINDOW} episodes, mean ± 1 standard error over the training seeds", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, path)
+    plt.close(fig)
+
+
 def save_figure(fig, path):
     folder, name = os.path.split(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
@@ -102,10 +167,12 @@ def main(argv):
         print("usage: plot_league.py RESULTS_DIR", file=sys.stderr)
         return 2
     folder = argv[1]
+    curves_file = os.path.join(folder, "learning_curves.csv")
     try:
         if not os.path.isdir(folder):
             raise InputError(f"{folder}: not a folder")
         pursuers, evaders, cells = read_matrix(os.path.join(folder, "matrix.csv"))
+        curves = read_learning_curves(curves_file) if os.path.exists(curves_file) else {}
     except InputError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
@@ -120,6 +187,8 @@ def main(argv):
     fig.tight_layout()
     save_figure(fig, os.path.join(folder, "league.png"))
     plt.close(fig)
+    if curves:
+        plot_learning(curves, os.path.join(folder, "league_learning.png"))
     return 0
 
 

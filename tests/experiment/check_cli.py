@@ -145,6 +145,7 @@ def main():
         summary = json.load(open(os.path.join(lg, "summary.json")))
         check({f["algorithm"] for f in summary["findings"]["pursuers"]} == {"peg3d", "robust"}, "findings per algorithm")
         check(os.path.exists(os.path.join(lg, "league.png")), "league.png drawn")
+        check(os.path.exists(os.path.join(lg, "league_learning.png")), "league_learning.png drawn")
         check(os.path.exists(os.path.join(lg, "policies", "robust_1_evader.json")), "trained policies saved")
         check(not os.path.exists(os.path.join(lg, "runs.journal")), "the journal is removed once the results are written")
         # Every training episode: 2 algorithms x 2 training seeds x 2 episodes, from the scenarios in turn.
