@@ -28,7 +28,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_paper import algorithm_color, mean_and_se, trailing_mean  # noqa: E402
+from plot_paper import algorithm_color, curve_arrays, draw_curves  # noqa: E402
 
 DPI = 130
 LEARNING_WINDOW = 50
@@ -113,29 +113,13 @@ def read_learning_curves(path):
         if r["pool_opponent"] != "":
             captured = seconds = float("nan")
         items.setdefault(r["algorithm"], []).append((seed, episode, captured, seconds))
-    curves = {}
-    for algorithm, entries in items.items():
-        seeds = sorted({e[0] for e in entries})
-        slot = {s: k for k, s in enumerate(seeds)}
-        n = max(e[1] for e in entries) + 1
-        captured, times = np.full((len(seeds), n), np.nan), np.full((len(seeds), n), np.nan)
-        for seed, episode, c, t in entries:
-            captured[slot[seed], episode] = c
-            times[slot[seed], episode] = t
-        curves[algorithm] = (captured, times)
-    return curves
+    return curve_arrays(items)
 
 
 def plot_learning(curves, path):
     fig, (ax_rate, ax_time) = plt.subplots(2, 1, figsize=(8.0, 6.5), sharex=True)
-    for algorithm, (captured, times) in curves.items():
-        episodes = np.arange(captured.shape[1])
-        for ax, values in ((ax_rate, captured), (ax_time, times)):
-            mean, se = mean_and_se(trailing_mean(values, LEARNING_WINDOW))
-            color = algorithm_color(algorithm)
-            ax.plot(episodes, mean, color=color, lw=1.5, label=algorithm)
-            if np.any(np.isfinite(se)):
-                ax.fill_between(episodes, mean - se, mean + se, color=color, alpha=0.2, lw=0)
+    for algorithm, curve in curves.items():
+        draw_curves((ax_rate, ax_time), curve, LEARNING_WINDOW, algorithm_color(algorithm), algorithm)
     ax_rate.set_ylim(-0.03, 1.03)
     ax_rate.set_ylabel("capture rate")
     ax_time.set_ylabel("episode time (s)")

@@ -706,18 +706,38 @@ def read_learning_curves(results):
             pool_episodes += 1
             captured = seconds = math.nan
         groups.setdefault((row[i_s], row[i_a]), []).append((repeat, episode, captured, seconds))
+    return curve_arrays(groups), pool_episodes
+
+
+def curve_arrays(groups):
+    """{key: [(run, episode, captured, seconds), ...]} -> {key: (captured, times)}, each runs x episodes (runs
+    in sorted order, nan where a run has no such episode)."""
     curves = {}
     for key, items in groups.items():
-        repeats = sorted({r for r, _, _, _ in items})
-        slot = {r: i for i, r in enumerate(repeats)}
+        runs = sorted({r for r, _, _, _ in items})
+        slot = {r: i for i, r in enumerate(runs)}
         n_ep = max(e for _, e, _, _ in items) + 1
-        captured = np.full((len(repeats), n_ep), np.nan)
-        times = np.full((len(repeats), n_ep), np.nan)
+        captured = np.full((len(runs), n_ep), np.nan)
+        times = np.full((len(runs), n_ep), np.nan)
         for r, e, c, t in items:
             captured[slot[r], e] = c
             times[slot[r], e] = t
         curves[key] = (captured, times)
-    return curves, pool_episodes
+    return curves
+
+
+def draw_curves(axes, curve, window, color, label):
+    """Draws (captured, times) on (rate axis, time axis): the trailing mean over `window` episodes, mean over
+    the runs with a +-1 standard error band where there are two runs or more. Returns whether it drew a band."""
+    band = False
+    for ax, values in zip(axes, curve):
+        episodes = np.arange(values.shape[1])
+        mean, se = mean_and_se(trailing_mean(values, window))
+        ax.plot(episodes, mean, color=color, lw=1.5, label=label)
+        if np.any(np.isfinite(se)):
+            band = True
+            ax.fill_between(episodes, mean - se, mean + se, color=color, alpha=0.2, lw=0)
+    return band
 
 
 def plot_learning(results):
@@ -748,16 +768,8 @@ def plot_learning(results):
             for alg in algorithms:
                 if (scenario, alg) not in curves:
                     continue
-                captured, times = curves[(scenario, alg)]
-                repeat_counts.add(captured.shape[0])
-                episodes = np.arange(captured.shape[1])
-                color = algorithm_color(alg)
-                for ax, values in ((ax_rate, captured), (ax_time, times)):
-                    mean, se = mean_and_se(trailing_mean(values, w))
-                    ax.plot(episodes, mean, color=color, lw=1.5, label=alg)
-                    if np.any(np.isfinite(se)):
-                        any_band = True
-                        ax.fill_between(episodes, mean - se, mean + se, color=color, alpha=0.2, lw=0)
+                repeat_counts.add(curves[(scenario, alg)][0].shape[0])
+                any_band |= draw_curves((ax_rate, ax_time), curves[(scenario, alg)], w, algorithm_color(alg), alg)
         ax_rate.set_ylim(-0.03, 1.03)
         ax_rate.set_ylabel("capture rate")
         ax_time.set_ylabel("episode time (s)")
