@@ -27,4 +27,7 @@ constexpr std::uint64_t derive_seed(std::uint64_t root, std::initializer_list<st
   return s;
 }
 
+/// A uniform number in [0, 1) from the top 53 bits of one output: portable, unlike the std distributions.
+inline double unit_uniform(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
 }  // namespace peg3d

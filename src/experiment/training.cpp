@@ -1,7 +1,10 @@
 #include "experiment/training.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <memory>
+#include <random>
 #include <stdexcept>
 #include <utility>
 
@@ -10,11 +13,17 @@
 #include "core/error.hpp"
 #include "core/random.hpp"
 #include "experiment/progress_reporter.hpp"
+#include "game/random_start.hpp"
 
 namespace peg3d::experiment {
 namespace {
 
 // Whether any agent of `role` learns with FACL under `config`.
+// How many of `episodes` training episodes a role with learning share `share` learns in (at least one).
+int learning_episodes(double share, int episodes) {
+  return share >= 1.0 ? episodes : std::max(1, static_cast<int>(std::ceil(share * static_cast<double>(episodes))));
+}
+
 bool learns(const game::GameConfig& config, game::Role role) {
   const auto& list = role == game::Role::kPursuer ? config.pursuers : config.evaders;
   const auto& all = role == game::Role::kPursuer ? config.pursuer : config.evader;
@@ -23,6 +32,17 @@ bool learns(const game::GameConfig& config, game::Role role) {
     if (a.policy == game::PolicyKind::kFacl) return true;
   return false;
 }
+
+// A learning policy whose role's training is over: it plays its policy greedily and learns nothing.
+class Resting final : public game::Policy {
+ public:
+  explicit Resting(game::Policy& policy) : policy_(&policy) {}
+  void begin_episode(const game::AgentView& view, bool) override { policy_->begin_episode(view, false); }
+  Steering act(const game::AgentView& view) override { return policy_->act(view); }
+
+ private:
+  game::Policy* policy_;
+};
 
 }  // namespace
 
@@ -46,14 +66,18 @@ OpponentPool::OpponentPool(const std::shared_ptr<const world::Arena>& arena, con
   }
 }
 
-int OpponentPool::choose(std::uint64_t seed) const {
-  if (entries_.empty()) return -1;
-  // Two uniform draws, each from the top 53 bits of one output (portable, unlike the std distributions): one
-  // for the share, one for the entry.
+int OpponentPool::choose(std::uint64_t seed, bool pursuers_learn, bool evaders_learn) const {
+  const auto open = [&](const Entry& e) { return e.learner == game::Role::kPursuer ? pursuers_learn : evaders_learn; };
+  const auto n = std::count_if(entries_.begin(), entries_.end(), open);
+  if (n == 0) return -1;
+  // Two uniform draws: one for the share, one for the entry among the open ones.
   Rng rng(seed);
-  const auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  if (uniform() >= training_.pool_share) return -1;
-  return static_cast<int>(uniform() * static_cast<double>(entries_.size()));
+  if (unit_uniform(rng) >= training_.pool_share) return -1;
+  auto k = static_cast<std::ptrdiff_t>(unit_uniform(rng) * static_cast<double>(n));
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    if (open(entries_[i]) && k-- == 0) return static_cast<int>(i);
+  }
+  return -1;  // unreachable: k < n
 }
 
 std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s) {
@@ -78,18 +102,35 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
   const auto entries = pool != nullptr ? pool->entries() : std::span<const OpponentPool::Entry>{};
   std::vector<std::unique_ptr<game::Lineup>> classic(entries.size());
   std::vector<game::Policy*> playing;
+  const game::TrainingConfig& training = sim.config().training;
+  const double share_random = training.random_starts;
+  std::vector<Resting> resting;
+  resting.reserve(std::size_t(lineup.size()));
+  for (int i = 0; i < lineup.size(); ++i) resting.emplace_back(lineup[i]);
+  world::Scenario random;
   playing.reserve(std::size_t(lineup.size()));
   for (int e = 0; e < episodes; ++e) {
     throw_if_stopped(stop);
-    const world::Scenario& scenario = scenarios[std::size_t(e) % scenarios.size()];
-    const int p = static_cast<int>(scenario.pursuers.size()), q = static_cast<int>(scenario.evaders.size());
+    const world::Scenario* scenario = &scenarios[std::size_t(e) % scenarios.size()];
+    if (share_random > 0.0) {
+      Rng draw(stream(TrialStream::kTrainingStart, std::size_t(e)));
+      if (unit_uniform(draw) < share_random) {
+        random = game::random_start(sim, *scenario, draw());
+        scenario = &random;
+      }
+    }
+    const int p = static_cast<int>(scenario->pursuers.size()), q = static_cast<int>(scenario->evaders.size());
     assert(p <= pursuers && q <= evaders);
-    const int k = entries.empty() ? -1 : pool->choose(stream(TrialStream::kTrainingOpponent, std::size_t(e)));
+    const bool pursuers_learn = e < learning_episodes(training.pursuer_learning, episodes);
+    const bool evaders_learn = e < learning_episodes(training.evader_learning, episodes);
+    const int k = entries.empty() ? -1
+                                  : pool->choose(stream(TrialStream::kTrainingOpponent, std::size_t(e)), pursuers_learn,
+                                                 evaders_learn);
     playing.clear();
     const game::Sim* played = &sim;
     if (k < 0) {
-      for (int i = 0; i < p; ++i) playing.push_back(&lineup[i]);
-      for (int j = 0; j < q; ++j) playing.push_back(&lineup[pursuers + j]);
+      for (int i = 0; i < p; ++i) playing.push_back(pursuers_learn ? &lineup[i] : &resting[std::size_t(i)]);
+      for (int j = 0; j < q; ++j) playing.push_back(evaders_learn ? &lineup[pursuers + j] : &resting[std::size_t(pursuers + j)]);
     } else {
       const OpponentPool::Entry& entry = entries[std::size_t(k)];
       played = &entry.sim;
@@ -103,7 +144,7 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
       for (int i = 0; i < p; ++i) playing.push_back(pursuers_learn ? &lineup[i] : &(*opponent)[i]);
       for (int j = 0; j < q; ++j) playing.push_back(pursuers_learn ? &(*opponent)[j] : &lineup[pursuers + j]);
     }
-    results.push_back(game::play(*played, state, scenario, playing, /*learning=*/true,
+    results.push_back(game::play(*played, state, *scenario, playing, /*learning=*/true,
                                  stream(TrialStream::kTrainingEpisode, std::size_t(e))));
     opponents.push_back(k);
     if (progress) progress->episode_done();

@@ -30,6 +30,7 @@ enum class TrialStream : std::uint64_t {
   kEvaluation = 4,
   kTrainingOpponent = 5,  ///< per episode: which opponent it plays (opponent pool)
   kPoolOpponents = 6,     ///< the pool's classic policies (per entry)
+  kTrainingStart = 7,     ///< per episode: whether it starts at random places, and where (random starts)
 };
 std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s);
 
@@ -67,8 +68,9 @@ class OpponentPool {
   bool empty() const { return entries_.empty(); }
 
   /// The entry a training episode plays, drawn from `seed` (the episode's own), or -1 for a co-learning
-  /// episode: a pool episode with probability pool_share, its entry uniform over the pool.
-  int choose(std::uint64_t seed) const;
+  /// episode: a pool episode with probability pool_share, its entry uniform over the pool's entries whose
+  /// learner still learns (training.pursuer_learning, evader_learning); -1 when none does.
+  int choose(std::uint64_t seed, bool pursuers_learn = true, bool evaders_learn = true) const;
 
  private:
   game::TrainingConfig training_;

@@ -227,6 +227,14 @@ struct TrainingConfig {
   bool pool_flee = true;             ///< the FACL pursuers' pool includes flee
   bool pool_flee_apollonius = true;  ///< ... flee-apollonius
   bool pool_random = true;           ///< ... the random evader
+  /// Share of training episodes, in [0, 1], whose agents start at random places in the arena (random_start.hpp)
+  /// instead of the scenario's; the scenario still gives how many agents play.
+  double random_starts = 0.0;
+  double random_start_gap = 20.0;  ///< m, >= 0: least distance from a pursuer to an evader at a random start
+  /// Share of the training episodes, in (0, 1], in which the pursuers learn: the first ones. Afterwards they
+  /// play their policy greedily without learning, and the opponent pool leaves out their entries.
+  double pursuer_learning = 1.0;
+  double evader_learning = 1.0;  ///< likewise for the evaders
   bool operator==(const TrainingConfig&) const = default;
 };
 
@@ -381,6 +389,14 @@ void visit_fields(V& v, C& c) {
   v.flag("pool_flee", c.pool_flee, "opponent-pool: FACL pursuers train against flee");
   v.flag("pool_flee_apollonius", c.pool_flee_apollonius, "opponent-pool: FACL pursuers train against flee-apollonius");
   v.flag("pool_random", c.pool_random, "opponent-pool: FACL pursuers train against the random evader");
+  v.number("random_starts", c.random_starts, Range::closed(0, 1), "",
+           "share of training episodes that start at random places in the arena instead of the scenario's");
+  v.number("random_start_gap", c.random_start_gap, Range::non_negative(), "m",
+           "least distance from a pursuer to an evader at a random start");
+  v.number("pursuer_learning", c.pursuer_learning, Range::open_closed(0, 1), "",
+           "share of the training episodes (the first ones) in which the pursuers learn");
+  v.number("evader_learning", c.evader_learning, Range::open_closed(0, 1), "",
+           "share of the training episodes (the first ones) in which the evaders learn");
   v.require(c.procedure != TrainingProcedure::kOpponentPool || c.pool_pure_pursuit || c.pool_pn || c.pool_apollonius ||
                 c.pool_flee || c.pool_flee_apollonius || c.pool_random,
             "procedure", "opponent-pool", "needs at least one pool_* opponent");

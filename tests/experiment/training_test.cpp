@@ -97,6 +97,66 @@ TEST(OpponentPool, DrawsPoolEpisodesAtTheConfiguredShareAndEntriesUniformly) {
   }
 }
 
+TEST(OpponentPool, LeavesOutTheEntriesOfARoleThatNoLongerLearns) {
+  const OpponentPool pool(arena(), pool_config(1.0));
+  int evader_entries = 0;
+  for (int e = 0; e < 3000; ++e) {
+    const std::uint64_t seed = derive_seed(3, {std::uint64_t(e)});
+    const int k = pool.choose(seed, /*pursuers_learn=*/false, /*evaders_learn=*/true);
+    ASSERT_GE(k, 0);
+    EXPECT_EQ(pool.entries()[std::size_t(k)].learner, Role::kEvader);
+    evader_entries += k;
+    EXPECT_EQ(pool.choose(seed, true, true), pool.choose(seed));
+    EXPECT_EQ(pool.choose(seed, false, false), -1);
+  }
+  // Uniform over the three evader entries (3, 4, 5): mean 4.
+  EXPECT_NEAR(evader_entries / 3000.0, 4.0, 0.1);
+}
+
+TEST(Training, ARoleStopsLearningAfterItsShareOfTheEpisodes) {
+  // The pursuers learn in the first 3 of 6 episodes: their tables end as after 3 episodes, while the evaders'
+  // go on changing, and no later episode draws a pool entry for the pursuers.
+  game::GameConfig c = pool_config(0.5);
+  c.training.pursuer_learning = 0.5;
+  const game::Sim sim(arena(), c);
+  const OpponentPool pool(arena(), c);
+  const auto& s = arena()->map().scenarios[0];
+  const TrialResult six = run_trial(sim, {&s, 13, 6, false, {}, &pool});
+  game::GameConfig all = c;
+  all.training.pursuer_learning = 1.0;
+  const OpponentPool pool_all(arena(), all);
+  const TrialResult three = run_trial(game::Sim(arena(), all), {&s, 13, 3, false, {}, &pool_all});
+  EXPECT_EQ(tables_hash(six.pursuer_models), tables_hash(three.pursuer_models));
+  EXPECT_NE(tables_hash(six.evader_models), tables_hash(three.evader_models));
+  for (std::size_t e = 3; e < 6; ++e) {
+    const int k = six.training_opponent[e];
+    if (k >= 0) {
+      EXPECT_EQ(pool.entries()[std::size_t(k)].learner, Role::kEvader) << e;
+    }
+  }
+  // The first three episodes are the same either way.
+  for (std::size_t e = 0; e < 3; ++e) EXPECT_EQ(six.training[e].steps, three.training[e].steps);
+}
+
+TEST(Training, RandomStartsChangeWhereEpisodesStartAndStayAFunctionOfTheSeed) {
+  game::GameConfig c = pool_config(0.0);
+  const game::Sim fixed(arena(), c);
+  c.training.random_starts = 1.0;
+  const game::Sim random(arena(), c);
+  const OpponentPool pool(arena(), c);
+  const auto& s = arena()->map().scenarios[0];
+  const TrialResult a = run_trial(fixed, {&s, 5, 6, false, {}, &pool});
+  const TrialResult b = run_trial(random, {&s, 5, 6, false, {}, &pool});
+  const TrialResult b2 = run_trial(random, {&s, 5, 6, false, {}, &pool});
+  int moved = 0;
+  for (std::size_t e = 0; e < 6; ++e) {
+    moved += a.training[e].pursuer_return != b.training[e].pursuer_return;
+    EXPECT_EQ(b.training[e].pursuer_return, b2.training[e].pursuer_return);
+  }
+  EXPECT_GT(moved, 0);
+  EXPECT_EQ(tables_hash(b.pursuer_models), tables_hash(b2.pursuer_models));
+}
+
 TEST(Training, ATrialWithAnOpponentPoolNeedsThePool) {
   const game::Sim sim(arena(), pool_config());
   EXPECT_THROW(run_trial(sim, {&arena()->map().scenarios[0], 7, 2, false, {}, nullptr}), std::logic_error);

@@ -55,7 +55,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 35 + 18);  // 35 per agent, 6 game fields, 4 team fields and 8 training fields
+  EXPECT_EQ(leaves, 2 * 35 + 22);  // 35 per agent, 6 game fields, 4 team fields and 12 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
