@@ -41,7 +41,7 @@ struct LeagueSettings {
   std::uint64_t seed = 1;  ///< root seed
   int train_seeds = 3;     ///< training runs per algorithm, >= 1
   int eval_seeds = 5;      ///< evaluation games per start and pairing, >= 1
-  int episodes = 2000;     ///< training episodes per run, >= 0 (docs/learning.md: 600 left the evaders weak)
+  int episodes = 4000;     ///< training episodes per run, >= 0 (docs/learning.md: the robust evader needs 4000)
   int threads = 0;
   /// Initial headings of the evaluation games: random by default, so that the evaluation seeds give different
   /// games even between deterministic policies.

@@ -4,7 +4,6 @@
 #include <cassert>
 #include <cmath>
 #include <memory>
-#include <random>
 #include <stdexcept>
 #include <utility>
 
@@ -18,12 +17,12 @@
 namespace peg3d::experiment {
 namespace {
 
-// Whether any agent of `role` learns with FACL under `config`.
 // How many of `episodes` training episodes a role with learning share `share` learns in (at least one).
 int learning_episodes(double share, int episodes) {
   return share >= 1.0 ? episodes : std::max(1, static_cast<int>(std::ceil(share * static_cast<double>(episodes))));
 }
 
+// Whether any agent of `role` learns with FACL under `config`.
 bool learns(const game::GameConfig& config, game::Role role) {
   const auto& list = role == game::Role::kPursuer ? config.pursuers : config.evaders;
   const auto& all = role == game::Role::kPursuer ? config.pursuer : config.evader;
@@ -134,15 +133,15 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
     } else {
       const OpponentPool::Entry& entry = entries[std::size_t(k)];
       played = &entry.sim;
-      const bool pursuers_learn = entry.learner == game::Role::kPursuer;
+      const bool pursuers_learning = entry.learner == game::Role::kPursuer;
       auto& opponent = classic[std::size_t(k)];
       if (!opponent) {
         opponent = std::make_unique<game::Lineup>();
-        game::add_configured(*opponent, entry.sim.config(), pursuers_learn ? game::Role::kEvader : game::Role::kPursuer,
-                             pursuers_learn ? evaders : pursuers, stream(TrialStream::kPoolOpponents, std::size_t(k)));
+        game::add_configured(*opponent, entry.sim.config(), pursuers_learning ? game::Role::kEvader : game::Role::kPursuer,
+                             pursuers_learning ? evaders : pursuers, stream(TrialStream::kPoolOpponents, std::size_t(k)));
       }
-      for (int i = 0; i < p; ++i) playing.push_back(pursuers_learn ? &lineup[i] : &(*opponent)[i]);
-      for (int j = 0; j < q; ++j) playing.push_back(pursuers_learn ? &(*opponent)[j] : &lineup[pursuers + j]);
+      for (int i = 0; i < p; ++i) playing.push_back(pursuers_learning ? &lineup[i] : &(*opponent)[i]);
+      for (int j = 0; j < q; ++j) playing.push_back(pursuers_learning ? &(*opponent)[j] : &lineup[pursuers + j]);
     }
     results.push_back(game::play(*played, state, *scenario, playing, /*learning=*/true,
                                  stream(TrialStream::kTrainingEpisode, std::size_t(e))));

@@ -101,6 +101,11 @@ GameConfig preset(const std::string& name) {
     // pack.yaml's selection seeds the pursuer met its goal on 16 of 18 instead of 10). One against one, it is
     // the individual reward, bit for bit.
     c.team.capture_reward = CaptureReward::kTeam;
+    // Every training episode starts at random places, and the evaders learn for twice as long as the pursuers:
+    // on the selection seeds the evader then outlasted flee-apollonius against the Apollonius interceptor
+    // (docs/learning.md, "Random starts and longer training for the evader").
+    c.training.random_starts = 1.0;
+    c.training.pursuer_learning = 0.5;
   }
   return c;
 }

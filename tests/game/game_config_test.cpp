@@ -143,10 +143,16 @@ TEST(GameConfig, PresetsDifferWhereDocumented) {
   EXPECT_EQ(baseline.evader, peg3d.evader);  // same opponent
   EXPECT_EQ(peg3d.team, TeamConfig{});       // one against one needs no team settings
   // robust: peg3d's agents with the opponent pool, a pursuer less repelled by the walls that sees where the
-  // evader is heading, and the team capture reward (docs/learning.md); its evader is peg3d's.
+  // evader is heading, the team capture reward, random starts and pursuers that learn in the first half of
+  // the training only (docs/learning.md); its evader is peg3d's.
   const GameConfig robust = preset("robust");
-  EXPECT_EQ(robust.training.procedure, TrainingProcedure::kOpponentPool);
-  EXPECT_DOUBLE_EQ(robust.training.pool_share, 0.8);
+  TrainingConfig training;
+  training.procedure = TrainingProcedure::kOpponentPool;
+  training.pool_share = 0.8;
+  training.random_starts = 1.0;
+  training.pursuer_learning = 0.5;
+  EXPECT_EQ(robust.training, training);
+  EXPECT_EQ(peg3d.training, TrainingConfig{});
   TeamConfig team;
   team.capture_reward = CaptureReward::kTeam;
   EXPECT_EQ(robust.team, team);
