@@ -30,4 +30,7 @@ constexpr std::uint64_t derive_seed(std::uint64_t root, std::initializer_list<st
 /// A uniform number in [0, 1) from the top 53 bits of one output: portable, unlike the std distributions.
 inline double unit_uniform(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
+/// Uniform in [lo, hi] from one output, as unit_uniform.
+inline double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * unit_uniform(rng); }
+
 }  // namespace peg3d

@@ -103,6 +103,8 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
   std::vector<game::Policy*> playing;
   const game::TrainingConfig& training = sim.config().training;
   const double share_random = training.random_starts;
+  const int pursuer_episodes = learning_episodes(training.pursuer_learning, episodes);
+  const int evader_episodes = learning_episodes(training.evader_learning, episodes);
   std::vector<Resting> resting;
   resting.reserve(std::size_t(lineup.size()));
   for (int i = 0; i < lineup.size(); ++i) resting.emplace_back(lineup[i]);
@@ -120,8 +122,7 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
     }
     const int p = static_cast<int>(scenario->pursuers.size()), q = static_cast<int>(scenario->evaders.size());
     assert(p <= pursuers && q <= evaders);
-    const bool pursuers_learn = e < learning_episodes(training.pursuer_learning, episodes);
-    const bool evaders_learn = e < learning_episodes(training.evader_learning, episodes);
+    const bool pursuers_learn = e < pursuer_episodes, evaders_learn = e < evader_episodes;
     const int k = entries.empty() ? -1
                                   : pool->choose(stream(TrialStream::kTrainingOpponent, std::size_t(e)), pursuers_learn,
                                                  evaders_learn);

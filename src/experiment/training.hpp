@@ -40,10 +40,10 @@ class OpponentPool;
 /// evaders, at least as many of each as any scenario has (a smaller scenario plays the first ones). Episode e
 /// starts from scenarios[e % size] (or, with training.random_starts, from a random_start() of its agents) and,
 /// with a pool, plays the opponent pool->choose() draws for it (co-learning for -1). A role past its
-/// training.*_learning share of the episodes plays greedily without learning. Every stream derives from `seed` as TrialStream says. Appends each episode's result and opponent
-/// entry (-1: co-learning) to `results` and `opponents`; tells `progress` of each episode; throws RunCancelled
-/// when `stop` asks. Throws std::logic_error when the configuration trains with an opponent pool and none is
-/// given.
+/// training.*_learning share of the episodes plays greedily without learning. Every stream derives from `seed`
+/// as TrialStream says. Appends each episode's result and opponent entry (-1: co-learning) to `results` and
+/// `opponents`; tells `progress` of each episode; throws RunCancelled when `stop` asks. Throws std::logic_error
+/// when the configuration trains with an opponent pool and none is given.
 void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& lineup, int pursuers,
                   std::span<const world::Scenario> scenarios, std::uint64_t seed, int episodes, const StopCheck& stop,
                   ProgressReporter* progress, game::SimState& state, std::vector<game::EpisodeResult>& results,

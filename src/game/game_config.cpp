@@ -103,7 +103,7 @@ GameConfig preset(const std::string& name) {
     c.team.capture_reward = CaptureReward::kTeam;
     // Every training episode starts at random places, and the evaders learn for twice as long as the pursuers:
     // on the selection seeds the evader then outlasted flee-apollonius against the Apollonius interceptor
-    // (docs/learning.md, "Random starts and longer training for the evader").
+    // (docs/learning.md, "Random starts, and a longer training for the evader").
     c.training.random_starts = 1.0;
     c.training.pursuer_learning = 0.5;
   }

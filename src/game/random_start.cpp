@@ -13,36 +13,31 @@ world::Scenario random_start(const Sim& sim, const world::Scenario& like, std::u
   const world::Arena& arena = sim.arena();
   const double gap = std::max(g.training.random_start_gap, g.capture_distance);
   const int n = like.agents(), p = static_cast<int>(like.pursuers.size());
+  const auto radius = [&](int i) { return g.agent(i < p ? Role::kPursuer : Role::kEvader, i < p ? i : i - p).radius; };
   Rng rng(seed);
-  const auto unit = [&rng] { return unit_uniform(rng); };
   std::vector<Vec3> placed;
-  std::vector<double> radii;
   placed.reserve(std::size_t(n));
   for (int i = 0; i < n; ++i) {
-    const bool pursuer = i < p;
-    const double radius = g.agent(pursuer ? Role::kPursuer : Role::kEvader, pursuer ? i : i - p).radius;
-    const double keep = radius + kRandomStartClearance;
+    const double keep = radius(i) + kRandomStartClearance;
     const Box box = arena.bounds().shrunk(keep);
-    bool found = false;
     if ((box.hi.array() < box.lo.array()).any()) return like;
-    for (int d = 0; d < kDraws && !found; ++d) {
-      const Vec3 x(box.lo.x() + unit() * (box.hi.x() - box.lo.x()), box.lo.y() + unit() * (box.hi.y() - box.lo.y()),
-                   box.lo.z() + unit() * (box.hi.z() - box.lo.z()));
-      if (arena.nearest_shape(x).distance < keep || arena.below_solid_terrain(x)) continue;
+    // Clear of the map, and of the agents placed so far: their radii apart within a role, the gap across.
+    const auto fits = [&](const Vec3& x) {
+      if (arena.nearest_shape(x).distance < keep || arena.below_solid_terrain(x)) return false;
       if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && movers->nearest(x, 0.0, keep).mover >= 0)
-        continue;
-      found = true;
-      for (int j = 0; j < i && found; ++j) {
-        const bool same_role = (j < p) == pursuer;
-        const double least = same_role ? radius + radii[std::size_t(j)] + kRandomStartClearance : gap;
-        found = same_role ? (x - placed[std::size_t(j)]).norm() >= least : (x - placed[std::size_t(j)]).norm() > least;
+        return false;
+      for (int j = 0; j < i; ++j) {
+        const double d = (x - placed[std::size_t(j)]).norm();
+        if ((j < p) == (i < p) ? d < keep + radius(j) : d <= gap) return false;
       }
-      if (found) {
-        placed.push_back(x);
-        radii.push_back(radius);
-      }
+      return true;
+    };
+    for (int d = 0; d < kDraws && placed.size() == std::size_t(i); ++d) {
+      const Vec3 x(uniform(rng, box.lo.x(), box.hi.x()), uniform(rng, box.lo.y(), box.hi.y()),
+                   uniform(rng, box.lo.z(), box.hi.z()));
+      if (fits(x)) placed.push_back(x);
     }
-    if (!found) return like;
+    if (placed.size() == std::size_t(i)) return like;
   }
   world::Scenario s;
   s.name = like.name;

@@ -8,12 +8,6 @@
 namespace peg3d::world {
 namespace {
 
-/// Uniform in [lo, hi] from the top 53 bits of one draw: portable, unlike std::uniform_real_distribution.
-double uniform(Rng& rng, double lo, double hi) {
-  const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-  return lo + (hi - lo) * u;
-}
-
 template <class Shape>
 bool keeps_clearance(const Shape& shape, const RandomObstacleSpec& spec, const std::vector<Vec3>& starts,
                      const std::vector<SphereObstacle>& spheres, const std::vector<CylinderObstacle>& cylinders) {
