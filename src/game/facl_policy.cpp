@@ -114,6 +114,12 @@ Steering FaclPolicy::act(const AgentView& view) {
     for (std::size_t j = 0; j < n; ++j) steering[l.outputs[j]] = l.u_explored[j];
   }
   have_fired_ = false;
+  // The offset is added outside the learner: the actor's TD update compares explored and greedy outputs of
+  // the same state, so the base turn cancels there.
+  if (model_->config().action == FaclAction::kTargetLineOffset) {
+    steering[0] += view.percept.target.azimuth;
+    steering[1] += view.percept.target.elevation;
+  }
   return {steering[0], steering[1]};
 }
 

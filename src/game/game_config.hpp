@@ -68,6 +68,16 @@ enum class FaclStructure {
 inline constexpr config::EnumNames<FaclStructure, 2> kFaclStructureNames{
     {{FaclStructure::kJoint, "joint"}, {FaclStructure::kPerAngle, "per-angle"}}};
 
+/// What a FACL actor's outputs are. A residual: with kTargetLineOffset a fresh actor (outputs 0) already flies
+/// pure pursuit (a pursuer) or straight away from its pursuer (an evader, away-from-pursuer reference), and
+/// learning shapes corrections to that instead of the whole turn.
+enum class FaclAction {
+  kHeadingChange,     ///< the paper: the outputs are the changes of azimuth and polar angle
+  kTargetLineOffset,  ///< the outputs are added to the turn onto the line the target angles are measured from
+};
+inline constexpr config::EnumNames<FaclAction, 2> kFaclActionNames{
+    {{FaclAction::kHeadingChange, "heading-change"}, {FaclAction::kTargetLineOffset, "target-line-offset"}}};
+
 enum class RewardKind {
   kPotentialField,  ///< paper eq. (15)-(18): w_r r_O + w_a r_PE + r_s
   kDistanceOnly,    ///< baseline: the normalised change of d_PE, (d(t) - d(t+1)) / ((vP + vE) dt)
@@ -194,6 +204,7 @@ struct AgentConfig {
   RewardConfig reward;
   fuzzy::FaclConfig facl;
   FaclStructure structure = FaclStructure::kPerAngle;
+  FaclAction action = FaclAction::kHeadingChange;
   double pn_gain = 3.0;  ///< proportional-navigation constant N, > 0
   bool operator==(const AgentConfig&) const = default;
 };
@@ -358,6 +369,8 @@ void visit_fields(V& v, C& c) {
   v.section("reward", c.reward, "reward terms");
   v.section("facl", c.facl, "FACL learning rates and exploration");
   v.choice("structure", c.structure, kFaclStructureNames, "one joint learner (the paper) or one per steering angle");
+  v.choice("action", c.action, kFaclActionNames,
+           "the actor's outputs: the heading change (the paper) or an offset to the turn onto the target line");
   v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
             "structure", "per-angle", "needs observation.angles = azimuth-elevation");

@@ -3,12 +3,13 @@
 // bases) and every channel's actor and critic consequents. Doubles are written with round-trip precision,
 // so a loaded model acts exactly as the saved one.
 //
-//   {"format": "peg3d-policy", "version": 4, "role": "pursuer", "config": {...AgentConfig, every field...},
+//   {"format": "peg3d-policy", "version": 5, "role": "pursuer", "config": {...AgentConfig, every field...},
 //    "channels": [{"rules": 625, "actions": 1, "actor": [...], "critic": [...]}, ...]}
 //
-// Versions: 2 added config.guard.faces, 3 config.guard.look_ahead, 4 config.observation.opponent_heading.
-// Older documents still load, read as their agents played: without the opponent's heading (false), without
-// the look ahead (guard.look_ahead = 0) and, version 1, without guard.faces (false).
+// Versions: 2 added config.guard.faces, 3 config.guard.look_ahead, 4 config.observation.opponent_heading,
+// 5 config.action. Older documents still load, read as their agents played: actions as heading changes,
+// without the opponent's heading (false), without the look ahead (guard.look_ahead = 0) and, version 1,
+// without guard.faces (false).
 
 #include <filesystem>
 #include <memory>
@@ -23,7 +24,7 @@
 namespace peg3d::game {
 
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
-inline constexpr int kPolicyVersion = 4;
+inline constexpr int kPolicyVersion = 5;
 /// The oldest version this build reads.
 inline constexpr int kOldestPolicyVersion = 1;
 

@@ -1,5 +1,6 @@
 #include "game/facl_policy.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 
@@ -98,6 +99,37 @@ TEST(FaclPolicy, ActDependsOnlyOnItsViewAndTheTables) {
   }
 }
 
+
+TEST(FaclPolicy, ATargetLineOffsetAddsTheTurnOntoTheLineAndLearnsTheSame) {
+  // Two policies, one per action kind, with the same exploration seed and the same transitions: the tables
+  // they learn are equal (the base turn cancels in the TD update), and each act of the offset policy is the
+  // other's plus the percept's target errors. A fresh offset actor therefore flies pure pursuit.
+  AgentConfig c = agent_preset("robust", Role::kPursuer);
+  c.action = FaclAction::kHeadingChange;
+  AgentConfig o = c;
+  o.action = FaclAction::kTargetLineOffset;
+  FaclPolicy plain(c, Role::kPursuer, 4), offset(o, Role::kPursuer, 4);
+  Rng r1(5), r2(5);
+  train_randomly(plain, r1, 500);
+  train_randomly(offset, r2, 500);
+  for (int ch = 0; ch < plain.model().channels(); ++ch) {
+    const auto a = plain.model().tables(ch).actor_table(), b = offset.model().tables(ch).actor_table();
+    ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << ch;
+  }
+  plain.begin_episode({}, false);
+  offset.begin_episode({}, false);
+  const FaclModel fresh_model(o, Role::kPursuer);
+  FaclPolicy fresh{std::shared_ptr<const FaclModel>(std::make_shared<FaclModel>(fresh_model))};
+  fresh.begin_episode({}, false);
+  for (int i = 0; i < 50; ++i) {
+    const AgentView v = random_view(r1);
+    const Steering p = plain.act(v), q = offset.act(v), f = fresh.act(v);
+    EXPECT_DOUBLE_EQ(q.d_alpha, p.d_alpha + v.percept.target.azimuth);
+    EXPECT_DOUBLE_EQ(q.d_theta, p.d_theta + v.percept.target.elevation);
+    EXPECT_EQ(f.d_alpha, v.percept.target.azimuth);
+    EXPECT_EQ(f.d_theta, v.percept.target.elevation);
+  }
+}
 TEST(FaclPolicy, TeammatesShareOneModelAndFrozenModelsCannotLearn) {
   auto model = std::make_shared<FaclModel>(agent_preset("peg3d", Role::kPursuer), Role::kPursuer);
   FaclPolicy a(model, 1), b(model, 2);
@@ -165,14 +197,26 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"]["observation"].erase("opponent_heading");
   expect_error(d, "config.observation.opponent_heading");  // version 4 documents have it
+  d = doc;
+  d["config"].erase("action");
+  expect_error(d, "config.action");  // version 5 documents have it
 }
 
 TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
-  // Version 1 predates guard.faces, guard.look_ahead and observation.opponent_heading, version 2 the look
-  // ahead, version 3 the opponent's heading; their agents played without them.
+  // Version 1 predates guard.faces, guard.look_ahead, observation.opponent_heading and action, version 2
+  // the look ahead, version 3 the opponent's heading, version 4 the action; their agents played without them
+  // (actions as heading changes).
+  AgentConfig offset = agent_preset("peg3d", Role::kEvader);
+  offset.action = FaclAction::kTargetLineOffset;
+  nlohmann::json saved = policy_to_json(FaclModel(offset, Role::kEvader));
+  EXPECT_EQ(saved["version"], 5);
+  EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().action, FaclAction::kTargetLineOffset);
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
-  EXPECT_EQ(doc["version"], 4);
+  doc["version"] = 4;
+  doc["config"].erase("action");
+  const auto four = policy_from_json(doc, "p.json", Role::kEvader);
+  EXPECT_EQ(four->config().action, FaclAction::kHeadingChange);
   doc["version"] = 3;
   doc["config"]["observation"].erase("opponent_heading");
   const auto three = policy_from_json(doc, "p.json", Role::kEvader);
