@@ -144,8 +144,8 @@ TEST(GameConfig, PresetsDifferWhereDocumented) {
   EXPECT_EQ(baseline.evader, peg3d.evader);  // same opponent
   EXPECT_EQ(peg3d.team, TeamConfig{});       // one against one needs no team settings
   // robust: peg3d's agents with the opponent pool, a pursuer less repelled by the walls that sees where the
-  // evader is heading, the team capture reward, random starts and pursuers that learn in the first half of
-  // the training only (docs/learning.md); its evader is peg3d's.
+  // evader is heading and learns an offset to pure pursuit, the team capture reward, random starts and
+  // pursuers that learn in the first half of the training only (docs/learning.md); its evader is peg3d's.
   const GameConfig robust = preset("robust");
   TrainingConfig training;
   training.procedure = TrainingProcedure::kOpponentPool;
@@ -160,6 +160,7 @@ TEST(GameConfig, PresetsDifferWhereDocumented) {
   AgentConfig pursuer = peg3d.pursuer;
   pursuer.reward.w_r = 1.0;
   pursuer.observation.opponent_heading = true;
+  pursuer.action = FaclAction::kTargetLineOffset;
   EXPECT_EQ(robust.pursuer, pursuer);
   EXPECT_EQ(peg3d.pursuer.action, FaclAction::kHeadingChange);
   EXPECT_EQ(robust.evader, peg3d.evader);
