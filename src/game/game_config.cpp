@@ -69,9 +69,9 @@ AgentConfig agent_preset(const std::string& name, Role role) {
     // instead of 96.7 %); the evader's margins against pure pursuit and PN shrank with that input, so not it.
     a.observation.opponent_heading = role == Role::kPursuer;
     // The pursuer learns a correction to pure pursuit instead of the whole turn: within 10 m of their target,
-    // learned pursuers flew a median 21 degrees off the line of sight and let evader teams run out the clock
-    // (docs/learning.md, "The pursuer's turn as an offset to pure pursuit"). The evader's offset to straight
-    // flight was worse against the Apollonius interceptor, so not it.
+    // learned pursuers flew a median 13 degrees off the line of sight (pure pursuit: 1) and let evader teams
+    // run out the clock (docs/learning.md, "The pursuer's turn as an offset to pure pursuit"). The evader's
+    // offset to straight flight was worse against the Apollonius interceptor, so not it.
     if (role == Role::kPursuer) a.action = FaclAction::kTargetLineOffset;
     return a;
   }
