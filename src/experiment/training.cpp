@@ -134,15 +134,15 @@ void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& 
     } else {
       const OpponentPool::Entry& entry = entries[std::size_t(k)];
       played = &entry.sim;
-      const bool pursuers_learning = entry.learner == game::Role::kPursuer;
+      const bool trains_pursuers = entry.learner == game::Role::kPursuer;
       auto& opponent = classic[std::size_t(k)];
       if (!opponent) {
         opponent = std::make_unique<game::Lineup>();
-        game::add_configured(*opponent, entry.sim.config(), pursuers_learning ? game::Role::kEvader : game::Role::kPursuer,
-                             pursuers_learning ? evaders : pursuers, stream(TrialStream::kPoolOpponents, std::size_t(k)));
+        game::add_configured(*opponent, entry.sim.config(), trains_pursuers ? game::Role::kEvader : game::Role::kPursuer,
+                             trains_pursuers ? evaders : pursuers, stream(TrialStream::kPoolOpponents, std::size_t(k)));
       }
-      for (int i = 0; i < p; ++i) playing.push_back(pursuers_learning ? &lineup[i] : &(*opponent)[i]);
-      for (int j = 0; j < q; ++j) playing.push_back(pursuers_learning ? &(*opponent)[j] : &lineup[pursuers + j]);
+      for (int i = 0; i < p; ++i) playing.push_back(trains_pursuers ? &lineup[i] : &(*opponent)[i]);
+      for (int j = 0; j < q; ++j) playing.push_back(trains_pursuers ? &(*opponent)[j] : &lineup[pursuers + j]);
     }
     results.push_back(game::play(*played, state, *scenario, playing, /*learning=*/true,
                                  stream(TrialStream::kTrainingEpisode, std::size_t(e))));

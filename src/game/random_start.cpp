@@ -44,7 +44,7 @@ world::Scenario random_start(const Sim& sim, const world::Scenario& like, std::u
   s.line = like.line;
   s.pursuers.resize(like.pursuers.size());
   s.evaders.resize(like.evaders.size());
-  for (int i = 0; i < n; ++i) (i < p ? s.pursuers[std::size_t(i)] : s.evaders[std::size_t(i - p)]).position = placed[std::size_t(i)];
+  for (int i = 0; i < n; ++i) s.start(i).position = placed[std::size_t(i)];
   return s;
 }
 

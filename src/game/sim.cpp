@@ -42,11 +42,6 @@ void check_counts(const world::Scenario& s) {
   check(s.evaders.size(), "evader");
 }
 
-const world::AgentStart& start_of(const world::Scenario& s, int i) {
-  const int p = static_cast<int>(s.pursuers.size());
-  return i < p ? s.pursuers[static_cast<std::size_t>(i)] : s.evaders[static_cast<std::size_t>(i - p)];
-}
-
 bool pair_collides(AgentCollisions rule, Role a, Role b) {
   switch (rule) {
     case AgentCollisions::kNone: return false;
@@ -66,7 +61,7 @@ void check_overlaps(const Sim& sim, world::CollisionWorld& world, const world::S
   const std::filesystem::path& file = sim.arena().map().source;
   for (int i = 0; i < n; ++i) {
     const Role role = i < p ? Role::kPursuer : Role::kEvader;
-    const world::AgentStart& a = start_of(s, i);
+    const world::AgentStart& a = s.start(i);
     const double radius = g.agent(role, i < p ? i : i - p).radius;
     if (sim.arena().below_solid_terrain(positions[std::size_t(i)])) {
       throw StartError(file, a.line, a.field.empty() ? "scenario " + s.name : a.field,
@@ -109,7 +104,7 @@ void start_positions(const Sim& sim, const world::Scenario& s, std::vector<Vec3>
   for (int i = 0; i < n; ++i) {
     const Role role = i < p ? Role::kPursuer : Role::kEvader;
     const double radius = sim.config().agent(role, i < p ? i : i - p).radius;
-    out[std::size_t(i)] = sim.arena().bounds().shrunk(radius).clamp(start_of(s, i).position);
+    out[std::size_t(i)] = sim.arena().bounds().shrunk(radius).clamp(s.start(i).position);
   }
 }
 
@@ -293,7 +288,7 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
         break;
       }
     }
-    a.kinematics.heading = start_of(scenario, i).heading.value_or(initial);
+    a.kinematics.heading = scenario.start(i).heading.value_or(initial);
   }
 
   for (int i = 0; i < n; ++i) st.collider.place_agent(i, st.agents[std::size_t(i)].kinematics.position);

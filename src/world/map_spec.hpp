@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <memory>
@@ -119,6 +120,12 @@ struct Scenario {
   int line = 0;  ///< line of the scenario in the map file (0: unknown)
 
   int agents() const { return static_cast<int>(pursuers.size() + evaders.size()); }
+  /// The i-th agent's start, 0 <= i < agents(): the pursuers first, then the evaders (the game's agent order).
+  const AgentStart& start(int i) const {
+    const int p = static_cast<int>(pursuers.size());
+    return i < p ? pursuers[static_cast<std::size_t>(i)] : evaders[static_cast<std::size_t>(i - p)];
+  }
+  AgentStart& start(int i) { return const_cast<AgentStart&>(std::as_const(*this).start(i)); }
 };
 
 /// Whether `name` may name a scenario (and so a result file): 1 to 64 characters from [A-Za-z0-9._-], not

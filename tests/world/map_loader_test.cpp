@@ -210,6 +210,10 @@ TEST(WorldMapLoader, TeamsListTheirAgentsWithWhereEachIsWritten) {
   EXPECT_EQ(s.evaders[1].field, "scenarios[0].evaders[1].position");
   EXPECT_GT(s.evaders[1].line, s.pursuers[2].line);
   EXPECT_EQ(m.scenarios[2].agents(), 4);
+  // Agents in the game's order: the pursuers, then the evaders.
+  EXPECT_EQ(&s.start(2), &s.pursuers[2]);
+  EXPECT_EQ(&s.start(3), &s.evaders[0]);
+  EXPECT_EQ(&s.start(4), &s.evaders[1]);
   // Obstacles keep their clearance from every agent's start.
   for (const auto& sc : m.scenarios) {
     for (const auto* list : {&sc.pursuers, &sc.evaders}) {
