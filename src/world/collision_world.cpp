@@ -75,6 +75,48 @@ struct OverlapCallback : btCollisionWorld::ContactResultCallback {
   }
 };
 
+/// Every obstacle contact of a probe sphere about a query point, the nearest ones kept in a caller's buffer.
+struct NearCallback : btCollisionWorld::ContactResultCallback {
+  const btCollisionObject* probe;
+  double range;
+  std::span<NearPoint> out;
+  int count = 0;
+
+  NearCallback(const btCollisionObject* p, double r, std::span<NearPoint> o) : probe(p), range(r), out(o) {
+    m_collisionFilterGroup = kAgentGroup;
+    m_collisionFilterMask = kObstacleGroup;
+  }
+  btScalar addSingleResult(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int, int index0,
+                           const btCollisionObjectWrapper* w1, int, int index1) override {
+    if (!(cp.getDistance() < 0.0)) return 0;  // beyond the range (Bullet reports near misses too)
+    const bool probe_is_a = w0->getCollisionObject() == probe;
+    const btCollisionObject* obstacle = probe_is_a ? w1->getCollisionObject() : w0->getCollisionObject();
+    NearPoint n;
+    // The probe's radius is the range, so its contact distance is the centre's distance less the range.
+    n.distance = std::max(range + cp.getDistance(), 0.0);
+    n.point = vec(probe_is_a ? cp.getPositionWorldOnB() : cp.getPositionWorldOnA());
+    n.kind = static_cast<ObstacleKind>(obstacle->getUserIndex());
+    n.obstacle_id = obstacle->getUserIndex2();
+    n.triangle = n.kind == ObstacleKind::kMesh ? (probe_is_a ? index1 : index0) : -1;
+    insert(n);
+    return 0;
+  }
+  // Sorted insertion into the nearest out.size(); the order is total, so it does not depend on Bullet's.
+  void insert(const NearPoint& n) {
+    auto before = [](const NearPoint& a, const NearPoint& b) {
+      if (a.distance != b.distance) return a.distance < b.distance;
+      if (a.kind != b.kind) return a.kind < b.kind;
+      if (a.obstacle_id != b.obstacle_id) return a.obstacle_id < b.obstacle_id;
+      return a.triangle < b.triangle;
+    };
+    const int capacity = static_cast<int>(out.size());
+    if (capacity == 0 || (count == capacity && !before(n, out[std::size_t(capacity - 1)]))) return;
+    int i = count < capacity ? count++ : capacity - 1;
+    for (; i > 0 && before(n, out[std::size_t(i - 1)]); --i) out[std::size_t(i)] = out[std::size_t(i - 1)];
+    out[std::size_t(i)] = n;
+  }
+};
+
 }  // namespace
 
 struct CollisionWorld::Impl {
@@ -96,12 +138,18 @@ struct CollisionWorld::Impl {
   std::shared_ptr<const TerrainShapes> terrain;  // the Arena's, shared
   std::vector<std::unique_ptr<btCollisionObject>> obstacles;
   std::vector<Agent> agents;
+  // obstacles_near's probe: a sphere whose radius is the range, outside the broadphase like the agents.
+  btSphereShape probe_shape{1.0};
+  btCollisionObject probe;
   long long sweeps = 0;
 
   Impl(std::shared_ptr<const Arena> a, const CollisionOptions& o)
       : arena(std::move(a)), options(o), terrain(arena->terrain_shapes()) {
     // Static obstacles never move: do not refresh their AABBs on every query.
     world.setForceUpdateAllAabbs(false);
+    probe.setCollisionShape(&probe_shape);
+    probe.setCollisionFlags(btCollisionObject::CF_KINEMATIC_OBJECT);
+    probe.setUserIndex(-1);
     const MapSpec& spec = arena->map();
     for (std::size_t i = 0; i < spec.spheres.size(); ++i) {
       const SphereObstacle& s = spec.spheres[i];
@@ -165,6 +213,14 @@ struct CollisionWorld::Impl {
     c.normal = vec(cb.normal.normalized());
     c.penetration = -cb.depth;
     return c;
+  }
+
+  int near(const Vec3& p, double range, std::span<NearPoint> out) {
+    probe_shape.setUnscaledRadius(range);
+    probe.setWorldTransform(btTransform(btQuaternion::getIdentity(), bt(p)));
+    NearCallback cb(&probe, range, out);
+    world.contactTest(&probe, cb);
+    return cb.count;
   }
 
   std::optional<Contact> move(int id, const Vec3& to) {
@@ -255,6 +311,12 @@ std::optional<Contact> CollisionWorld::move_agent(int agent, const Vec3& to) {
 std::optional<Contact> CollisionWorld::overlap(int agent) const {
   assert(agent >= 0 && agent < agent_count());
   return impl_->overlap(agent);
+}
+
+int CollisionWorld::obstacles_near(const Vec3& p, double range, std::span<NearPoint> out) {
+  assert(p.allFinite());
+  assert(range > 0.0);
+  return impl_->near(p, range, out);
 }
 
 Vec3 CollisionWorld::agent_position(int agent) const { return impl_->agents[std::size_t(agent)].position; }

@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 
 #include "geometry/vector.hpp"
 #include "world/arena.hpp"
@@ -26,6 +27,15 @@ struct Contact {
   Vec3 point = Vec3::Zero();                 ///< m, contact point on the obstacle's surface
   Vec3 normal = Vec3::UnitZ();               ///< unit, obstacle surface normal at the contact, towards the agent
   double penetration = 0.0;                  ///< m, >= 0: overlap depth when the agent already intersects
+};
+
+/// A static obstacle's surface point near a query point (CollisionWorld::obstacles_near).
+struct NearPoint {
+  Vec3 point = Vec3::Zero();                  ///< m, on the obstacle's surface, nearest to the query point
+  double distance = 0.0;                      ///< m, >= 0, from the query point to `point`
+  ObstacleKind kind = ObstacleKind::kSphere;  ///< kSphere, kCylinder or kMesh
+  int obstacle_id = -1;                       ///< index into MapSpec::spheres / cylinders / meshes by kind
+  int triangle = -1;                          ///< triangle index within the mesh for kMesh, else -1
 };
 
 /// Options of a CollisionWorld.
@@ -58,6 +68,13 @@ class CollisionWorld {
   std::optional<Contact> move_agent(int agent, const Vec3& to);
   /// The deepest overlap of the agent's sphere with an obstacle at its current position, if any.
   std::optional<Contact> overlap(int agent) const;
+
+  /// The static obstacles whose surface lies within `range` m (> 0) of p, exactly (Bullet's closest points, not
+  /// the voxel field): a sphere's or cylinder's nearest surface point, and a mesh's nearest point on each of
+  /// its triangles within range. Writes the nearest out.size() of them to `out`, nearest first (ties in
+  /// kind, obstacle and triangle order), and returns how many it wrote. Moving obstacles do not count. No
+  /// allocation.
+  int obstacles_near(const Vec3& p, double range, std::span<NearPoint> out);
 
   Vec3 agent_position(int agent) const;
   double agent_radius(int agent) const;

@@ -2,6 +2,7 @@
 // safely otherwise, never tunnel through thin walls or ridges in one long step, never collide with each
 // other, and the distance-field early-out never changes an answer.
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -191,6 +192,64 @@ TEST(WorldCollision, StoppedAgentStaysOutside) {
   EXPECT_LT((world.agent_position(a) - stopped).norm(), kPlaceTolerance);
   // Sliding away along the surface is allowed.
   EXPECT_FALSE(world.move_agent(a, world.agent_position(a) + Vec3(0, 2, 0)).has_value());
+}
+
+TEST(WorldCollision, ObstaclesNearAPointAreTheExactNearestPointsNearestFirst) {
+  MapSpec spec = empty_spec(Vec3::Constant(10), 0.2);
+  spec.spheres.push_back({Vec3(7, 7, 7), 0.5});  // id 0, out of range
+  spec.spheres.push_back({Vec3(5, 3, 5), 1.0});  // id 1
+  spec.cylinders.push_back({Vec3(2, 2, 0), 0.5, 6.0});
+  CollisionWorld world(arena_with(spec));
+  std::array<NearPoint, 4> near;
+  // sqrt(3.25) - 1 m from the sphere's surface, 1.0 m from the cylinder's side; the decoy is 5.6 m away.
+  const Vec3 p(3.5, 2, 5), centre(5, 3, 5);
+  const double to_sphere = (p - centre).norm();
+  const int n = world.obstacles_near(p, 2.0, near);
+  ASSERT_EQ(n, 2);
+  EXPECT_EQ(near[0].kind, ObstacleKind::kSphere);
+  EXPECT_EQ(near[0].obstacle_id, 1);
+  EXPECT_EQ(near[0].triangle, -1);
+  EXPECT_NEAR(near[0].distance, to_sphere - 1.0, 1e-6);
+  EXPECT_LT((near[0].point - (centre + (p - centre) / to_sphere)).norm(), 1e-6);
+  EXPECT_EQ(near[1].kind, ObstacleKind::kCylinder);
+  EXPECT_EQ(near[1].obstacle_id, 0);
+  EXPECT_NEAR(near[1].distance, 1.0, 1e-6);
+  EXPECT_LT((near[1].point - Vec3(2.5, 2, 5)).norm(), 1e-6);
+  // A shorter range leaves the cylinder out; a buffer of one keeps the nearest.
+  EXPECT_EQ(world.obstacles_near(p, 0.9, near), 1);
+  EXPECT_EQ(world.obstacles_near(p, 2.0, std::span(near).first(1)), 1);
+  EXPECT_EQ(near[0].kind, ObstacleKind::kSphere);
+  // Over the cylinder's top the nearest point is on the top disc.
+  ASSERT_EQ(world.obstacles_near(Vec3(2.2, 1.9, 6.4), 0.5, near), 1);
+  EXPECT_NEAR(near[0].distance, 0.4, 1e-6);
+  EXPECT_LT((near[0].point - Vec3(2.2, 1.9, 6.0)).norm(), 1e-6);
+  EXPECT_EQ(world.obstacles_near(Vec3(8, 2, 2), 1.0, near), 0);
+}
+
+TEST(WorldCollision, ObstaclesNearAPointInAMeshCreaseAreEachSideOfIt) {
+  // The ridge's valley at x = 6: the flat strip z = 0 and the slope z = x - 6 meet there.
+  MapSpec spec = empty_spec(Vec3(20, 10, 8), 0.2);
+  spec.meshes.push_back(testing::mesh_entry("ridge.obj"));
+  CollisionWorld world(arena_with(spec));
+  std::array<NearPoint, 8> near;
+  const Vec3 p(6.2, 5, 0.5);
+  const int n = world.obstacles_near(p, 0.6, near);
+  ASSERT_GE(n, 2);
+  // The slope first: (x - z - 6) / sqrt(2) = -0.3 / sqrt(2) from its plane, the foot inside the triangle.
+  EXPECT_EQ(near[0].kind, ObstacleKind::kMesh);
+  EXPECT_GE(near[0].triangle, 0);
+  EXPECT_NEAR(near[0].distance, 0.3 / std::sqrt(2.0), 1e-6);
+  EXPECT_LT((near[0].point - Vec3(6.35, 5, 0.35)).norm(), 1e-6);
+  // And the flat strip, whose nearest point is on the crease.
+  bool flat = false;
+  for (int i = 0; i < n; ++i) {
+    EXPECT_LT(near[std::size_t(i)].distance, 0.6);
+    if (i > 0) {
+      EXPECT_GE(near[std::size_t(i)].distance, near[std::size_t(i - 1)].distance);
+    }
+    flat |= std::abs(near[std::size_t(i)].distance - std::sqrt(0.04 + 0.25)) < 1e-6;
+  }
+  EXPECT_TRUE(flat);
 }
 
 TEST(WorldCollision, ArenaFacesAreNotCollisions) {
