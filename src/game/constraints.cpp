@@ -1,6 +1,10 @@
 #include "game/constraints.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
+
+#include "geometry/half_spaces.hpp"
 
 namespace peg3d::game {
 
@@ -143,17 +147,60 @@ std::optional<Cone> second_obstacle_cone(const ConstraintInputs& in, const Vec3&
 // one on each side, the nearest alternating between them step by step). Then the motion loses its part
 // towards the nearest obstacle, as the clamp removes the motion into a face: for that step the agent slides
 // past, slower.
+//
+// The field's nearest is one voxel of one obstacle: between two trunks it may name the other one, and the
+// step then closes on this one. The last resort holds against every obstacle point in `near`, exact: the
+// step s m keeps each at least the clearance c = radius + kHoldMargin away, to first order,
+//     s m . n <= d - c          (n towards the point, d its distance),
+// which holds exactly for a convex piece (its distance is convex along the step): spheres, cylinders and each
+// triangle of a mesh. It only binds when a step would end within c; then the motion is the nearest one that
+// keeps every point's clearance, the stop_distance rule above and the arena (the clamp would move it after).
 void hold_clear_of_obstacle(const ConstraintInputs& in, Vec3& m) {
   const ObstacleGuard& g = in.config.guard;
-  if (!g.enabled || !in.field.found || !(in.field.distance < g.stop_distance)) return;
-  const Vec3 to = in.field.point - in.self.position;
-  if (to.squaredNorm() == 0.0) return;
-  const Vec3 n = to.normalized();
-  const double approach = m.dot(n);
-  if (approach > 0.0) m -= approach * n;
+  if (!g.enabled) return;
+  const Vec3& p = in.self.position;
+  const Vec3 requested = m;
+  std::optional<HalfSpace> nearest;
+  if (in.field.found && in.field.distance < g.stop_distance) {
+    const Vec3 to = in.field.point - p;
+    if (to.squaredNorm() > 0.0) {
+      nearest = HalfSpace{to.normalized(), 0.0};
+      const double approach = m.dot(nearest->normal);
+      if (approach > 0.0) m -= approach * nearest->normal;
+    }
+  }
+  const double step = in.config.speed * in.dt;
+  if (in.near.empty() || !(step > 0.0)) return;
+  assert(in.near.size() <= std::size_t(kMaxHeldPoints));
+  const double clearance = in.config.radius + kHoldMargin;
+  std::array<HalfSpace, kMaxHeldPoints + 4> h;
+  std::size_t k = 0;
+  for (const ObstacleSense& o : in.near) {
+    const Vec3 to = o.point - p;
+    const double d = to.norm();
+    if (d > 0.0) h[k++] = HalfSpace{to / d, std::max(d - clearance, 0.0) / step};
+  }
+  // Checked where the clamp puts the step: it removes the motion into a face, and what remains may close on a
+  // point that the motion before it kept clear of.
+  const Vec3 moved = (in.bounds.clamp(p + step * m) - p) / step;
+  if (std::all_of(h.begin(), h.begin() + k, [&](const HalfSpace& s) { return moved.dot(s.normal) <= s.offset; })) {
+    return;
+  }
+  if (nearest) h[k++] = *nearest;
+  for (int a = 0; a < 3; ++a) {
+    // The arena as half-spaces of the motion, where one step could reach a face.
+    const double below = (p[a] - in.bounds.lo[a]) / step, above = (in.bounds.hi[a] - p[a]) / step;
+    if (below < 1.0) h[k++] = HalfSpace{-Vec3::Unit(a), std::max(below, 0.0)};
+    else if (above < 1.0) h[k++] = HalfSpace{Vec3::Unit(a), std::max(above, 0.0)};
+  }
+  m = nearest_within(requested, std::span<const HalfSpace>(h.data(), k));
 }
 
 }  // namespace
+
+double hold_range(const AgentConfig& config, double dt) {
+  return config.radius + kHoldMargin + config.speed * dt;
+}
 
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving) {
   const AgentConfig& c = in.config;

@@ -7,6 +7,7 @@
 // Each is a free function over plain data, tested on its own; constrained_heading() composes the first three.
 
 #include <optional>
+#include <span>
 
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
@@ -89,7 +90,20 @@ struct ConstraintInputs {
   const ObstacleSense& field;   ///< the map's nearest obstacle (arena faces excluded)
   const Box& bounds;            ///< the arena shrunk by the agent's radius (where its centre may go)
   const ObstacleProbe* probe;   ///< for guard.look_ahead; null: the nearest obstacle only
+  /// The map's static obstacles within hold_range of the agent, measured exactly (at most kMaxHeldPoints), for
+  /// the last resort of the guard: no step ends nearer to one than the agent's radius plus kHoldMargin.
+  std::span<const ObstacleSense> near = {};
 };
+
+/// m added to the agent's radius: how near the guard's last resort lets a step end to an obstacle's surface.
+inline constexpr double kHoldMargin = 0.02;
+/// The most obstacle points ConstraintInputs::near may hold: the nearest ones count (a valley mesh gives up to
+/// 7 triangles within hold_range, a forest 1 trunk).
+inline constexpr int kMaxHeldPoints = 12;
+
+/// m from the agent's centre within which an obstacle's surface can end a step too near (radius + kHoldMargin +
+/// one step): the caller's `near` must hold every static obstacle point this near.
+double hold_range(const AgentConfig& config, double dt);
 
 /// The heading the agent takes for the command u: bounded steering, then the motion space (when enabled),
 /// then the guard (when enabled): the map's nearest obstacle and, with guard.faces, the arena's faces too
@@ -98,7 +112,8 @@ struct ConstraintInputs {
 /// steering bound. With `moving`, also stores the step's motion per unit speed there: direction(heading),
 /// computed once for the constraints and the move (the same bits as calling direction again), except that
 /// within stop_distance of the map's nearest obstacle its part towards that obstacle is removed (the turn
-/// bound can leave the heading still approaching; the agent slides past).
+/// bound can leave the heading still approaching; the agent slides past), and that, as a last resort, no step
+/// ends nearer than radius + kHoldMargin to an obstacle of `near` (the nearest such motion, inside the arena).
 Heading constrained_heading(const ConstraintInputs& in, const Steering& u, Vec3* moving = nullptr);
 
 }  // namespace peg3d::game

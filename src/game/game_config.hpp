@@ -178,7 +178,10 @@ struct RewardConfig {
 /// A safety layer on top of any policy: near an obstacle of the map (and, with `faces`, the arena boundary),
 /// headings that approach it are excluded, like the motion space excludes headings that lose ground. Within
 /// `stop_distance` of the obstacle the heading may not approach it at all; between `stop_distance` and
-/// `warn_distance` the excluded cone about the direction to the obstacle narrows linearly to nothing.
+/// `warn_distance` the excluded cone about the direction to the obstacle narrows linearly to nothing. As a
+/// last resort, measured on the exact shapes rather than the distance field, no step ends nearer than the
+/// radius plus kHoldMargin (game/constraints.hpp) to a static obstacle: an agent with the guard on does not
+/// run into one.
 struct ObstacleGuard {
   bool enabled = true;
   bool faces = false;          ///< the arena's floor, ceiling and walls are guarded against too (nearest of both)

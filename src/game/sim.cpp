@@ -420,6 +420,22 @@ void collide_agents(const Sim& sim, SimState& st) {
   }
 }
 
+// The static obstacles within the agent's hold_range, exactly (the collision world's closest points), for
+// the guard's last resort. Queried only where the field cannot rule them out.
+std::span<const ObstacleSense> near_obstacles(const Sim& sim, SimState& st, const AgentState& a) {
+  const AgentConfig& c = *a.config;
+  if (!c.guard.enabled) return {};
+  const Vec3& p = a.kinematics.position;
+  const double range = hold_range(c, sim.config().dt);
+  if (!(sim.arena().clearance_lower_bound(p) < range)) return {};
+  const int n = st.collider.obstacles_near(p, range, st.scratch.near);
+  for (int i = 0; i < n; ++i) {
+    const world::NearPoint& q = st.scratch.near[std::size_t(i)];
+    st.scratch.held[std::size_t(i)] = ObstacleSense{q.distance, q.point, true};
+  }
+  return {st.scratch.held.data(), std::size_t(n)};
+}
+
 }  // namespace
 
 const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> commands) {
@@ -450,8 +466,8 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
     const AgentState& o = st.agents[std::size_t(a.opponent)];
     st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
-    const ConstraintInputs in{*a.config,     a.role,       g.dt, a.kinematics, o.kinematics.position, o.config->speed,
-                              a.view.field, a.bounds,       &probe};
+    const ConstraintInputs in{*a.config,   a.role,   g.dt,   a.kinematics, o.kinematics.position, o.config->speed,
+                              a.view.field, a.bounds, &probe, near_obstacles(sim, st, a)};
     Vec3 d;
     const Heading h = constrained_heading(in, e.command, &d);
     st.scratch.next[std::size_t(i)] = advance(a.kinematics, h, d, a.config->speed, g.dt, a.bounds);

@@ -13,6 +13,7 @@
 //   -> move along the heading, clamped to the arena -> swept collision with the map's obstacles
 //   -> (optionally) swept collision between agents -> captures -> new observations -> rewards.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -21,6 +22,7 @@
 
 #include "core/error.hpp"
 #include "core/random.hpp"
+#include "game/constraints.hpp"
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
 #include "game/policy.hpp"
@@ -148,6 +150,8 @@ class SimState {
     std::vector<double> obstacle_before;  ///< d_O at the start of the step
     std::vector<Vec3> positions;          ///< start positions (reset)
     std::vector<Steering> commands;       ///< play()'s command buffer
+    std::array<world::NearPoint, kMaxHeldPoints> near;  ///< the static obstacles within an agent's hold_range
+    std::array<ObstacleSense, kMaxHeldPoints> held;     ///< the same, as the guard takes them
     double capture_reach2 = 0.0;          ///< squared distance beyond which no capture is possible
   } scratch;
 

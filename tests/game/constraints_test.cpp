@@ -2,6 +2,7 @@
 #include "game/constraints.hpp"
 
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -239,6 +240,59 @@ TEST(Constraints, WhenTheTurnBoundLeavesTheHeadingApproachingTheMotionHoldsOff) 
   const ConstraintInputs far_in{c, Role::kPursuer, 0.1, self, Vec3(15, 5, 5), 1.0, farther, bounds, nullptr};
   const Heading g = constrained_heading(far_in, {0.0, 0.0}, &moving);
   EXPECT_EQ(moving, direction(g));
+}
+
+TEST(Constraints, TheLastResortEndsNoStepNearerThanTheClearanceWhateverTheFieldNames) {
+  // The forest case: between two trunks, the field's nearest voxel is trunk B's, behind the agent, while it
+  // flies straight at trunk A, 0.30 m ahead (exact). Guarding B lets the step close 0.11 m on A, 0.06 m short
+  // of a collision. With A among the exact points near it, the step ends radius + margin from A, not nearer.
+  AgentConfig c = agent_preset("peg3d", Role::kPursuer);
+  c.motion_space = false;
+  const double step = c.speed * 0.1;
+  ASSERT_NEAR(step, 0.11, 1e-12);
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const KinematicState self{Vec3(5, 5, 5), Heading{0.0, kPi / 2}};
+  const Vec3 a(5.30, 5, 5), b(4.45, 5.1, 5);
+  const ObstacleSense field{(self.position - b).norm(), b, true};
+  const std::vector<ObstacleSense> near{{0.30, a, true}, {field.distance, b, true}};
+  ASSERT_LT(0.30, hold_range(c, 0.1));
+  const auto end_of_step = [&](std::span<const ObstacleSense> exact) {
+    const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 5, 5), 1.0, field, bounds, nullptr, exact};
+    Vec3 moving;
+    const Heading h = constrained_heading(in, {0.0, 0.0}, &moving);
+    EXPECT_NEAR(h.alpha, 0.0, 1e-12);  // away from B: the guard does not turn
+    return advance(self, h, moving, c.speed, 0.1, bounds).position;
+  };
+  EXPECT_NEAR((end_of_step({}) - a).norm(), 0.30 - step, 1e-12);  // the field's guard alone: on into A
+  const Vec3 held = end_of_step(near);
+  EXPECT_NEAR((held - a).norm(), c.radius + kHoldMargin, 1e-12);  // up to the clearance, no nearer
+  EXPECT_GT((held - b).norm(), field.distance);
+}
+
+TEST(Constraints, TheLastResortHoldsWhereTheClampMovesTheStep) {
+  // Against the wall x = 34.75, sliding tangentially past a trunk's point that lies off the wall: the motion
+  // keeps the clearance, but its part into the wall is what the clamp removes, and the rest closes on the
+  // trunk. The last resort keeps the step clear as the clamp leaves it: inside the arena and the clearance.
+  AgentConfig c = agent_preset("peg3d", Role::kPursuer);
+  c.motion_space = false;
+  const Box bounds = Box{Vec3::Zero(), Vec3(35, 35, 20)}.shrunk(c.radius);
+  const Vec3 at(34.75, 10, 5), point(34.6, 9.75, 5);
+  const Vec3 to = (point - at).normalized();
+  const Vec3 tangent(-to.y(), to.x(), 0.0);  // (0.86, -0.51, 0): into the wall, along the trunk
+  ASSERT_GT(tangent.x(), 0.0);
+  const KinematicState self{at, heading_of(tangent)};
+  const double d = (point - at).norm();
+  const std::vector<ObstacleSense> near{{d, point, true}};
+  const ObstacleSense field;  // the field senses nothing within warn_distance here
+  const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 0, 5), 1.0, field, bounds, nullptr, near};
+  Vec3 moving;
+  const Heading h = constrained_heading(in, {0.0, 0.0}, &moving);
+  const Vec3 end = advance(self, h, moving, c.speed, 0.1, bounds).position;
+  EXPECT_GE((end - point).norm(), c.radius + kHoldMargin - 1e-12);
+  EXPECT_LE(end.x(), bounds.hi.x());
+  // Unclamped, the tangent would have kept the distance: only the clamp closed on the trunk.
+  const Vec3 unheld = advance(self, h, direction(h), c.speed, 0.1, bounds).position;
+  EXPECT_LT((unheld - point).norm(), c.radius + kHoldMargin);
 }
 
 TEST(Constraints, WithFacesTheGuardKeepsClearOfTheArenasFacesToo) {

@@ -48,6 +48,11 @@ TEST(GameNoAllocation, OneAgainstOneTrainingAndEvaluation) {
   for (const char* name : {"peg3d", "paper", "baseline"}) expect_no_allocation("maps/paper.yaml", name, AgentCollisions::kNone);
 }
 
+TEST(GameNoAllocation, ForestTrainingAndEvaluation) {
+  // Among the trunks the guard's last resort queries Bullet for the obstacles near an agent on many steps.
+  expect_no_allocation("maps/forest.yaml", "peg3d", AgentCollisions::kNone);
+}
+
 TEST(GameNoAllocation, MovingObstacleMapsTrainingAndEvaluation) {
   expect_no_allocation("maps/patrol.yaml", "peg3d", AgentCollisions::kNone);
   expect_no_allocation("maps/rockfall.yaml", "peg3d", AgentCollisions::kNone);
