@@ -116,10 +116,9 @@ std::vector<game::Waypoint> read_waypoints(const std::filesystem::path& file) { 
 
 std::string scenario_label(const world::Scenario& s, int i) {
   const int p = static_cast<int>(s.pursuers.size());
-  const bool pursuer = i < p;
-  const int count = pursuer ? p : static_cast<int>(s.evaders.size());
-  const char* role = pursuer ? "pursuer" : "evader";
-  return count == 1 ? std::string(role) : fmt::format("{}{}", role, pursuer ? i : i - p);
+  const game::Role role = game::role_at(i, p);
+  const std::size_t count = role == game::Role::kPursuer ? s.pursuers.size() : s.evaders.size();
+  return count == 1 ? std::string(to_string(role)) : fmt::format("{}{}", to_string(role), game::rank_at(i, p));
 }
 
 CollisionCase load_case(const std::filesystem::path& path) {
@@ -231,7 +230,7 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   for (const AgentDriver& d : c.drivers) {
     bool found = false;
     for (int i = 0; i < n; ++i) {
-      const std::string ranked = fmt::format("{}{}", i < p ? "pursuer" : "evader", i < p ? i : i - p);
+      const std::string ranked = fmt::format("{}{}", to_string(game::role_at(i, p)), game::rank_at(i, p));
       if (d.label == scenario_label(*scenario, i) || d.label == ranked) {
         driver_of[std::size_t(i)] = &d;
         found = true;
@@ -245,8 +244,8 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   for (int i = 0; i < n; ++i) {
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr || d->kind != AgentDriver::Kind::kPolicy) continue;
-    const game::Role role = i < p ? game::Role::kPursuer : game::Role::kEvader;
-    const std::size_t rank = std::size_t(i < p ? i : i - p);
+    const game::Role role = game::role_at(i, p);
+    const std::size_t rank = std::size_t(game::rank_at(i, p));
     saved[std::size_t(i)] = load_policy(d->policy, role);
     auto& entries = role == game::Role::kPursuer ? config.pursuers : config.evaders;
     if (entries.size() <= rank) entries.resize(rank + 1, role == game::Role::kPursuer ? config.pursuer : config.evader);
@@ -255,8 +254,8 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   const game::Sim sim(arena, config);
   game::Lineup lineup;
   for (int i = 0; i < n; ++i) {
-    const game::Role role = i < p ? game::Role::kPursuer : game::Role::kEvader;
-    const int rank = i < p ? i : i - p;
+    const game::Role role = game::role_at(i, p);
+    const int rank = game::rank_at(i, p);
     const std::uint64_t seed = game::agent_seed(derive_seed(c.seed, {role == game::Role::kPursuer ? 1u : 2u}), rank);
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr) {

@@ -19,6 +19,11 @@ namespace peg3d::game {
 enum class Role { kPursuer, kEvader };
 const char* to_string(Role r);
 
+/// Agent i of a game's order (a scenario's, a SimState's): `pursuers` pursuers first, then the evaders. Its
+/// role, and its rank k among the agents of that role.
+constexpr Role role_at(int i, int pursuers) { return i < pursuers ? Role::kPursuer : Role::kEvader; }
+constexpr int rank_at(int i, int pursuers) { return i < pursuers ? i : i - pursuers; }
+
 /// Who drives an agent when the game is played by policies (an external caller may instead pass its own
 /// steering commands to step()).
 enum class PolicyKind {
@@ -274,6 +279,8 @@ struct GameConfig {
     const auto& list = r == Role::kPursuer ? pursuers : evaders;
     return k < static_cast<int>(list.size()) ? list[static_cast<std::size_t>(k)] : (r == Role::kPursuer ? pursuer : evader);
   }
+  /// The configuration of agent i of a game's order, `pursuers` pursuers first and then the evaders.
+  const AgentConfig& agent_at(int i, int pursuers) const { return agent(role_at(i, pursuers), rank_at(i, pursuers)); }
   /// Throws InvalidParameter naming the dotted field.
   void validate() const;
   bool operator==(const GameConfig&) const = default;

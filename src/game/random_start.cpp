@@ -13,7 +13,7 @@ world::Scenario random_start(const Sim& sim, const world::Scenario& like, std::u
   const world::Arena& arena = sim.arena();
   const double gap = std::max(g.training.random_start_gap, g.capture_distance);
   const int n = like.agents(), p = static_cast<int>(like.pursuers.size());
-  const auto radius = [&](int i) { return g.agent(i < p ? Role::kPursuer : Role::kEvader, i < p ? i : i - p).radius; };
+  const auto radius = [&](int i) { return g.agent_at(i, p).radius; };
   Rng rng(seed);
   std::vector<Vec3> placed;
   placed.reserve(std::size_t(n));

@@ -60,9 +60,9 @@ void check_overlaps(const Sim& sim, world::CollisionWorld& world, const world::S
   const int n = s.agents(), p = static_cast<int>(s.pursuers.size());
   const std::filesystem::path& file = sim.arena().map().source;
   for (int i = 0; i < n; ++i) {
-    const Role role = i < p ? Role::kPursuer : Role::kEvader;
+    const Role role = role_at(i, p);
     const world::AgentStart& a = s.start(i);
-    const double radius = g.agent(role, i < p ? i : i - p).radius;
+    const double radius = g.agent_at(i, p).radius;
     if (sim.arena().below_solid_terrain(positions[std::size_t(i)])) {
       throw StartError(file, a.line, a.field.empty() ? "scenario " + s.name : a.field,
                        fmt::format("scenario '{}': the {} starts under solid terrain", s.name, to_string(role)));
@@ -85,9 +85,8 @@ void check_overlaps(const Sim& sim, world::CollisionWorld& world, const world::S
       }
     }
     for (int j = 0; j < i; ++j) {
-      const Role other = j < p ? Role::kPursuer : Role::kEvader;
-      if (!pair_collides(g.team.agent_collisions, role, other)) continue;
-      const double reach = radius + g.agent(other, j < p ? j : j - p).radius;
+      if (!pair_collides(g.team.agent_collisions, role, role_at(j, p))) continue;
+      const double reach = radius + g.agent_at(j, p).radius;
       if ((positions[std::size_t(i)] - positions[std::size_t(j)]).norm() <= reach) {
         throw StartError(file, a.line, a.field.empty() ? "scenario " + s.name : a.field,
                          fmt::format("scenario '{}': the {} starts overlapping agent {} (agents collide: {})", s.name,
@@ -102,8 +101,7 @@ void start_positions(const Sim& sim, const world::Scenario& s, std::vector<Vec3>
   const int n = s.agents(), p = static_cast<int>(s.pursuers.size());
   out.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
-    const Role role = i < p ? Role::kPursuer : Role::kEvader;
-    const double radius = sim.config().agent(role, i < p ? i : i - p).radius;
+    const double radius = sim.config().agent_at(i, p).radius;
     out[std::size_t(i)] = sim.arena().bounds().shrunk(radius).clamp(s.start(i).position);
   }
 }
@@ -204,7 +202,7 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     while (world.agent_count() < s.agents()) world.add_agent(1.0);
     const int p = static_cast<int>(s.pursuers.size());
     for (int i = 0; i < s.agents(); ++i) {
-      world.set_agent_radius(i, config_->agent(i < p ? Role::kPursuer : Role::kEvader, i < p ? i : i - p).radius);
+      world.set_agent_radius(i, config_->agent_at(i, p).radius);
       world.place_agent(i, positions[std::size_t(i)]);
     }
     check_overlaps(*this, world, s, positions);
@@ -218,7 +216,7 @@ void Sim::check_scenario(const world::Scenario& s) const {
   start_positions(*this, s, positions);
   const int p = static_cast<int>(s.pursuers.size());
   for (int i = 0; i < s.agents(); ++i) {
-    world.add_agent(config_->agent(i < p ? Role::kPursuer : Role::kEvader, i < p ? i : i - p).radius);
+    world.add_agent(config_->agent_at(i, p).radius);
     world.place_agent(i, positions[std::size_t(i)]);
   }
   check_overlaps(*this, world, s, positions);
@@ -257,8 +255,8 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];
     a = AgentState{};
-    a.role = i < p ? Role::kPursuer : Role::kEvader;
-    a.rank = i < p ? i : i - p;
+    a.role = role_at(i, p);
+    a.rank = rank_at(i, p);
     a.config = &g.agent(a.role, a.rank);
     a.bounds = sim.arena().bounds().shrunk(a.config->radius);
     a.body = i;

@@ -127,6 +127,23 @@ TEST(GameConfig, PerAgentEntriesStartFromTheirRole) {
   EXPECT_EQ(c.pursuers[1].pn_gain, 4.0);
 }
 
+TEST(GameConfig, AgentsInAGamesOrderArePursuersFirstThenEvaders) {
+  GameConfig c = preset("peg3d");
+  c.pursuers = {c.pursuer, c.pursuer};
+  c.pursuers[1].speed = 1.7;
+  c.evaders = {c.evader};
+  c.evaders[0].radius = 0.4;
+  // Two pursuers, then three evaders: agent 3 is evader 1, which has no entry of its own.
+  EXPECT_EQ(role_at(1, 2), Role::kPursuer);
+  EXPECT_EQ(role_at(2, 2), Role::kEvader);
+  EXPECT_EQ(rank_at(1, 2), 1);
+  EXPECT_EQ(rank_at(3, 2), 1);
+  EXPECT_EQ(c.agent_at(1, 2).speed, 1.7);
+  EXPECT_EQ(c.agent_at(2, 2).radius, 0.4);
+  EXPECT_EQ(c.agent_at(3, 2), c.evader);
+  EXPECT_EQ(c.agent_at(0, 0).radius, 0.4);  // no pursuers: agent 0 is evader 0
+}
+
 TEST(GameConfig, PresetsDifferWhereDocumented) {
   const GameConfig paper = preset("paper"), peg3d = preset("peg3d"), baseline = preset("baseline");
   EXPECT_EQ(paper.pursuer.observation.angles, AngleInputs::kAzimuth);
