@@ -175,7 +175,7 @@ void hold_clear_of_obstacle(const ConstraintInputs& in, Vec3& m) {
   const double clearance = in.config.radius + kHoldMargin;
   std::array<HalfSpace, kMaxHeldPoints + 4> h;
   std::size_t k = 0;
-  for (const ObstacleSense& o : in.near) {
+  for (const world::NearPoint& o : in.near) {
     const Vec3 to = o.point - p;
     const double d = to.norm();
     if (d > 0.0) h[k++] = HalfSpace{to / d, std::max(d - clearance, 0.0) / step};

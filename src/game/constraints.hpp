@@ -12,6 +12,7 @@
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
 #include "geometry/motion_cone.hpp"
+#include "world/collision_world.hpp"
 
 namespace peg3d::game {
 
@@ -90,9 +91,10 @@ struct ConstraintInputs {
   const ObstacleSense& field;   ///< the map's nearest obstacle (arena faces excluded)
   const Box& bounds;            ///< the arena shrunk by the agent's radius (where its centre may go)
   const ObstacleProbe* probe;   ///< for guard.look_ahead; null: the nearest obstacle only
-  /// The map's static obstacles within hold_range of the agent, measured exactly (at most kMaxHeldPoints), for
-  /// the last resort of the guard: no step ends nearer to one than the agent's radius plus kHoldMargin.
-  std::span<const ObstacleSense> near = {};
+  /// The map's static obstacles within hold_range of the agent, measured exactly (at most kMaxHeldPoints;
+  /// CollisionWorld::obstacles_near), for the last resort of the guard: no step ends nearer to one than the
+  /// agent's radius plus kHoldMargin.
+  std::span<const world::NearPoint> near = {};
 };
 
 /// m added to the agent's radius: how near the guard's last resort lets a step end to an obstacle's surface.

@@ -420,18 +420,14 @@ void collide_agents(const Sim& sim, SimState& st) {
 
 // The static obstacles within the agent's hold_range, exactly (the collision world's closest points), for
 // the guard's last resort. Queried only where the field cannot rule them out.
-std::span<const ObstacleSense> near_obstacles(const Sim& sim, SimState& st, const AgentState& a) {
+std::span<const world::NearPoint> near_obstacles(const Sim& sim, SimState& st, const AgentState& a) {
   const AgentConfig& c = *a.config;
   if (!c.guard.enabled) return {};
   const Vec3& p = a.kinematics.position;
   const double range = hold_range(c, sim.config().dt);
   if (!(sim.arena().clearance_lower_bound(p) < range)) return {};
   const int n = st.collider.obstacles_near(p, range, st.scratch.near);
-  for (int i = 0; i < n; ++i) {
-    const world::NearPoint& q = st.scratch.near[std::size_t(i)];
-    st.scratch.held[std::size_t(i)] = ObstacleSense{q.distance, q.point, true};
-  }
-  return {st.scratch.held.data(), std::size_t(n)};
+  return std::span<const world::NearPoint>(st.scratch.near).first(std::size_t(n));
 }
 
 }  // namespace

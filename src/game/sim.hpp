@@ -151,7 +151,6 @@ class SimState {
     std::vector<Vec3> positions;          ///< start positions (reset)
     std::vector<Steering> commands;       ///< play()'s command buffer
     std::array<world::NearPoint, kMaxHeldPoints> near;  ///< the static obstacles within an agent's hold_range
-    std::array<ObstacleSense, kMaxHeldPoints> held;     ///< the same, as the guard takes them
     double capture_reach2 = 0.0;          ///< squared distance beyond which no capture is possible
   } scratch;
 

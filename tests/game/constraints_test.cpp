@@ -254,9 +254,9 @@ TEST(Constraints, TheLastResortEndsNoStepNearerThanTheClearanceWhateverTheFieldN
   const KinematicState self{Vec3(5, 5, 5), Heading{0.0, kPi / 2}};
   const Vec3 a(5.30, 5, 5), b(4.45, 5.1, 5);
   const ObstacleSense field{(self.position - b).norm(), b, true};
-  const std::vector<ObstacleSense> near{{0.30, a, true}, {field.distance, b, true}};
+  const std::vector<world::NearPoint> near{{.point = a, .distance = 0.30}, {.point = b, .distance = field.distance}};
   ASSERT_LT(0.30, hold_range(c, 0.1));
-  const auto end_of_step = [&](std::span<const ObstacleSense> exact) {
+  const auto end_of_step = [&](std::span<const world::NearPoint> exact) {
     const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 5, 5), 1.0, field, bounds, nullptr, exact};
     Vec3 moving;
     const Heading h = constrained_heading(in, {0.0, 0.0}, &moving);
@@ -282,7 +282,7 @@ TEST(Constraints, TheLastResortHoldsWhereTheClampMovesTheStep) {
   ASSERT_GT(tangent.x(), 0.0);
   const KinematicState self{at, heading_of(tangent)};
   const double d = (point - at).norm();
-  const std::vector<ObstacleSense> near{{d, point, true}};
+  const std::vector<world::NearPoint> near{{.point = point, .distance = d}};
   const ObstacleSense field;  // the field senses nothing within warn_distance here
   const ConstraintInputs in{c, Role::kPursuer, 0.1, self, Vec3(20, 0, 5), 1.0, field, bounds, nullptr, near};
   Vec3 moving;
