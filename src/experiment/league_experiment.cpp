@@ -93,6 +93,12 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
       const game::GameConfig& g = algorithms_[std::size_t(group)].config;
       all = role == game::Role::kPursuer ? g.pursuer : g.evader;
       list = role == game::Role::kPursuer ? g.pursuers : g.evaders;
+      // Whom a team's agents play against is the team's strategy: its own algorithm's, not the rules'.
+      if (role == game::Role::kPursuer) {
+        c.team.pursuer_target = g.team.pursuer_target;
+      } else {
+        c.team.evader_threat = g.team.evader_threat;
+      }
     } else {
       c = game::with_role_playing(std::move(c), role, classic[std::size_t(group - n_alg)]);
     }

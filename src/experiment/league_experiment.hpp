@@ -88,6 +88,12 @@ class League {
   const world::Arena& train_arena() const { return *train_; }
 
   std::size_t training_runs() const { return algorithms_.size() * static_cast<std::size_t>(settings_.train_seeds); }
+  /// The configuration the games of a pairing are played with (groups: the algorithms, then the classic policies
+  /// of the role). Its rules are the first algorithm's; each algorithm's side brings its own agents and its
+  /// opponent choice (team.pursuer_target or team.evader_threat).
+  const game::GameConfig& game_config(std::size_t map, int pursuer_group, int evader_group) const {
+    return sim_of(map, pursuer_group, evader_group).config();
+  }
   /// Evaluation games in all: pursuers x evaders x starts of every evaluation map x evaluation seeds.
   std::size_t games() const;
 

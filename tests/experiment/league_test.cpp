@@ -103,6 +103,27 @@ TEST(League, ClassicGamesDoNotDependOnWhoElsePlays) {
   EXPECT_EQ(compared, 3 * 3 * 2 * 2);
 }
 
+TEST(League, EachTrainedSideChoosesItsOpponentsAsItsAlgorithmDoes) {
+  // The rules are the first algorithm's, but whom a team plays against is its own strategy: b's pursuers keep
+  // their assigned targets and a's evaders their assigned threats wherever they play; the classic policies take
+  // the rules' choice.
+  std::vector<Algorithm> algs{algorithm("a", "peg3d"), algorithm("b", "peg3d")};
+  algs[0].config.team.evader_threat = game::OpponentChoice::kAssigned;
+  algs[1].config.team.pursuer_target = game::OpponentChoice::kAssigned;
+  const League l = league(algs, small());
+  const int classic = 2;  // the first classic group of either role
+  for (const int e : {0, 1, classic}) {
+    EXPECT_EQ(l.game_config(0, 0, e).team.pursuer_target, game::OpponentChoice::kNearest) << e;
+    EXPECT_EQ(l.game_config(0, 1, e).team.pursuer_target, game::OpponentChoice::kAssigned) << e;
+    EXPECT_EQ(l.game_config(0, classic, e).team.pursuer_target, game::OpponentChoice::kNearest) << e;
+  }
+  for (const int p : {0, 1, classic}) {
+    EXPECT_EQ(l.game_config(0, p, 0).team.evader_threat, game::OpponentChoice::kAssigned) << p;
+    EXPECT_EQ(l.game_config(0, p, 1).team.evader_threat, game::OpponentChoice::kNearest) << p;
+    EXPECT_EQ(l.game_config(0, p, classic).team.evader_threat, game::OpponentChoice::kAssigned) << p;
+  }
+}
+
 TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
   // The trained pursuer's tables after training: with train_heading nullopt the algorithm's own
   // initial_heading applies, so an algorithm set to random matches train_heading = random on a chase one.
