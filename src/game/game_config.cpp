@@ -106,6 +106,10 @@ GameConfig preset(const std::string& name) {
     // pack.yaml's selection seeds the pursuer met its goal on 16 of 18 instead of 10). One against one, it is
     // the individual reward, bit for bit.
     c.team.capture_reward = CaptureReward::kTeam;
+    // Pursuer k chases evader k mod n: with the nearest evader, both pursuers of a 2 v 2 start chased the same
+    // one while the other ran out the clock (docs/learning.md, "Teams: one evader each"). One against one, nothing
+    // changes.
+    c.team.pursuer_target = OpponentChoice::kAssigned;
     // Every training episode starts at random places, and the evaders learn for twice as long as the pursuers:
     // on the selection seeds the evader then outlasted flee-apollonius against the Apollonius interceptor
     // (docs/learning.md, "Random starts, and a longer training for the evader").

@@ -161,8 +161,9 @@ TEST(GameConfig, PresetsDifferWhereDocumented) {
   EXPECT_EQ(baseline.evader, peg3d.evader);  // same opponent
   EXPECT_EQ(peg3d.team, TeamConfig{});       // one against one needs no team settings
   // robust: peg3d's agents with the opponent pool, a pursuer less repelled by the walls that sees where the
-  // evader is heading and learns an offset to pure pursuit, the team capture reward, random starts and
-  // pursuers that learn in the first half of the training only (docs/learning.md); its evader is peg3d's.
+  // evader is heading and learns an offset to pure pursuit, the team capture reward, one evader per pursuer,
+  // random starts and pursuers that learn in the first half of the training only (docs/learning.md); its
+  // evader is peg3d's.
   const GameConfig robust = preset("robust");
   TrainingConfig training;
   training.procedure = TrainingProcedure::kOpponentPool;
@@ -173,6 +174,7 @@ TEST(GameConfig, PresetsDifferWhereDocumented) {
   EXPECT_EQ(peg3d.training, TrainingConfig{});
   TeamConfig team;
   team.capture_reward = CaptureReward::kTeam;
+  team.pursuer_target = OpponentChoice::kAssigned;
   EXPECT_EQ(robust.team, team);
   AgentConfig pursuer = peg3d.pursuer;
   pursuer.reward.w_r = 1.0;
