@@ -117,8 +117,7 @@ std::vector<game::Waypoint> read_waypoints(const std::filesystem::path& file) { 
 std::string scenario_label(const world::Scenario& s, int i) {
   const int p = static_cast<int>(s.pursuers.size());
   const game::Role role = game::role_at(i, p);
-  const std::size_t count = role == game::Role::kPursuer ? s.pursuers.size() : s.evaders.size();
-  return count == 1 ? std::string(to_string(role)) : fmt::format("{}{}", to_string(role), game::rank_at(i, p));
+  return game::agent_label(role, game::rank_at(i, p), role == game::Role::kPursuer ? p : s.agents() - p);
 }
 
 CollisionCase load_case(const std::filesystem::path& path) {

@@ -76,7 +76,7 @@ std::string agent_label(const Trace& trace, int i) {
     if (j < i) ++rank;
     ++count;
   }
-  return count == 1 ? std::string(to_string(role)) : std::string(to_string(role)) + std::to_string(rank);
+  return agent_label(role, rank, count);
 }
 
 void Trace::clear() {

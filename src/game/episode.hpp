@@ -97,8 +97,8 @@ struct Trace {
   void record(const SimState& state, bool after_step);
 };
 
-/// The label of agent i of a trace, as trajectory files, logs and viewers write it: the role alone
-/// ("pursuer", "evader") when the role has one agent, else role and rank ("pursuer0", "pursuer1", ...).
+/// The label of agent i of a trace, as trajectory files, logs and viewers write it (agent_label(role, rank,
+/// count): "pursuer" alone, else "pursuer0", "pursuer1", ...).
 std::string agent_label(const Trace& trace, int i);
 
 /// Plays one episode of `scenario`. policies[i] drives agent i (pursuers first, then evaders, in the

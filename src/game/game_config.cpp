@@ -9,6 +9,10 @@ namespace peg3d::game {
 
 const char* to_string(Role r) { return r == Role::kPursuer ? "pursuer" : "evader"; }
 
+std::string agent_label(Role role, int rank, int count) {
+  return count == 1 ? std::string(to_string(role)) : std::string(to_string(role)) + std::to_string(rank);
+}
+
 const char* to_string(PolicyKind p) { return config::enum_name(kPolicyNames, p); }
 
 bool plays(PolicyKind p, Role role) {

@@ -23,6 +23,9 @@ const char* to_string(Role r);
 /// role, and its rank k among the agents of that role.
 constexpr Role role_at(int i, int pursuers) { return i < pursuers ? Role::kPursuer : Role::kEvader; }
 constexpr int rank_at(int i, int pursuers) { return i < pursuers ? i : i - pursuers; }
+/// How logs, trajectories and viewers name agent `rank` of a role that has `count` agents in the game: the role
+/// alone ("pursuer", "evader") when it has one, else role and rank ("pursuer0", "pursuer1", ...).
+std::string agent_label(Role role, int rank, int count);
 
 /// Who drives an agent when the game is played by policies (an external caller may instead pass its own
 /// steering commands to step()).
