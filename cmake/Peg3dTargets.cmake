@@ -17,11 +17,15 @@ if(PEG3D_FUZZ)
   target_compile_options(peg3d_sanitizers INTERFACE -fsanitize=fuzzer-no-link)
 endif()
 
-# peg3d_add_executable(name SOURCES ...): a thin executable linking the library.
+# peg3d_add_executable(name SOURCES ... [LIBRARY lib]): a thin executable linking the library (peg3d::peg3d,
+# or one part of it: the tests of peg3d_sweep link that alone, so the build proves it needs nothing else).
 function(peg3d_add_executable name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "LIBRARY" "SOURCES;LIBS" ${ARGN})
+  if(NOT ARG_LIBRARY)
+    set(ARG_LIBRARY peg3d::peg3d)
+  endif()
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE peg3d::peg3d peg3d_warnings ${ARG_LIBS})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBRARY} peg3d_warnings ${ARG_LIBS})
   target_compile_features(${name} PRIVATE cxx_std_20)
   set_target_properties(${name} PROPERTIES CXX_EXTENSIONS OFF)
 endfunction()

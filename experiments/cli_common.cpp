@@ -80,14 +80,14 @@ StopOnSignals::~StopOnSignals() {
   if (saved_->terminate_set) sigaction(SIGTERM, &saved_->terminate, nullptr);
 }
 
-experiment::StopCheck stop_check() {
+sweep::StopCheck stop_check() {
   return [] { return g_stop_signal.load(std::memory_order_relaxed) != 0; };
 }
 
 int stop_signal() { return g_stop_signal.load(std::memory_order_relaxed); }
 
-std::unique_ptr<experiment::RunJournal> open_journal(const SweepOptions& o, std::size_t runs, const nlohmann::json& setup) {
-  const std::filesystem::path file = o.out / experiment::kJournalFileName;
+std::unique_ptr<sweep::RunJournal> open_journal(const SweepOptions& o, std::size_t runs, const nlohmann::json& setup) {
+  const std::filesystem::path file = o.out / sweep::kJournalFileName;
   std::error_code ec;
   const bool exists = std::filesystem::exists(std::filesystem::symlink_status(file, ec));
   if (o.resume) {
@@ -96,7 +96,7 @@ std::unique_ptr<experiment::RunJournal> open_journal(const SweepOptions& o, std:
                                    "journal; run without --resume to start one)",
                                    file.string()));
     }
-    auto journal = experiment::RunJournal::resume(file, runs, setup);
+    auto journal = sweep::RunJournal::resume(file, runs, setup);
     if (journal->dropped_torn_line()) {
       std::fprintf(stderr, "note: dropped the torn last line of %s (a run being written when the sweep died)\n",
                    file.string().c_str());
@@ -111,16 +111,16 @@ std::unique_ptr<experiment::RunJournal> open_journal(const SweepOptions& o, std:
                                  o.out.string(), file.filename().string()));
   }
   prepare_output_dir(o.out);
-  return experiment::RunJournal::create(file, runs, setup);
+  return sweep::RunJournal::create(file, runs, setup);
 }
 
 void add_sweep_options(CLI::App& app, SweepOptions& o) {
   app.add_option("--map", o.map, "map file (YAML, docs/maps.md)")->capture_default_str();
   app.add_option("--out", o.out, "output folder")->capture_default_str();
-  app.add_option("--seed", o.seed, "root seed; every run's seed derives from it")->capture_default_str();
-  app.add_option("--episodes", o.episodes, "training episodes per run")->capture_default_str()->check(CLI::NonNegativeNumber);
-  app.add_option("--repeats", o.repeats, "runs per scenario and algorithm")->capture_default_str()->check(CLI::PositiveNumber);
-  app.add_option("--threads", o.threads, "worker threads (0: every core this process may run on; under MPI, per rank); results do not depend on it")
+  app.add_option("--seed", o.sweep.seed, "root seed; every run's seed derives from it")->capture_default_str();
+  app.add_option("--episodes", o.sweep.episodes, "training episodes per run")->capture_default_str()->check(CLI::NonNegativeNumber);
+  app.add_option("--repeats", o.sweep.repeats, "runs per scenario and algorithm")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--threads", o.sweep.threads, "worker threads (0: every core this process may run on; under MPI, per rank); results do not depend on it")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--set", o.sets, "override a configuration field: key=value (repeatable; --list-config shows them)");
@@ -135,7 +135,7 @@ namespace {
 
 // The MPI ranks of an experiment binary (sweep_main), and where the sweep is: failures are settled across
 // ranks by agreement before it, by ending every rank during it; after it only the root works.
-std::unique_ptr<experiment::ProcessGroup> g_group;
+std::unique_ptr<sweep::ProcessGroup> g_group;
 enum class SweepPhase { kSetUp, kSweep, kAfter };
 SweepPhase g_phase = SweepPhase::kSetUp;
 
@@ -149,7 +149,7 @@ struct PeerFailed {
 // Prints a failure's message and returns its status; with several ranks, settles it first (sweep_main).
 int settle(int status, const std::string& message, bool root_only = false) {
   if (several_ranks() && g_phase == SweepPhase::kSetUp) {
-    const experiment::ProcessGroup::Failure f = g_group->agree(status);
+    const sweep::ProcessGroup::Failure f = g_group->agree(status);
     if (f.rank == g_group->rank()) std::fputs(message.c_str(), stderr);
     return f.status;
   }
@@ -174,7 +174,7 @@ int guarded(CLI::App& app, int argc, char** argv, const std::function<int()>& bo
     return body();
   } catch (const PeerFailed& p) {
     return p.status;
-  } catch (const experiment::SweepInterrupted& e) {
+  } catch (const sweep::SweepInterrupted& e) {
     const int sig = stop_signal();
     const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a stop request";
     const std::string message =
@@ -222,7 +222,7 @@ int sweep_main(CLI::App& app, int argc, char** argv, const std::function<int()>&
   return status;
 }
 
-experiment::ProcessGroup* process_group() { return g_group.get(); }
+sweep::ProcessGroup* process_group() { return g_group.get(); }
 
 bool SweepSession::root() const { return !control.group || control.group->is_root(); }
 
@@ -238,9 +238,9 @@ SweepSession open_sweep(const SweepOptions& o, std::size_t runs, std::size_t epi
   if (s.root()) {
     s.journal = open_journal(o, runs, setup);
     const std::size_t left = runs - s.journal->recorded();
-    s.progress = std::make_unique<experiment::ProgressReporter>(left, left * episodes_per_run, stderr, o.plain_progress);
+    s.progress = std::make_unique<sweep::ProgressReporter>(left, left * episodes_per_run, stderr, o.plain_progress);
   } else {
-    s.progress = std::make_unique<experiment::ProgressReporter>(0, 0, nullptr);
+    s.progress = std::make_unique<sweep::ProgressReporter>(0, 0, nullptr);
   }
   s.control.journal = s.journal.get();
   s.control.progress = s.progress.get();
@@ -251,7 +251,7 @@ namespace detail {
 
 void begin_sweep() {
   if (several_ranks()) {
-    const experiment::ProcessGroup::Failure f = g_group->agree(0);
+    const sweep::ProcessGroup::Failure f = g_group->agree(0);
     if (f.rank >= 0) throw PeerFailed{f.status};
   }
   g_phase = SweepPhase::kSweep;
@@ -340,8 +340,8 @@ std::uintmax_t write_viewer(const std::filesystem::path& file, const view::Repla
   return std::filesystem::file_size(file);
 }
 
-std::uintmax_t write_case_viewer(const std::filesystem::path& file, const experiment::CollisionCase& c,
-                                 const experiment::CasePlay& play, const std::string& title,
+std::uintmax_t write_case_viewer(const std::filesystem::path& file, const regress::CollisionCase& c,
+                                 const regress::CasePlay& play, const std::string& title,
                                  const view::ReplaySettings& settings) {
   return write_viewer(file, view::ReplayScene(play.sim.arena(), settings), play.sim, play.trace,
                       {title.empty() ? "case " + c.name : title,

@@ -15,12 +15,14 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.hpp"
-#include "experiment/collision_case.hpp"
-#include "experiment/process_group.hpp"
-#include "experiment/progress_reporter.hpp"
-#include "experiment/run_journal.hpp"
+#include "experiment/sweep_settings.hpp"
 #include "game/episode.hpp"
 #include "game/sim.hpp"
+#include "regress/collision_case.hpp"
+#include "sweep/process_group.hpp"
+#include "sweep/progress_reporter.hpp"
+#include "sweep/run_journal.hpp"
+#include "sweep/sweep_driver.hpp"
 #include "view/replay.hpp"
 #include "world/arena.hpp"
 
@@ -29,10 +31,8 @@ namespace peg3d::cli {
 struct SweepOptions {
   std::filesystem::path map;
   std::filesystem::path out;
-  std::uint64_t seed = 1;
-  int episodes = 200;
-  int repeats = 20;
-  int threads = 0;
+  /// --seed, --episodes, --repeats, --threads; the control is the session's (open_sweep).
+  experiment::SweepSettings sweep;
   std::vector<std::string> sets;
   bool no_cache = false;
   bool plain_progress = false;
@@ -44,7 +44,7 @@ void add_sweep_options(CLI::App& app, SweepOptions& o);
 
 /// Parses argv and runs body. Prints "error: ..." on stderr and returns 2 for bad flags and every
 /// peg3d::InputError, 1 for any other failure; otherwise the body's status. A sweep stopped by a signal
-/// (experiment::SweepInterrupted) prints what was kept and the command that resumes it (argv plus
+/// (sweep::SweepInterrupted) prints what was kept and the command that resumes it (argv plus
 /// --resume), and returns 128 + the signal.
 int guarded_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
@@ -63,14 +63,14 @@ std::shared_ptr<const world::Arena> load_arena(const std::filesystem::path& map,
 /// Creates the output folder (and parents). Throws InputError when it exists as a file or cannot be made.
 void prepare_output_dir(const std::filesystem::path& dir);
 
-/// The sweep's journal, `out/runs.journal` (experiment/run_journal.hpp). Without --resume: creates `out`
+/// The sweep's journal, `out/runs.journal` (sweep/run_journal.hpp). Without --resume: creates `out`
 /// and a new journal; an existing journal is an InputError (pass --resume, or choose another --out: runs of
 /// two sweeps are never mixed). With --resume: reads the journal back (InputError when there is none or it
 /// belongs to another setup) and says on stderr how many runs are done.
-std::unique_ptr<experiment::RunJournal> open_journal(const SweepOptions& o, std::size_t runs, const nlohmann::json& setup);
+std::unique_ptr<sweep::RunJournal> open_journal(const SweepOptions& o, std::size_t runs, const nlohmann::json& setup);
 
 /// The stop request the sweeps poll: true once SIGINT or SIGTERM arrived while a StopOnSignals was alive.
-experiment::StopCheck stop_check();
+sweep::StopCheck stop_check();
 /// The signal that asked to stop (SIGINT, SIGTERM); 0 when none did.
 int stop_signal();
 
@@ -103,13 +103,13 @@ class StopOnSignals {
 int sweep_main(CLI::App& app, int argc, char** argv, const std::function<int()>& body);
 
 /// The ranks this experiment binary runs on; null when it runs alone.
-experiment::ProcessGroup* process_group();
+sweep::ProcessGroup* process_group();
 
 /// A sweep as the experiment binaries run it.
 struct SweepSession {
-  std::unique_ptr<experiment::RunJournal> journal;         ///< on the root only (open_journal)
-  std::unique_ptr<experiment::ProgressReporter> progress;  ///< prints on the root, only counts elsewhere
-  experiment::SweepControl control;                        ///< the journal, the stop signals, the ranks, progress
+  std::unique_ptr<sweep::RunJournal> journal;         ///< on the root only (open_journal)
+  std::unique_ptr<sweep::ProgressReporter> progress;  ///< prints on the root, only counts elsewhere
+  sweep::SweepControl control;                        ///< the journal, the stop signals, the ranks, progress
 
   /// Whether this process writes the results: it runs alone or is rank 0.
   bool root() const;
@@ -140,7 +140,7 @@ auto run_stoppable(SweepSession& session, Sweep&& sweep) {
     detail::end_sweep();
     session.progress->finish();
     return result;
-  } catch (const experiment::SweepInterrupted&) {
+  } catch (const sweep::SweepInterrupted&) {
     detail::end_sweep();
     session.progress->finish();
     throw;
@@ -164,8 +164,8 @@ std::uintmax_t write_viewer(const std::filesystem::path& file, const view::Repla
 
 /// Writes the viewer file of a played collision-regression case (title: "case NAME" unless given); returns
 /// its size in bytes.
-std::uintmax_t write_case_viewer(const std::filesystem::path& file, const experiment::CollisionCase& c,
-                                 const experiment::CasePlay& play, const std::string& title = "",
+std::uintmax_t write_case_viewer(const std::filesystem::path& file, const regress::CollisionCase& c,
+                                 const regress::CasePlay& play, const std::string& title = "",
                                  const view::ReplaySettings& settings = {});
 
 /// Prints "replay viewer: FILE" for each file written; a warning on stderr when --html chose no run.

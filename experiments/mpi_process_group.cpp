@@ -42,7 +42,7 @@ void check(int status, const char* call) {
   if (status != MPI_SUCCESS) throw std::runtime_error(fmt::format("MPI: {} failed (error {})", call, status));
 }
 
-class MpiRanks final : public experiment::ProcessGroup {
+class MpiRanks final : public sweep::ProcessGroup {
  public:
   MpiRanks(int* argc, char*** argv) {
     int provided = 0;
@@ -69,7 +69,7 @@ class MpiRanks final : public experiment::ProcessGroup {
 
   // Polls with a growing pause instead of a blocking MPI_Recv, which spins at full speed in OpenMPI and would
   // take a core from the rank's worker threads. Answers come within a millisecond; runs last far longer.
-  experiment::GroupMessage receive() override {
+  sweep::GroupMessage receive() override {
     MPI_Status status;
     auto pause = std::chrono::microseconds(20);
     for (int flag = 0;;) {
@@ -80,7 +80,7 @@ class MpiRanks final : public experiment::ProcessGroup {
     }
     int count = 0;
     MPI_Get_count(&status, MPI_BYTE, &count);
-    experiment::GroupMessage m;
+    sweep::GroupMessage m;
     m.from = status.MPI_SOURCE;
     m.bytes.resize(static_cast<std::size_t>(count));
     check(MPI_Recv(m.bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, kTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
@@ -109,7 +109,7 @@ class MpiRanks final : public experiment::ProcessGroup {
 
 }  // namespace
 
-std::unique_ptr<experiment::ProcessGroup> join_mpi_ranks(int* argc, char*** argv) {
+std::unique_ptr<sweep::ProcessGroup> join_mpi_ranks(int* argc, char*** argv) {
   return std::make_unique<MpiRanks>(argc, argv);
 }
 #endif

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "experiment/process_group.hpp"
+#include "sweep/process_group.hpp"
 
 namespace peg3d::cli {
 
@@ -18,7 +18,7 @@ int launched_rank_count();
 /// Initializes MPI (MPI_THREAD_SERIALIZED: on each rank one thread at a time talks to the others) on
 /// MPI_COMM_WORLD; MPI_Finalize when destroyed. Throws std::runtime_error when MPI cannot give that thread
 /// level.
-std::unique_ptr<experiment::ProcessGroup> join_mpi_ranks(int* argc, char*** argv);
+std::unique_ptr<sweep::ProcessGroup> join_mpi_ranks(int* argc, char*** argv);
 #endif
 
 }  // namespace peg3d::cli

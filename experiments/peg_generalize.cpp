@@ -7,10 +7,11 @@
 #include "cli_common.hpp"
 #include "core/config_json.hpp"
 #include "experiment/generalize_experiment.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/progress_reporter.hpp"
-#include "experiment/result_files.hpp"
-#include "experiment/run_info.hpp"
+#include "game/config_file.hpp"
+#include "game/policy_io.hpp"
+#include "results/result_files.hpp"
+#include "results/run_info.hpp"
+#include "sweep/progress_reporter.hpp"
 
 using namespace peg3d;
 
@@ -19,7 +20,7 @@ int main(int argc, char** argv) {
   cli::SweepOptions o;
   o.map = "maps/paper.yaml";
   o.out = "results/generalize";
-  o.repeats = 5;
+  o.sweep.repeats = 5;
   std::string config_source = "peg3d";
   std::vector<std::filesystem::path> eval_maps{"maps/paper.yaml", "maps/forest.yaml", "maps/valley.yaml"};
   bool list_config = false;
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
   app.add_flag("--list-config", list_config, "print every configuration field and exit");
 
   return cli::sweep_main(app, argc, argv, [&] {
-    const game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), o.sets);
+    const game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), o.sets);
     if (list_config) {
       std::fputs(config::format_field_list(config::list_fields(config)).c_str(), stdout);
       return 0;
@@ -46,50 +47,50 @@ int main(int argc, char** argv) {
     std::vector<experiment::EvalMap> evals;
     for (std::size_t m = 0; m < arenas.size(); ++m) evals.push_back({names[m], game::Sim(arenas[m], config)});
 
-    experiment::GeneralizeSettings s{o.seed, o.episodes, o.repeats, o.threads, {}, {}, {}};
+    experiment::GeneralizeSettings s{.sweep = o.sweep};
     s.pool = std::make_shared<const experiment::OpponentPool>(train, config);
     const std::size_t jobs = experiment::generalize_run_count(train_sim, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::generalize_setup(train_sim, evals, s);
     std::size_t eval_count = 0;
     for (const auto& e : arenas) eval_count += e->map().scenarios.size();
-    cli::SweepSession sweep = cli::open_sweep(o, jobs, static_cast<std::size_t>(o.episodes) + 1 + eval_count, setup);
-    s.control = sweep.control;
+    cli::SweepSession session = cli::open_sweep(o, jobs, static_cast<std::size_t>(o.sweep.episodes) + 1 + eval_count, setup);
+    s.sweep.control = session.control;
     if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
 
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>> policies;
-    const auto records = cli::run_stoppable(
-        sweep, [&] { return experiment::run_generalization(train_sim, evals, s, sweep.progress.get(), &policies); });
-    if (!sweep.root()) return 0;  // the root writes the results
+    const auto records =
+        cli::run_stoppable(session, [&] { return experiment::run_generalization(train_sim, evals, s, &policies); });
+    if (!session.root()) return 0;  // the root writes the results
     const auto summary = experiment::summarize_generalization(records, names);
     std::filesystem::create_directories(o.out / "policies");
     for (const auto& [key, model] : policies) {
-      experiment::save_policy(experiment::output_file(o.out / "policies", key, ".json"), *model);
+      game::save_policy(results::output_file(o.out / "policies", key, ".json"), *model);
     }
     experiment::write_generalization_csv(o.out / "generalization.csv", records);
-    experiment::write_json(o.out / "summary.json", summary);
+    results::write_json(o.out / "summary.json", summary);
     std::vector<std::pair<std::string, const world::Arena*>> maps{{"train", train.get()}};
     for (std::size_t m = 0; m < arenas.size(); ++m) maps.emplace_back("eval " + names[m], arenas[m].get());
-    experiment::write_run_info(o.out / "run_info.json", "generalize", maps,
-                               {{"setup", setup}, {"seeds", experiment::generalize_seeds(train_sim, s)}});
-    sweep.complete();  // the files above hold every run
+    results::write_run_info(o.out / "run_info.json", "generalize", maps,
+                            {{"setup", setup}, {"seeds", experiment::generalize_seeds(train_sim, s)}});
+    session.complete();  // the files above hold every run
     std::vector<std::string> viewers;
     for (std::size_t m = 0; m < evals.size() && !html.empty(); ++m) {
       std::unique_ptr<view::ReplayScene> scene;
       for (const auto& r : records) {
         if (!r.trace || r.eval_map != evals[m].name) continue;
         if (!scene) scene = std::make_unique<view::ReplayScene>(evals[m].sim.arena());
-        const std::filesystem::path file = experiment::output_file(o.out, experiment::generalize_key(r), ".html");
+        const std::filesystem::path file = results::output_file(o.out, experiment::generalize_key(r), ".html");
         cli::write_viewer(file, *scene, evals[m].sim, *r.trace,
                           {fmt::format("trained on {} {} (repeat {}), played on {} {}", train->map().name,
                                        r.train_scenario, r.repeat, r.eval_map, r.eval_scenario),
-                           fmt::format("peg-generalize, seed {}, {} training episodes; {}", o.seed, o.episodes,
+                           fmt::format("peg-generalize, seed {}, {} training episodes; {}", o.sweep.seed, o.sweep.episodes,
                                        cli::ending_of(r.result))});
         viewers.push_back(file.string());
       }
     }
     std::printf("trained on %s (%zu scenarios x %d repeats, %d episodes each)\n", o.map.string().c_str(),
-                train->map().scenarios.size(), o.repeats, o.episodes);
+                train->map().scenarios.size(), o.sweep.repeats, o.sweep.episodes);
     std::fputs(experiment::generalization_table(summary).c_str(), stdout);
     std::printf("\nresults in %s\n", o.out.string().c_str());
     cli::report_viewers(viewers, html);

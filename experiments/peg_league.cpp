@@ -9,10 +9,11 @@
 #include "core/config_json.hpp"
 #include "experiment/generalize_experiment.hpp"
 #include "experiment/league_experiment.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/progress_reporter.hpp"
-#include "experiment/result_files.hpp"
-#include "experiment/run_info.hpp"
+#include "experiment/league_report.hpp"
+#include "game/policy_io.hpp"
+#include "results/result_files.hpp"
+#include "results/run_info.hpp"
+#include "sweep/progress_reporter.hpp"
 
 using namespace peg3d;
 
@@ -21,7 +22,7 @@ int main(int argc, char** argv) {
   cli::SweepOptions o;
   o.map = "maps/paper.yaml";
   o.out = "results/league";
-  o.episodes = experiment::LeagueSettings{}.episodes;
+  o.sweep = experiment::LeagueSettings{}.sweep;
   std::vector<std::string> algorithms{"peg3d", "robust"};
   std::vector<std::filesystem::path> eval_maps;
   std::vector<std::string> pursuers{"pure-pursuit", "pn", "apollonius"};
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
   app.add_option("--algorithms", algorithms, "algorithms that train policies: presets (peg3d, paper, baseline, robust)")
       ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--train-seeds", s.train_seeds, "training runs (seeds) per algorithm")
+  app.add_option("--train-seeds", o.sweep.repeats, "training runs (seeds) per algorithm")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_option("--eval-seeds", s.eval_seeds, "evaluation games per start and pairing (held-out seeds)")
@@ -88,9 +89,7 @@ int main(int argc, char** argv) {
     } else {
       throw InvalidParameter("--train-heading", "\"" + train_heading + "\"", "must be random, chase, facing, plus-x or config");
     }
-    s.seed = o.seed;
-    s.episodes = o.episodes;
-    s.threads = o.threads;
+    s.sweep = o.sweep;
     const auto train = cli::load_arena(o.map, !o.no_cache);
     std::vector<std::shared_ptr<const world::Arena>> arenas;
     if (eval_maps.empty()) {
@@ -104,26 +103,26 @@ int main(int argc, char** argv) {
     // Every Sim (training and each pairing on each map) checks its starts before any run.
     experiment::League league(train, std::move(maps), std::move(algs), s);
     const nlohmann::json setup = league.setup();
-    const std::size_t episodes = league.training_runs() * static_cast<std::size_t>(o.episodes) + league.games();
+    const std::size_t episodes = league.training_runs() * static_cast<std::size_t>(o.sweep.episodes) + league.games();
     // Progress counts the training episodes and the games, spread over the training runs.
     const std::size_t runs = league.training_runs();
-    cli::SweepSession sweep = cli::open_sweep(o, runs, (episodes + runs - 1) / runs, setup);
-    league.settings().control = sweep.control;
-    const auto games = cli::run_stoppable(sweep, [&] { return league.run(sweep.progress.get(), sweep.root()); });
-    if (!sweep.root()) return 0;  // the root writes the results
+    cli::SweepSession session = cli::open_sweep(o, runs, (episodes + runs - 1) / runs, setup);
+    league.settings().sweep.control = session.control;
+    const auto games = cli::run_stoppable(session, [&] { return league.run(session.root()); });
+    if (!session.root()) return 0;  // the root writes the results
 
     const auto matrix = experiment::league_matrix(league, games, /*by_group=*/true);
     const auto entrants = experiment::league_matrix(league, games, /*by_group=*/false);
     const auto findings = experiment::league_findings(league, games);
     std::filesystem::create_directories(o.out / "policies");
     for (std::size_t a = 0; a < league.algorithms().size(); ++a) {
-      for (int t = 0; t < s.train_seeds; ++t) {
+      for (int t = 0; t < league.train_seeds(); ++t) {
         for (const game::Role role : {game::Role::kPursuer, game::Role::kEvader}) {
           const auto& models = league.models(static_cast<int>(a), t, role).models;
           for (std::size_t k = 0; k < models.size(); ++k) {
             const std::string key = fmt::format("{}_{}_{}{}", league.algorithms()[a].name, t, game::to_string(role),
                                                 k == 0 ? std::string() : fmt::format("_{}", k));
-            experiment::save_policy(experiment::output_file(o.out / "policies", key, ".json"), *models[k]);
+            game::save_policy(results::output_file(o.out / "policies", key, ".json"), *models[k]);
           }
         }
       }
@@ -132,18 +131,18 @@ int main(int argc, char** argv) {
     experiment::write_league_learning_curves_csv(o.out / "learning_curves.csv", league);
     experiment::write_league_matrix_csv(o.out / "matrix.csv", matrix);
     experiment::write_league_matrix_csv(o.out / "matrix_entrants.csv", entrants);
-    experiment::write_json(o.out / "summary.json",
+    results::write_json(o.out / "summary.json",
                            nlohmann::ordered_json{{"matrix", matrix}, {"entrants", entrants}, {"findings", findings}});
     std::vector<std::pair<std::string, const world::Arena*>> run_maps{{"train", train.get()}};
     for (std::size_t m = 0; m < arenas.size(); ++m) run_maps.emplace_back("eval " + names[m], arenas[m].get());
-    experiment::write_run_info(o.out / "run_info.json", "league", run_maps,
+    results::write_run_info(o.out / "run_info.json", "league", run_maps,
                                {{"setup", setup},
-                                {"seeds", {{"root", o.seed},
+                                {"seeds", {{"root", o.sweep.seed},
                                            {"derivation", "training run (a, t) = derive_seed(root, {1, a, t}); game at "
                                                           "(map m, scenario s, evaluation seed k) = derive_seed(root, "
                                                           "{2, m, s, k}) for every pairing, its classic pursuers "
                                                           "derive_seed(game, {1}), scripted evaders derive_seed(game, {2})"}}}});
-    sweep.complete();  // the files above hold every run
+    session.complete();  // the files above hold every run
     if (plots) cli::run_plot_script("plot_league.py", o.out);
     std::fputs(experiment::league_table(matrix).c_str(), stdout);
     std::printf("\nresults in %s\n", o.out.string().c_str());

@@ -8,10 +8,11 @@
 #include "cli_common.hpp"
 #include "core/config_json.hpp"
 #include "experiment/matchup_experiment.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/progress_reporter.hpp"
-#include "experiment/result_files.hpp"
-#include "experiment/run_info.hpp"
+#include "game/config_file.hpp"
+#include "game/policy_io.hpp"
+#include "results/result_files.hpp"
+#include "results/run_info.hpp"
+#include "sweep/progress_reporter.hpp"
 
 using namespace peg3d;
 
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
   cli::SweepOptions o;
   o.map = "maps/paper.yaml";
   o.out = "results/matchup";
-  o.repeats = 10;
+  o.sweep.repeats = 10;
   std::vector<std::string> pursuers{"facl", "pure-pursuit", "pn", "apollonius"};
   std::vector<std::string> evaders{"facl", "flee", "flee-apollonius", "random"};
   std::string config_source = "peg3d";
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
   app.add_flag("--list-config", list_config, "print every configuration field and exit");
 
   return cli::sweep_main(app, argc, argv, [&] {
-    const game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), o.sets);
+    const game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), o.sets);
     if (list_config) {
       std::fputs(config::format_field_list(config::list_fields(config)).c_str(), stdout);
       return 0;
@@ -53,12 +54,9 @@ int main(int argc, char** argv) {
     s.evaders.clear();
     for (const auto& p : pursuers) s.pursuers.push_back(game::policy_named(p, game::Role::kPursuer, "--pursuers"));
     for (const auto& e : evaders) s.evaders.push_back(game::policy_named(e, game::Role::kEvader, "--evaders"));
-    if (!pursuer_policy.empty()) s.pursuer_policy = experiment::load_policy(pursuer_policy, game::Role::kPursuer);
-    if (!evader_policy.empty()) s.evader_policy = experiment::load_policy(evader_policy, game::Role::kEvader);
-    s.seed = o.seed;
-    s.episodes = o.episodes;
-    s.repeats = o.repeats;
-    s.threads = o.threads;
+    if (!pursuer_policy.empty()) s.pursuer_policy = game::load_policy(pursuer_policy, game::Role::kPursuer);
+    if (!evader_policy.empty()) s.evader_policy = game::load_policy(evader_policy, game::Role::kEvader);
+    s.sweep = o.sweep;
     if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
     const auto arena = cli::load_arena(o.map, !o.no_cache);
     // Every pairing's Sim checks the map's starts against its agents before any run.
@@ -67,19 +65,18 @@ int main(int argc, char** argv) {
     const std::size_t jobs = experiment::matchup_run_count(*arena, s);
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     const nlohmann::json setup = experiment::matchup_setup(*arena, config, s);
-    cli::SweepSession sweep =
-        cli::open_sweep(o, jobs, static_cast<std::size_t>(o.episodes) + 1 + s.pursuers.size() * s.evaders.size(), setup);
-    s.control = sweep.control;
-    const auto records =
-        cli::run_stoppable(sweep, [&] { return experiment::run_matchups(sims, s, sweep.progress.get()); });
-    if (!sweep.root()) return 0;  // the root writes the results
+    cli::SweepSession session = cli::open_sweep(
+        o, jobs, static_cast<std::size_t>(o.sweep.episodes) + 1 + s.pursuers.size() * s.evaders.size(), setup);
+    s.sweep.control = session.control;
+    const auto records = cli::run_stoppable(session, [&] { return experiment::run_matchups(sims, s); });
+    if (!session.root()) return 0;  // the root writes the results
     const auto summary = experiment::summarize_matchups(records, s);
     experiment::write_matchups_csv(o.out / "matchups.csv", records);
     experiment::write_matchup_agents_csv(o.out / "agents.csv", records);
-    experiment::write_json(o.out / "summary.json", summary);
-    experiment::write_run_info(o.out / "run_info.json", "matchup", {{"map", arena.get()}},
+    results::write_json(o.out / "summary.json", summary);
+    results::write_run_info(o.out / "run_info.json", "matchup", {{"map", arena.get()}},
                                {{"setup", setup}, {"seeds", experiment::matchup_seeds(*arena, s)}});
-    sweep.complete();  // the files above hold every run
+    session.complete();  // the files above hold every run
     std::vector<std::string> viewers;
     if (!html.empty()) {
       const view::ReplayScene scene(*arena);
@@ -88,10 +85,10 @@ int main(int argc, char** argv) {
         std::size_t p = 0, e = 0;  // the pairing's Sim: sims[1 + p * evaders + e]
         while (game::to_string(s.pursuers[p]) != r.pursuer) ++p;
         while (game::to_string(s.evaders[e]) != r.evader) ++e;
-        const std::filesystem::path file = experiment::output_file(o.out, experiment::matchup_key(r), ".html");
+        const std::filesystem::path file = results::output_file(o.out, experiment::matchup_key(r), ".html");
         cli::write_viewer(file, scene, sims[1 + p * s.evaders.size() + e], *r.trace,
                           {fmt::format("{} {} repeat {}: {} vs {}", arena->map().name, r.scenario, r.repeat, r.pursuer, r.evader),
-                           fmt::format("peg-matchup, seed {}; {}", o.seed, cli::ending_of(r.result))});
+                           fmt::format("peg-matchup, seed {}; {}", o.sweep.seed, cli::ending_of(r.result))});
         viewers.push_back(file.string());
       }
     }

@@ -1,17 +1,17 @@
-// libFuzzer target: experiment::load_policy (a saved FACL policy: JSON header, configuration, tables) on
+// libFuzzer target: game::load_policy (a saved FACL policy: JSON header, configuration, tables) on
 // arbitrary bytes, for the pursuer's role. Every outcome but a policy or an InputError is a finding.
 
 #include <cstddef>
 #include <cstdint>
 
 #include "core/error.hpp"
-#include "experiment/result_files.hpp"
 #include "fuzz_input_file.hpp"
+#include "game/policy_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto file = peg3d::fuzz::write_input(data, size, "policy.json");
   try {
-    (void)peg3d::experiment::load_policy(file, peg3d::game::Role::kPursuer);
+    (void)peg3d::game::load_policy(file, peg3d::game::Role::kPursuer);
   } catch (const peg3d::InputError&) {
   }
   return 0;

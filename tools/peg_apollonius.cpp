@@ -9,10 +9,10 @@
 
 #include "cli_common.hpp"
 #include "core/validation.hpp"
-#include "experiment/result_files.hpp"
 #include "geometry/angles.hpp"
 #include "geometry/apollonius.hpp"
 #include "geometry/motion_cone.hpp"
+#include "results/result_files.hpp"
 
 int main(int argc, char** argv) {
   using namespace peg3d;
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
     if ((p - e).norm() == 0.0) throw InvalidParameter("evader", "the pursuer's position", "must differ from the pursuer");
     ratios.insert(ratios.begin(), ve / vp);
 
-    const nlohmann::json out = experiment::apollonius_to_json(p, e, vp, ve, ratios);
+    const nlohmann::json out = results::apollonius_to_json(p, e, vp, ve, ratios);
     const double pursuer_half_angle = out["pursuer_cone"]["half_angle_rad"].get<double>();
     const double evader_half_angle = out["evader_cone"]["half_angle_rad"].get<double>();
     if (json) {

@@ -16,9 +16,9 @@
 
 #include "cli_common.hpp"
 #include "core/atomic_file.hpp"
-#include "experiment/collision_case.hpp"
-#include "experiment/collision_log.hpp"
-#include "experiment/result_files.hpp"
+#include "regress/collision_case.hpp"
+#include "regress/collision_log.hpp"
+#include "results/result_files.hpp"
 
 using namespace peg3d;
 
@@ -35,14 +35,14 @@ std::string read_text(const std::filesystem::path& file) {
 std::vector<std::filesystem::path> expand(const std::vector<std::string>& args) {
   std::vector<std::filesystem::path> out;
   for (const auto& a : args) {
-    for (auto& c : experiment::find_cases(a)) out.push_back(std::move(c));
+    for (auto& c : regress::find_cases(a)) out.push_back(std::move(c));
   }
   return out;
 }
 
-void record(const experiment::CollisionCase& c, bool use_cache) {
-  const experiment::CollisionLog log = experiment::run_case(c, use_cache);
-  write_file_atomically(c.golden, experiment::format_log(log));
+void record(const regress::CollisionCase& c, bool use_cache) {
+  const regress::CollisionLog log = regress::run_case(c, use_cache);
+  write_file_atomically(c.golden, regress::format_log(log));
   std::printf("recorded %s: %zu collision(s), %zu capture(s), %s at %.2f s -> %s\n", c.name.c_str(), log.events.size(),
               log.captures.size(), log.outcome.c_str(), log.time, c.golden.string().c_str());
 }
@@ -89,15 +89,15 @@ int main(int argc, char** argv) {
   return cli::guarded_main(app, argc, argv, [&] {
     const bool use_cache = !no_cache;
     if (rec->parsed()) {
-      for (const auto& path : expand(record_cases)) record(experiment::load_case(path), use_cache);
+      for (const auto& path : expand(record_cases)) record(regress::load_case(path), use_cache);
       return 0;
     }
     if (make->parsed()) {
       const std::filesystem::path dir(out);
       const std::filesystem::path motion_file(motion);
       const std::string kind = motion_kind(motion_file);
-      if (kind == "commands") experiment::read_commands(motion_file);  // refuse a bad file before writing anything
-      if (kind == "waypoints") experiment::read_waypoints(motion_file);
+      if (kind == "commands") regress::read_commands(motion_file);  // refuse a bad file before writing anything
+      if (kind == "waypoints") regress::read_waypoints(motion_file);
       const std::filesystem::path map_file = cli::resolve_input(map);
       world::load_map(map_file);
       if (std::filesystem::exists(dir / "case.yaml")) throw InputError(dir / "case.yaml", 0, "", "exists already");
@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
         }
         text += fmt::format("agents:\n  {}: {{{}: {}}}\n", agent, kind, motion_copy.filename().string());
         write_file_atomically(dir / "case.yaml", text);
-        record(experiment::load_case(dir), use_cache);
+        record(regress::load_case(dir), use_cache);
       } catch (...) {
         std::error_code ec;
         if (made_dir) {
@@ -132,17 +132,17 @@ int main(int argc, char** argv) {
     // run
     int differing = 0;
     for (const auto& path : expand(run_cases)) {
-      const experiment::CollisionCase c = experiment::load_case(path);
-      const experiment::CollisionLog expected = experiment::parse_log(read_text(c.golden), c.golden);
-      const experiment::CasePlay play = experiment::play_case(c, use_cache);
-      const experiment::CollisionLog& actual = play.log;
+      const regress::CollisionCase c = regress::load_case(path);
+      const regress::CollisionLog expected = regress::parse_log(read_text(c.golden), c.golden);
+      const regress::CasePlay play = regress::play_case(c, use_cache);
+      const regress::CollisionLog& actual = play.log;
       if (!html_dir.empty()) {
         cli::prepare_output_dir(html_dir);
-        const std::filesystem::path file = experiment::output_file(html_dir, c.name, ".html");
+        const std::filesystem::path file = results::output_file(html_dir, c.name, ".html");
         cli::write_case_viewer(file, c, play);
       }
       std::vector<std::string> notes;
-      const auto diffs = experiment::compare_logs(expected, actual, experiment::Tolerances{}, strict, &notes);
+      const auto diffs = regress::compare_logs(expected, actual, regress::Tolerances{}, strict, &notes);
       for (const auto& n : notes) std::printf("note %s: %s\n", c.name.c_str(), n.c_str());
       if (diffs.empty()) {
         std::printf("ok   %s (%zu collision(s), %zu capture(s), %s)\n", c.name.c_str(), actual.events.size(),
@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
       std::printf("FAIL %s\n", c.name.c_str());
       for (const auto& d : diffs) std::printf("%s: %s\n", c.name.c_str(), d.c_str());
       if (update) {
-        write_file_atomically(c.golden, experiment::format_log(actual));
+        write_file_atomically(c.golden, regress::format_log(actual));
         std::printf("updated %s\n", c.golden.string().c_str());
       }
     }

@@ -21,7 +21,7 @@
 #include "cli_common.hpp"
 #include "core/random.hpp"
 #include "core/step_profile.hpp"
-#include "experiment/paper_experiment.hpp"
+#include "game/config_file.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
 
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-cache", no_cache, "rebuild the world instead of using the on-disk cache");
 
   return cli::guarded_main(app, argc, argv, [&] {
-    const game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), sets);
+    const game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), sets);
     const auto build_start = std::chrono::steady_clock::now();
     const auto arena = cli::load_arena(map, !no_cache);
     const game::Sim sim(arena, config);

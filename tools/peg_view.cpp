@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
-#include "experiment/collision_case.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/trajectory_file.hpp"
+#include "game/config_file.hpp"
+#include "regress/collision_case.hpp"
+#include "results/trajectory_file.hpp"
 #include "view/replay.hpp"
 
 using namespace peg3d;
@@ -60,15 +60,15 @@ int main(int argc, char** argv) {
     view::ReplaySettings settings;
     settings.max_drawn_triangles = max_triangles;
     if (!case_path.empty()) {
-      const experiment::CollisionCase c = experiment::load_case(case_path);
-      const experiment::CasePlay play = experiment::play_case(c, !no_cache);
+      const regress::CollisionCase c = regress::load_case(case_path);
+      const regress::CasePlay play = regress::play_case(c, !no_cache);
       if (out.empty()) out = c.name + ".html";
       const auto bytes = cli::write_case_viewer(out, c, play, title, settings);
       std::printf("%s: %d frames, %.1f MB\n", out.string().c_str(), play.trace.frame_count(), double(bytes) / 1e6);
       return 0;
     }
-    const game::Trace trace = experiment::read_trajectory_csv(trajectory);
-    game::GameConfig config = experiment::apply_game_overrides(experiment::load_game_config(config_source), sets);
+    const game::Trace trace = results::read_trajectory_csv(trajectory);
+    game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), sets);
     // The movers' motion must cover the whole recording, however long the experiment let it run.
     config.time_limit = std::max(config.time_limit, trace.times.back() + config.dt);
     const auto arena = cli::load_arena(map, !no_cache);

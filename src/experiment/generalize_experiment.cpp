@@ -8,14 +8,14 @@
 #include "core/atomic_file.hpp"
 #include "core/config_json.hpp"
 #include "core/random.hpp"
-#include "experiment/csv_writer.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/parallel_runner.hpp"
-#include "experiment/progress_reporter.hpp"
-#include "experiment/result_files.hpp"
-#include "experiment/run_info.hpp"
-#include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
+#include "results/codecs.hpp"
+#include "results/csv_writer.hpp"
+#include "results/result_files.hpp"
+#include "results/run_info.hpp"
+#include "results/statistics.hpp"
+#include "sweep/progress_reporter.hpp"
+#include "sweep/sweep_driver.hpp"
 
 namespace peg3d::experiment {
 
@@ -32,107 +32,127 @@ std::vector<std::string> eval_map_names(const std::vector<std::shared_ptr<const 
 }
 
 std::size_t generalize_run_count(const game::Sim& train, const GeneralizeSettings& s) {
-  return train.arena().map().scenarios.size() * static_cast<std::size_t>(s.repeats);
+  return train.arena().map().scenarios.size() * static_cast<std::size_t>(s.sweep.repeats);
 }
 
 nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s) {
   nlohmann::json maps = nlohmann::json::array();
-  for (const EvalMap& m : evals) maps.push_back({{"name", m.name}, {"map_hash", map_content_hash(m.sim.arena())}});
+  for (const EvalMap& m : evals) maps.push_back({{"name", m.name}, {"map_hash", results::map_content_hash(m.sim.arena())}});
   return {{"experiment", "generalize"},
-          {"peg3d", peg3d_build_json()},
-          {"map_hash", map_content_hash(train.arena())},
+          {"peg3d", results::peg3d_build_json()},
+          {"map_hash", results::map_content_hash(train.arena())},
           {"eval_maps", std::move(maps)},
-          {"seed", s.seed},
-          {"episodes", s.episodes},
-          {"repeats", s.repeats},
+          {"seed", s.sweep.seed},
+          {"episodes", s.sweep.episodes},
+          {"repeats", s.sweep.repeats},
           {"config", config::to_json(train.config())}};
 }
 
 nlohmann::ordered_json generalize_seeds(const game::Sim& train, const GeneralizeSettings& s) {
-  return {{"root", s.seed},
+  return {{"root", s.sweep.seed},
           {"derivation", "run seed = derive_seed(root, {scenario index, repeat}); training as a trial with the run "
                          "seed; evaluation on map m, scenario k = derive_seed(run seed, {20, m, k})"},
-          {"runs", scenario_run_seeds(train.arena().map().scenarios, s.repeats, s.seed)}};
+          {"runs", scenario_run_seeds(train.arena().map().scenarios, s.sweep.repeats, s.sweep.seed)}};
 }
 
 std::string generalize_key(const GeneralizeRecord& r) {
   return fmt::format("{}_r{}_on_{}_{}", r.train_scenario, r.repeat, r.eval_map, r.eval_scenario);
 }
 
+namespace {
+
+// The frozen models of one training run on every scenario of every evaluation map, one greedy game each.
+std::vector<GeneralizeRecord> evaluate_everywhere(const TrialResult& t, const std::string& train_scenario, int rep,
+                                                  std::uint64_t seed, const std::vector<EvalMap>& evals,
+                                                  const GeneralizeSettings& s) {
+  std::vector<GeneralizeRecord> records;
+  for (std::size_t m = 0; m < evals.size(); ++m) {
+    const game::Sim& sim = evals[m].sim;
+    game::SimState state(sim);
+    const auto& eval_scenarios = sim.arena().map().scenarios;
+    for (std::size_t k = 0; k < eval_scenarios.size(); ++k) {
+      sweep::throw_if_stopped(s.sweep.control.stop);
+      const world::Scenario& es = eval_scenarios[k];
+      game::Lineup lineup;
+      game::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
+      game::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
+      GeneralizeRecord r{train_scenario, rep, evals[m].name, es.name, {}, {}};
+      std::shared_ptr<game::Trace> trace;
+      if (s.keep_trace && s.keep_trace(generalize_key(r))) {
+        trace = std::make_shared<game::Trace>();
+        trace->reserve(sim.max_steps(), es.agents());
+      }
+      r.result = evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}), trace.get());
+      r.trace = std::move(trace);
+      records.push_back(std::move(r));
+      if (s.sweep.control.progress) s.sweep.control.progress->episode_done();
+    }
+  }
+  return records;
+}
+
+// A run's games and, for repeat 0, the trained models (saved as policies).
+nlohmann::json encode_run(const std::vector<GeneralizeRecord>& records, const TrialResult* kept) {
+  nlohmann::json games = nlohmann::json::array();
+  for (const GeneralizeRecord& r : records) {
+    games.push_back({{"train_scenario", r.train_scenario},
+                     {"repeat", r.repeat},
+                     {"eval_map", r.eval_map},
+                     {"eval_scenario", r.eval_scenario},
+                     {"result", results::episode_to_json(r.result)}});
+    if (r.trace) games.back()["trace"] = results::trace_to_json(*r.trace);
+  }
+  nlohmann::json data{{"games", std::move(games)}};
+  if (kept) {
+    data["pursuer_models"] = results::role_models_to_json(kept->pursuer_models);
+    data["evader_models"] = results::role_models_to_json(kept->evader_models);
+  }
+  return data;
+}
+
+std::vector<GeneralizeRecord> restore_run(const nlohmann::json& data, TrialResult* kept) {
+  std::vector<GeneralizeRecord> records;
+  for (const auto& g : data.at("games")) {
+    records.push_back({g.at("train_scenario").get<std::string>(), g.at("repeat").get<int>(),
+                       g.at("eval_map").get<std::string>(), g.at("eval_scenario").get<std::string>(),
+                       results::episode_from_json(g.at("result")), {}});
+    if (g.contains("trace")) records.back().trace = std::make_shared<const game::Trace>(results::trace_from_json(g.at("trace")));
+  }
+  if (kept) {
+    kept->pursuer_models = results::role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);
+    kept->evader_models = results::role_models_from_json(data.at("evader_models"), game::Role::kEvader);
+  }
+  return records;
+}
+
+}  // namespace
+
 std::vector<GeneralizeRecord> run_generalization(
-    const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s, ProgressReporter* progress,
+    const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s,
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep) {
   const auto& scenarios = train.arena().map().scenarios;
-  const std::size_t jobs = scenarios.size() * static_cast<std::size_t>(s.repeats);
+  const std::size_t repeats = static_cast<std::size_t>(s.sweep.repeats);
+  const std::size_t jobs = scenarios.size() * repeats;
   std::vector<std::vector<GeneralizeRecord>> per_job(jobs);
-  std::vector<TrialResult> kept(scenarios.size());
-  const auto play_run = [&](std::size_t i) {
-    const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
-    const std::uint64_t seed = run_seed(s.seed, sc, rep);
-    TrialResult t = run_trial(train, {&scenarios[std::size_t(sc)], seed, s.episodes, false, s.control.stop, s.pool.get()}, progress);
-    std::vector<GeneralizeRecord> records;
-    for (std::size_t m = 0; m < evals.size(); ++m) {
-      const game::Sim& sim = evals[m].sim;
-      game::SimState state(sim);
-      const auto& eval_scenarios = sim.arena().map().scenarios;
-      for (std::size_t k = 0; k < eval_scenarios.size(); ++k) {
-        throw_if_stopped(s.control.stop);
-        const world::Scenario& es = eval_scenarios[k];
-        game::Lineup lineup;
-        game::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
-        game::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
-        GeneralizeRecord r{scenarios[std::size_t(sc)].name, rep, evals[m].name, es.name, {}, {}};
-        std::shared_ptr<game::Trace> trace;
-        if (s.keep_trace && s.keep_trace(generalize_key(r))) {
-          trace = std::make_shared<game::Trace>();
-          trace->reserve(sim.max_steps(), es.agents());
-        }
-        r.result = evaluate(sim, state, es, lineup, derive_seed(seed, {20, m, k}), trace.get());
-        r.trace = std::move(trace);
-        records.push_back(std::move(r));
-        if (progress) progress->episode_done();
-      }
-    }
-    per_job[i] = std::move(records);
+  std::vector<TrialResult> kept(scenarios.size());  // repeat 0's trained models, per training scenario
+  const auto kept_of = [&](std::size_t i) { return i % repeats == 0 ? &kept[i / repeats] : nullptr; };
+  const auto run = [&](std::size_t i) {
+    const int sc = static_cast<int>(i / repeats), rep = static_cast<int>(i % repeats);
+    const std::uint64_t seed = run_seed(s.sweep.seed, sc, rep);
+    TrialResult t = run_trial(train, {.scenario = &scenarios[std::size_t(sc)],
+                                      .seed = seed,
+                                      .episodes = s.sweep.episodes,
+                                      .stop = s.sweep.control.stop,
+                                      .pool = s.pool.get(),
+                                      .progress = s.sweep.control.progress});
+    per_job[i] = evaluate_everywhere(t, scenarios[std::size_t(sc)].name, rep, seed, evals, s);
     if (rep == 0) kept[std::size_t(sc)] = std::move(t);
-    if (progress) progress->run_done();
+    if (s.sweep.control.progress) s.sweep.control.progress->run_done();
   };
-  run_journaled(
-      jobs, s.threads, s.control, play_run,
-      // The run's games and, for repeat 0, the trained models (saved as policies).
-      [&](std::size_t i) {
-        nlohmann::json games = nlohmann::json::array();
-        for (const GeneralizeRecord& r : per_job[i]) {
-          games.push_back({{"train_scenario", r.train_scenario},
-                           {"repeat", r.repeat},
-                           {"eval_map", r.eval_map},
-                           {"eval_scenario", r.eval_scenario},
-                           {"result", episode_to_json(r.result)}});
-          if (r.trace) games.back()["trace"] = trace_to_json(*r.trace);
-        }
-        nlohmann::json data{{"games", std::move(games)}};
-        if (i % static_cast<std::size_t>(s.repeats) == 0) {
-          const TrialResult& t = kept[i / static_cast<std::size_t>(s.repeats)];
-          data["pursuer_models"] = role_models_to_json(t.pursuer_models);
-          data["evader_models"] = role_models_to_json(t.evader_models);
-        }
-        return data;
-      },
-      [&](std::size_t i, const nlohmann::json& data) {
-        std::vector<GeneralizeRecord> records;
-        for (const auto& g : data.at("games")) {
-          records.push_back({g.at("train_scenario").get<std::string>(), g.at("repeat").get<int>(),
-                             g.at("eval_map").get<std::string>(), g.at("eval_scenario").get<std::string>(),
-                             episode_from_json(g.at("result")), {}});
-          if (g.contains("trace")) records.back().trace = std::make_shared<const game::Trace>(trace_from_json(g.at("trace")));
-        }
-        per_job[i] = std::move(records);
-        if (i % static_cast<std::size_t>(s.repeats) == 0) {
-          TrialResult& t = kept[i / static_cast<std::size_t>(s.repeats)];
-          t.pursuer_models = role_models_from_json(data.at("pursuer_models"), game::Role::kPursuer);
-          t.evader_models = role_models_from_json(data.at("evader_models"), game::Role::kEvader);
-        }
-      });
+  sweep::run_sweep(jobs, s.sweep.threads, s.sweep.control,
+                   {.run = run,
+                    .encode = [&](std::size_t i) { return encode_run(per_job[i], kept_of(i)); },
+                    .restore = [&](std::size_t i, const nlohmann::json& data) { per_job[i] = restore_run(data, kept_of(i)); }});
   if (keep) {
     for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
       for (const auto& [role, models] :
@@ -151,11 +171,11 @@ std::vector<GeneralizeRecord> run_generalization(
 
 void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), with_episode_columns({"train_scenario", "repeat", "eval_map", "eval_scenario"}));
+  results::CsvWriter csv(out.stream(), results::with_episode_columns({"train_scenario", "repeat", "eval_map", "eval_scenario"}));
   for (const GeneralizeRecord& r : records) {
     auto row = csv.row();
     row.add(r.train_scenario).add(r.repeat).add(r.eval_map).add(r.eval_scenario);
-    add_episode_cells(row, r.result);
+    results::add_episode_cells(row, r.result);
     row.end();
   }
   out.commit();
@@ -175,14 +195,14 @@ nlohmann::ordered_json summarize_generalization(const std::vector<GeneralizeReco
       coll += r.result.collisions > 0;
       if (r.result.captured()) time.push_back(r.result.duration);
     }
-    const ProportionInterval cr = wilson_interval(caps, runs), kr = wilson_interval(coll, runs);
+    const results::ProportionInterval cr = results::wilson_interval(caps, runs), kr = results::wilson_interval(coll, runs);
     out.push_back({{"map", m},
                    {"runs", runs},
                    {"captures", caps},
                    {"capture_rate", {{"rate", num(cr.rate)}, {"lo", cr.lo}, {"hi", cr.hi}}},
                    {"collision_runs", coll},
                    {"collision_rate", {{"rate", num(kr.rate)}, {"lo", kr.lo}, {"hi", kr.hi}}},
-                   {"capture_time_s", num(mean_interval(time).mean)}});
+                   {"capture_time_s", num(results::mean_interval(time).mean)}});
   }
   return out;
 }

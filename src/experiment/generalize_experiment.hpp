@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/run_journal.hpp"
+#include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
@@ -21,18 +21,12 @@
 
 namespace peg3d::experiment {
 
-class ProgressReporter;
-
 struct GeneralizeSettings {
-  std::uint64_t seed = 1;
-  int episodes = 200;
-  int repeats = 5;
-  int threads = 0;
-  SweepControl control;  ///< journal and stop request (none by default)
+  SweepSettings sweep{.repeats = 5};  ///< repeats: training runs per scenario of the training map
   /// The classic opponents mixed into training (experiment/training.hpp); null: co-learning.
-  std::shared_ptr<const OpponentPool> pool;
+  std::shared_ptr<const OpponentPool> pool{};
   /// Chooses the games (by generalize_key) whose episode is recorded, for replay viewers; none when empty.
-  std::function<bool(const std::string&)> keep_trace;
+  std::function<bool(const std::string&)> keep_trace{};
 };
 
 struct GeneralizeRecord {
@@ -71,12 +65,11 @@ nlohmann::ordered_json generalize_seeds(const game::Sim& train, const Generalize
 
 /// Trains per training scenario and repeat on `train`, evaluates the frozen models greedily on every scenario
 /// of every evaluation map. The trained models of repeat 0 are returned through `keep` as
-/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...) when not null. With settings.control's
-/// journal, finished runs are recorded as they finish and runs it holds are read back instead of run; a stop
-/// request throws SweepInterrupted.
+/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...) when not null. With
+/// settings.sweep.control's journal, finished runs are recorded as they finish and runs it holds are read back
+/// instead of run; a stop request throws sweep::SweepInterrupted.
 std::vector<GeneralizeRecord> run_generalization(
     const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& settings,
-    ProgressReporter* progress = nullptr,
     std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep = nullptr);
 
 void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records);

@@ -15,41 +15,40 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/paper_experiment.hpp"
-#include "experiment/run_journal.hpp"
+#include "experiment/algorithms.hpp"
+#include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
 #include "game/sim.hpp"
+#include "results/result_files.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
-
-class ProgressReporter;
 
 struct LeagueSettings {
   std::vector<game::PolicyKind> classic_pursuers{game::PolicyKind::kPurePursuit, game::PolicyKind::kProportionalNavigation,
                                                  game::PolicyKind::kApollonius};
   std::vector<game::PolicyKind> classic_evaders{game::PolicyKind::kFlee, game::PolicyKind::kFleeApollonius,
                                                 game::PolicyKind::kRandom};
-  std::uint64_t seed = 1;  ///< root seed
-  int train_seeds = 3;     ///< training runs per algorithm, >= 1
-  int eval_seeds = 5;      ///< evaluation games per start and pairing, >= 1
-  int episodes = 4000;     ///< training episodes per run, >= 0 (docs/learning.md: the robust evader needs 4000)
-  int threads = 0;
+  /// Root seed, training episodes per run (4000 by default; docs/learning.md: the robust evader needs 4000),
+  /// repeats (the training runs, or seeds, per algorithm: --train-seeds, 3 by default), threads and control
+  /// (the journal holds the training runs).
+  SweepSettings sweep{.episodes = 4000, .repeats = 3};
+  int eval_seeds = 5;  ///< evaluation games per start and pairing, >= 1
   /// Initial headings of the evaluation games: random by default, so that the evaluation seeds give different
   /// games even between deterministic policies.
   game::InitialHeading eval_heading = game::InitialHeading::kRandom;
   /// Initial headings of the training episodes, replacing the algorithms' initial_heading; nullopt keeps
   /// theirs. Random by default: the training starts as the games do (docs/learning.md).
   std::optional<game::InitialHeading> train_heading = game::InitialHeading::kRandom;
-  SweepControl control;  ///< journal (training runs), stop request, ranks
 };
 
 /// One player of the league.
@@ -87,7 +86,9 @@ class League {
   const std::vector<Entrant>& evaders() const { return evaders_; }
   const world::Arena& train_arena() const { return *train_; }
 
-  std::size_t training_runs() const { return algorithms_.size() * static_cast<std::size_t>(settings_.train_seeds); }
+  /// Training runs (seeds) per algorithm.
+  int train_seeds() const { return settings_.sweep.repeats; }
+  std::size_t training_runs() const { return algorithms_.size() * static_cast<std::size_t>(train_seeds()); }
   /// The configuration the games of a pairing are played with (groups: the algorithms, then the classic policies
   /// of the role). Its rules are the first algorithm's; each algorithm's side brings its own agents and its
   /// opponent choice (team.pursuer_target or team.evader_threat).
@@ -109,16 +110,28 @@ class League {
     std::string pursuer, evader;  ///< entrant names
     game::EpisodeResult result;
   };
-  std::vector<Game> run(ProgressReporter* progress, bool root) const;
+  std::vector<Game> run(bool root) const;
 
   /// The trained models of run (algorithm a, training seed t), once run() has trained them.
   const game::RoleModels& models(int a, int t, game::Role role) const;
   /// The training episodes of run (algorithm a, training seed t) with their pool opponents, once run() has
   /// trained them.
-  LearningCurve curve(int a, int t) const;
+  results::LearningCurve curve(int a, int t) const;
 
  private:
+  /// One evaluation start: a map, one of its scenarios, an evaluation seed.
+  struct Start {
+    std::size_t map, scenario;
+    int seed;
+  };
+
   const game::Sim& sim_of(std::size_t map, int pursuer_group, int evader_group) const;
+  /// The group an entrant plays in: its algorithm, or after the algorithms its classic policy.
+  int group_of(const Entrant& e) const;
+  /// Every (algorithm, seed) run, journaled and spread over the ranks.
+  void train() const;
+  /// Every pairing's game at one start, into `games` (pursuer-major).
+  void play_start(const Start& start, std::span<Game> games) const;
 
   std::shared_ptr<const world::Arena> train_;
   std::vector<LeagueMap> maps_;
@@ -131,32 +144,7 @@ class League {
   std::vector<game::Sim> eval_sims_;
   int pursuer_groups_ = 0, evader_groups_ = 0;
   mutable std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
-  mutable std::vector<std::vector<game::EpisodeResult>> training_;  ///< per training run: its episodes
-  mutable std::vector<std::vector<int>> opponents_;                 ///< per training run: each episode's pool entry
+  mutable std::vector<TrainingResult> training_;  ///< per training run: its episodes and their pool entries
 };
-
-/// learning_curves.csv: one row per training episode of every run (algorithm, train_seed, episode, the
-/// scenario it started from, pool_opponent, then the episode columns).
-void write_league_learning_curves_csv(const std::filesystem::path& file, const League& league);
-
-/// games.csv: one row per game (map, scenario, eval_seed, pursuer, evader, then the episode columns).
-void write_league_games_csv(const std::filesystem::path& file, const std::vector<League::Game>& games);
-
-/// The cross-play matrix, per pair of groups (trained entrants pooled over their training seeds) or of
-/// entrants: games, capture rate with its Wilson interval, mean time to capture (captured games) and mean
-/// evader survival time (every game, censored at the time limit) with t intervals, collision games, the
-/// evader's mean pinned fraction.
-nlohmann::ordered_json league_matrix(const League& league, const std::vector<League::Game>& games, bool by_group);
-/// matrix.csv from league_matrix.
-void write_league_matrix_csv(const std::filesystem::path& file, const nlohmann::ordered_json& matrix);
-
-/// The questions, answered from the games: for each trained pursuer group, its capture rate against
-/// each scripted evader beside the best classic pursuer's, and against the trained evaders of its own
-/// group; for each trained evader group, its survival time against each classic pursuer beside the best
-/// scripted evader's, paired by start and seed (paired t and Wilcoxon tests).
-nlohmann::ordered_json league_findings(const League& league, const std::vector<League::Game>& games);
-
-/// The matrix as an aligned text table (capture rate and mean survival).
-std::string league_table(const nlohmann::ordered_json& matrix);
 
 }  // namespace peg3d::experiment

@@ -9,16 +9,16 @@
 #include "core/config_json.hpp"
 #include "core/hash.hpp"
 #include "core/random.hpp"
-#include "experiment/csv_writer.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/parallel_runner.hpp"
-#include "experiment/progress_reporter.hpp"
-#include "experiment/result_files.hpp"
-#include "experiment/run_info.hpp"
-#include "experiment/statistics.hpp"
 #include "experiment/trial.hpp"
 #include "game/lineup.hpp"
 #include "game/policy_io.hpp"
+#include "results/codecs.hpp"
+#include "results/csv_writer.hpp"
+#include "results/result_files.hpp"
+#include "results/run_info.hpp"
+#include "results/statistics.hpp"
+#include "sweep/progress_reporter.hpp"
+#include "sweep/sweep_driver.hpp"
 
 namespace peg3d::experiment {
 
@@ -49,7 +49,7 @@ std::vector<game::Sim> make_matchup_sims(const std::shared_ptr<const world::Aren
 }
 
 std::size_t matchup_run_count(const world::Arena& arena, const MatchupSettings& s) {
-  return arena.map().scenarios.size() * static_cast<std::size_t>(s.repeats);
+  return arena.map().scenarios.size() * static_cast<std::size_t>(s.sweep.repeats);
 }
 
 nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& base, const MatchupSettings& s) {
@@ -63,11 +63,11 @@ nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& 
     return nlohmann::json(fmt::format("fnv1a64:{:016x}", h.value()));
   };
   return {{"experiment", "matchup"},
-          {"peg3d", peg3d_build_json()},
-          {"map_hash", map_content_hash(arena)},
-          {"seed", s.seed},
-          {"episodes", s.episodes},
-          {"repeats", s.repeats},
+          {"peg3d", results::peg3d_build_json()},
+          {"map_hash", results::map_content_hash(arena)},
+          {"seed", s.sweep.seed},
+          {"episodes", s.sweep.episodes},
+          {"repeats", s.sweep.repeats},
           {"pursuers", std::move(pursuers)},
           {"evaders", std::move(evaders)},
           {"pursuer_policy_hash", policy_hash(s.pursuer_policy)},
@@ -76,111 +76,147 @@ nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& 
 }
 
 nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& s) {
-  return {{"root", s.seed},
+  return {{"root", s.sweep.seed},
           {"derivation", "run seed = derive_seed(root, {scenario index, repeat}); FACL training as a trial with the run "
                          "seed; pairing (p, e) = derive_seed(run seed, {10, p, e}) for the pursuers, derive_seed(that, "
                          "{1}) for the evaders, derive_seed(that, {2}) for the episode"},
-          {"runs", scenario_run_seeds(arena.map().scenarios, s.repeats, s.seed)}};
+          {"runs", scenario_run_seeds(arena.map().scenarios, s.sweep.repeats, s.sweep.seed)}};
 }
 
-std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& s,
-                                        ProgressReporter* progress) {
-  const game::Sim& training = sims.front();
-  const auto& scenarios = training.arena().map().scenarios;
-  const std::size_t n_p = s.pursuers.size(), n_e = s.evaders.size();
-  const std::size_t jobs = scenarios.size() * static_cast<std::size_t>(s.repeats);
-  std::vector<std::vector<MatchupRecord>> per_job(jobs);
-  const bool need_facl = [&] {
-    for (const auto p : s.pursuers)
-      if (p == game::PolicyKind::kFacl && !s.pursuer_policy) return true;
-    for (const auto e : s.evaders)
-      if (e == game::PolicyKind::kFacl && !s.evader_policy) return true;
-    return false;
-  }();
-  const auto loaded = [](const std::shared_ptr<game::FaclModel>& m) {
-    game::RoleModels r;
-    if (m) r.models = {m}, r.of_agent = {0};
-    return r;
-  };
-  const auto play_run = [&](std::size_t i) {
-    const int sc = static_cast<int>(i / s.repeats), rep = static_cast<int>(i % s.repeats);
+namespace {
+
+bool needs_training(const MatchupSettings& s) {
+  for (const auto p : s.pursuers)
+    if (p == game::PolicyKind::kFacl && !s.pursuer_policy) return true;
+  for (const auto e : s.evaders)
+    if (e == game::PolicyKind::kFacl && !s.evader_policy) return true;
+  return false;
+}
+
+game::RoleModels loaded_models(const std::shared_ptr<game::FaclModel>& m) {
+  game::RoleModels r;
+  if (m) r.models = {m}, r.of_agent = {0};
+  return r;
+}
+
+// One run of the matchups: the FACL agents of a start (trained or loaded), then every pairing's greedy game.
+class MatchupRun {
+ public:
+  MatchupRun(const std::vector<game::Sim>& sims, const MatchupSettings& s) : sims_(sims), s_(s), train_(needs_training(s)) {}
+
+  std::vector<MatchupRecord> play(std::size_t i) const {
+    const auto& scenarios = sims_.front().arena().map().scenarios;
+    const int sc = static_cast<int>(i / s_.sweep.repeats), rep = static_cast<int>(i % s_.sweep.repeats);
     const world::Scenario& scenario = scenarios[std::size_t(sc)];
-    const std::uint64_t seed = run_seed(s.seed, sc, rep);
+    const std::uint64_t seed = run_seed(s_.sweep.seed, sc, rep);
     game::RoleModels facl_pursuers, facl_evaders;
-    if (need_facl) {
-      TrialResult t = run_trial(training, {&scenario, seed, s.episodes, false, s.control.stop, s.pool.get()}, progress);
+    if (train_) {
+      TrialResult t = run_trial(sims_.front(), {.scenario = &scenario,
+                                                .seed = seed,
+                                                .episodes = s_.sweep.episodes,
+                                                .stop = s_.sweep.control.stop,
+                                                .pool = s_.pool.get(),
+                                                .progress = s_.sweep.control.progress});
       facl_pursuers = std::move(t.pursuer_models);
       facl_evaders = std::move(t.evader_models);
     }
-    if (s.pursuer_policy) facl_pursuers = loaded(s.pursuer_policy);
-    if (s.evader_policy) facl_evaders = loaded(s.evader_policy);
-    game::SimState state(training);
-    const int pursuers = static_cast<int>(scenario.pursuers.size()), evaders = static_cast<int>(scenario.evaders.size());
+    if (s_.pursuer_policy) facl_pursuers = loaded_models(s_.pursuer_policy);
+    if (s_.evader_policy) facl_evaders = loaded_models(s_.evader_policy);
+    game::SimState state(sims_.front());
     std::vector<MatchupRecord> records;
-    for (std::size_t p = 0; p < n_p; ++p) {
-      for (std::size_t e = 0; e < n_e; ++e) {
-        throw_if_stopped(s.control.stop);
-        const game::Sim& sim = sims[1 + p * n_e + e];
-        const std::uint64_t pseed = derive_seed(seed, {10, p, e});
-        game::Lineup lineup;
-        if (s.pursuers[p] == game::PolicyKind::kFacl) {
-          game::add_frozen(lineup, facl_pursuers, pursuers);
-        } else {
-          game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
-        }
-        if (s.evaders[e] == game::PolicyKind::kFacl) {
-          game::add_frozen(lineup, facl_evaders, evaders);
-        } else {
-          game::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
-        }
-        MatchupRecord record{scenario.name, rep, game::to_string(s.pursuers[p]), game::to_string(s.evaders[e]), {}, {}, {}};
-        std::shared_ptr<game::Trace> trace;
-        if (s.keep_trace && s.keep_trace(matchup_key(record))) {
-          trace = std::make_shared<game::Trace>();
-          trace->reserve(sim.max_steps(), scenario.agents());
-        }
-        record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}), trace.get());
-        record.trace = std::move(trace);
-        record.agents = game::agent_summaries(state);
-        records.push_back(std::move(record));
-        if (progress) progress->episode_done();
+    for (std::size_t p = 0; p < s_.pursuers.size(); ++p) {
+      for (std::size_t e = 0; e < s_.evaders.size(); ++e) {
+        sweep::throw_if_stopped(s_.sweep.control.stop);
+        records.push_back(play_pairing(p, e, scenario, rep, seed, facl_pursuers, facl_evaders, state));
+        if (s_.sweep.control.progress) s_.sweep.control.progress->episode_done();
       }
     }
-    per_job[i] = std::move(records);
-    if (progress) progress->run_done();
-  };
-  run_journaled(
-      jobs, s.threads, s.control, play_run,
-      [&](std::size_t i) {
-        nlohmann::json games = nlohmann::json::array();
-        for (const MatchupRecord& r : per_job[i]) {
-          nlohmann::json agents = nlohmann::json::array();
-          for (const auto& a : r.agents) agents.push_back(agent_summary_to_json(a));
-          games.push_back({{"scenario", r.scenario},
-                           {"repeat", r.repeat},
-                           {"pursuer", r.pursuer},
-                           {"evader", r.evader},
-                           {"result", episode_to_json(r.result)},
-                           {"agents", std::move(agents)}});
-          if (r.trace) games.back()["trace"] = trace_to_json(*r.trace);
-        }
-        return nlohmann::json{{"games", std::move(games)}};
-      },
-      [&](std::size_t i, const nlohmann::json& data) {
-        std::vector<MatchupRecord> records;
-        for (const auto& g : data.at("games")) {
-          MatchupRecord r{g.at("scenario").get<std::string>(), g.at("repeat").get<int>(),
-                          g.at("pursuer").get<std::string>(), g.at("evader").get<std::string>(),
-                          episode_from_json(g.at("result")), {}, {}};
-          for (const auto& a : g.at("agents")) r.agents.push_back(agent_summary_from_json(a));
-          if (g.contains("trace")) r.trace = std::make_shared<const game::Trace>(trace_from_json(g.at("trace")));
-          records.push_back(std::move(r));
-        }
-        if (records.size() != n_p * n_e) {
-          throw std::invalid_argument(fmt::format("{} games, expected {} (one per pairing)", records.size(), n_p * n_e));
-        }
-        per_job[i] = std::move(records);
-      });
+    return records;
+  }
+
+ private:
+  // Pairing (p, e) at one start: its lineup (frozen FACL models or classic policies seeded from the run's
+  // seed) and its greedy game.
+  MatchupRecord play_pairing(std::size_t p, std::size_t e, const world::Scenario& scenario, int rep, std::uint64_t seed,
+                             const game::RoleModels& facl_pursuers, const game::RoleModels& facl_evaders,
+                             game::SimState& state) const {
+    const game::Sim& sim = sims_[1 + p * s_.evaders.size() + e];
+    const int pursuers = static_cast<int>(scenario.pursuers.size()), evaders = static_cast<int>(scenario.evaders.size());
+    const std::uint64_t pseed = derive_seed(seed, {10, p, e});
+    game::Lineup lineup;
+    if (s_.pursuers[p] == game::PolicyKind::kFacl) {
+      game::add_frozen(lineup, facl_pursuers, pursuers);
+    } else {
+      game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
+    }
+    if (s_.evaders[e] == game::PolicyKind::kFacl) {
+      game::add_frozen(lineup, facl_evaders, evaders);
+    } else {
+      game::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
+    }
+    MatchupRecord record{scenario.name, rep, game::to_string(s_.pursuers[p]), game::to_string(s_.evaders[e]), {}, {}, {}};
+    std::shared_ptr<game::Trace> trace;
+    if (s_.keep_trace && s_.keep_trace(matchup_key(record))) {
+      trace = std::make_shared<game::Trace>();
+      trace->reserve(sim.max_steps(), scenario.agents());
+    }
+    record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}), trace.get());
+    record.trace = std::move(trace);
+    record.agents = game::agent_summaries(state);
+    return record;
+  }
+
+  const std::vector<game::Sim>& sims_;
+  const MatchupSettings& s_;
+  bool train_;
+};
+
+nlohmann::json encode_games(const std::vector<MatchupRecord>& records) {
+  nlohmann::json games = nlohmann::json::array();
+  for (const MatchupRecord& r : records) {
+    nlohmann::json agents = nlohmann::json::array();
+    for (const auto& a : r.agents) agents.push_back(results::agent_summary_to_json(a));
+    games.push_back({{"scenario", r.scenario},
+                     {"repeat", r.repeat},
+                     {"pursuer", r.pursuer},
+                     {"evader", r.evader},
+                     {"result", results::episode_to_json(r.result)},
+                     {"agents", std::move(agents)}});
+    if (r.trace) games.back()["trace"] = results::trace_to_json(*r.trace);
+  }
+  return nlohmann::json{{"games", std::move(games)}};
+}
+
+std::vector<MatchupRecord> restore_games(const nlohmann::json& data, std::size_t pairings) {
+  std::vector<MatchupRecord> records;
+  for (const auto& g : data.at("games")) {
+    MatchupRecord r{g.at("scenario").get<std::string>(), g.at("repeat").get<int>(), g.at("pursuer").get<std::string>(),
+                    g.at("evader").get<std::string>(), results::episode_from_json(g.at("result")), {}, {}};
+    for (const auto& a : g.at("agents")) r.agents.push_back(results::agent_summary_from_json(a));
+    if (g.contains("trace")) r.trace = std::make_shared<const game::Trace>(results::trace_from_json(g.at("trace")));
+    records.push_back(std::move(r));
+  }
+  if (records.size() != pairings) {
+    throw std::invalid_argument(fmt::format("{} games, expected {} (one per pairing)", records.size(), pairings));
+  }
+  return records;
+}
+
+}  // namespace
+
+std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& s) {
+  const std::size_t jobs = matchup_run_count(sims.front().arena(), s);
+  const std::size_t pairings = s.pursuers.size() * s.evaders.size();
+  std::vector<std::vector<MatchupRecord>> per_job(jobs);
+  const MatchupRun matchups(sims, s);
+  sweep::run_sweep(jobs, s.sweep.threads, s.sweep.control,
+                   {.run =
+                        [&](std::size_t i) {
+                          per_job[i] = matchups.play(i);
+                          if (s.sweep.control.progress) s.sweep.control.progress->run_done();
+                        },
+                    .encode = [&](std::size_t i) { return encode_games(per_job[i]); },
+                    .restore = [&](std::size_t i, const nlohmann::json& data) { per_job[i] = restore_games(data, pairings); }});
   std::vector<MatchupRecord> out;
   for (auto& v : per_job) std::move(v.begin(), v.end(), std::back_inserter(out));
   return out;
@@ -192,11 +228,11 @@ std::string matchup_key(const MatchupRecord& r) {
 
 void write_matchups_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), with_episode_columns({"scenario", "repeat", "pursuer", "evader"}));
+  results::CsvWriter csv(out.stream(), results::with_episode_columns({"scenario", "repeat", "pursuer", "evader"}));
   for (const MatchupRecord& r : records) {
     auto row = csv.row();
     row.add(r.scenario).add(r.repeat).add(r.pursuer).add(r.evader);
-    add_episode_cells(row, r.result);
+    results::add_episode_cells(row, r.result);
     row.end();
   }
   out.commit();
@@ -204,7 +240,7 @@ void write_matchups_csv(const std::filesystem::path& file, const std::vector<Mat
 
 void write_matchup_agents_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records) {
   AtomicFile out(file);
-  CsvWriter csv(out.stream(), {"scenario", "repeat", "pursuer", "evader", "role", "rank", "path_m", "return",
+  results::CsvWriter csv(out.stream(), {"scenario", "repeat", "pursuer", "evader", "role", "rank", "path_m", "return",
                                "pinned_fraction", "collisions", "captures", "captured", "capture_time_s"});
   for (const MatchupRecord& r : records) {
     for (const game::AgentSummary& a : r.agents) {
@@ -232,7 +268,7 @@ void write_matchup_agents_csv(const std::filesystem::path& file, const std::vect
 nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& records, const MatchupSettings& s) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   const auto num = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
-  const auto rate_json = [&](const ProportionInterval& r) {
+  const auto rate_json = [&](const results::ProportionInterval& r) {
     return nlohmann::ordered_json{{"rate", num(r.rate)}, {"lo", r.lo}, {"hi", r.hi}};
   };
   for (const auto p : s.pursuers) {
@@ -257,16 +293,16 @@ nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& reco
                      {"evader", game::to_string(e)},
                      {"runs", runs},
                      {"captures", caps},
-                     {"capture_rate", rate_json(wilson_interval(caps, runs))},
-                     {"capture_time_s", num(mean_interval(time).mean)},
+                     {"capture_rate", rate_json(results::wilson_interval(caps, runs))},
+                     {"capture_time_s", num(results::mean_interval(time).mean)},
                      {"evaders", evaders},
                      {"evaders_captured", evaders_captured},
-                     {"evader_capture_rate", rate_json(wilson_interval(evaders_captured, evaders))},
-                     {"time_to_each_capture_s", num(mean_interval(each).mean)},
-                     {"pursuer_path_m", num(mean_interval(path).mean)},
-                     {"evader_path_m", num(mean_interval(epath).mean)},
+                     {"evader_capture_rate", rate_json(results::wilson_interval(evaders_captured, evaders))},
+                     {"time_to_each_capture_s", num(results::mean_interval(each).mean)},
+                     {"pursuer_path_m", num(results::mean_interval(path).mean)},
+                     {"evader_path_m", num(results::mean_interval(epath).mean)},
                      {"collision_runs", coll},
-                     {"evader_pinned_fraction", num(mean_interval(pinned).mean)}});
+                     {"evader_pinned_fraction", num(results::mean_interval(pinned).mean)}});
     }
   }
   return out;

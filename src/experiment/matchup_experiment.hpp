@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "experiment/run_journal.hpp"
+#include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
@@ -23,24 +23,20 @@
 
 namespace peg3d::experiment {
 
-class ProgressReporter;
-
 struct MatchupSettings {
   std::vector<game::PolicyKind> pursuers{game::PolicyKind::kFacl, game::PolicyKind::kPurePursuit,
                                          game::PolicyKind::kProportionalNavigation, game::PolicyKind::kApollonius};
   std::vector<game::PolicyKind> evaders{game::PolicyKind::kFacl, game::PolicyKind::kFlee,
                                         game::PolicyKind::kFleeApollonius, game::PolicyKind::kRandom};
-  std::uint64_t seed = 1;
-  int episodes = 200;  ///< FACL training episodes (ignored for a loaded policy)
-  int repeats = 10;    ///< seeds per scenario
-  int threads = 0;
+  /// Seeds, budget (FACL training episodes, ignored for a loaded policy), repeats (seeds per scenario, 10 by
+  /// default), threads and control.
+  SweepSettings sweep{.repeats = 10};
   std::shared_ptr<game::FaclModel> pursuer_policy;  ///< a saved FACL pursuer instead of training (every pursuer plays it)
   std::shared_ptr<game::FaclModel> evader_policy;   ///< a saved FACL evader instead of training (every evader plays it)
   /// The classic opponents mixed into FACL training (experiment/training.hpp); null: co-learning.
-  std::shared_ptr<const OpponentPool> pool;
-  SweepControl control;                             ///< journal and stop request (none by default)
+  std::shared_ptr<const OpponentPool> pool{};
   /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
-  std::function<bool(const std::string&)> keep_trace;
+  std::function<bool(const std::string&)> keep_trace{};
 };
 
 struct MatchupRecord {
@@ -76,10 +72,10 @@ nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& 
 /// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
 nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& settings);
 
-/// Plays every run (see matchup_run_count); with settings.control's journal, finished runs are recorded as
-/// they finish and runs it holds are read back instead of played; a stop request throws SweepInterrupted.
-std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& settings,
-                                        ProgressReporter* progress = nullptr);
+/// Plays every run (see matchup_run_count); with settings.sweep.control's journal, finished runs are recorded
+/// as they finish and runs it holds are read back instead of played; a stop request throws
+/// sweep::SweepInterrupted.
+std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& settings);
 
 /// matchups.csv: one row per game (scenario, repeat, pursuer, evader, then the episode columns).
 void write_matchups_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records);

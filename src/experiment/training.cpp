@@ -11,8 +11,8 @@
 
 #include "core/error.hpp"
 #include "core/random.hpp"
-#include "experiment/progress_reporter.hpp"
 #include "game/random_start.hpp"
+#include "sweep/progress_reporter.hpp"
 
 namespace peg3d::experiment {
 namespace {
@@ -83,72 +83,120 @@ std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s) {
   return derive_seed(trial_seed, {static_cast<std::uint64_t>(s)});
 }
 
-void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& lineup, int pursuers,
-                  std::span<const world::Scenario> scenarios, std::uint64_t seed, int episodes, const StopCheck& stop,
-                  ProgressReporter* progress, game::SimState& state, std::vector<game::EpisodeResult>& results,
-                  std::vector<int>& opponents) {
-  if (sim.config().training.procedure != game::TrainingProcedure::kCoLearning && pool == nullptr) {
-    throw std::logic_error("train_lineup: the configuration trains with an opponent pool, but none was given");
+namespace {
+
+// One training's episodes: which policies play episode e, where it starts, and playing it. The lineup's own
+// policies learn across episodes; a pool entry's classic opponents are built on first use.
+class Trainer {
+ public:
+  Trainer(const TrainingContext& context, game::Lineup& lineup)
+      : c_(context),
+        lineup_(lineup),
+        entries_(context.pool != nullptr ? context.pool->entries() : std::span<const OpponentPool::Entry>{}),
+        classic_(entries_.size()),
+        evaders_(lineup.size() - context.pursuers),
+        pursuer_episodes_(learning_episodes(context.sim->config().training.pursuer_learning, context.episodes)),
+        evader_episodes_(learning_episodes(context.sim->config().training.evader_learning, context.episodes)) {
+    resting_.reserve(std::size_t(lineup.size()));
+    for (int i = 0; i < lineup.size(); ++i) resting_.emplace_back(lineup[i]);
+    playing_.reserve(std::size_t(lineup.size()));
   }
-  const int evaders = lineup.size() - pursuers;
-  const auto stream = [seed](TrialStream s, std::size_t i) {
-    return derive_seed(seed, {static_cast<std::uint64_t>(s), static_cast<std::uint64_t>(i)});
-  };
-  results.reserve(results.size() + static_cast<std::size_t>(episodes));
-  opponents.reserve(opponents.size() + static_cast<std::size_t>(episodes));
-  // Pool episodes: the learning role's FACL policies (the same objects, so learning carries on) beside the
-  // pool entry's classic policies, built on first use.
-  const auto entries = pool != nullptr ? pool->entries() : std::span<const OpponentPool::Entry>{};
-  std::vector<std::unique_ptr<game::Lineup>> classic(entries.size());
-  std::vector<game::Policy*> playing;
-  const game::TrainingConfig& training = sim.config().training;
-  const double share_random = training.random_starts;
-  const int pursuer_episodes = learning_episodes(training.pursuer_learning, episodes);
-  const int evader_episodes = learning_episodes(training.evader_learning, episodes);
-  std::vector<Resting> resting;
-  resting.reserve(std::size_t(lineup.size()));
-  for (int i = 0; i < lineup.size(); ++i) resting.emplace_back(lineup[i]);
-  world::Scenario random;
-  playing.reserve(std::size_t(lineup.size()));
-  for (int e = 0; e < episodes; ++e) {
-    throw_if_stopped(stop);
-    const world::Scenario* scenario = &scenarios[std::size_t(e) % scenarios.size()];
+
+  /// Plays training episode e; returns its result and its pool entry (-1: co-learning).
+  std::pair<game::EpisodeResult, int> play(int e, game::SimState& state) {
+    const world::Scenario& scenario = start_of(e);
+    const bool pursuers_learn = e < pursuer_episodes_, evaders_learn = e < evader_episodes_;
+    const int k = entries_.empty() ? -1
+                                   : c_.pool->choose(stream(TrialStream::kTrainingOpponent, std::size_t(e)),
+                                                     pursuers_learn, evaders_learn);
+    const game::Sim& played = k < 0 ? choose_co_learning(scenario, pursuers_learn, evaders_learn)
+                                    : choose_pool_entry(scenario, k);
+    return {game::play(played, state, scenario, playing_, /*learning=*/true,
+                       stream(TrialStream::kTrainingEpisode, std::size_t(e))),
+            k};
+  }
+
+ private:
+  std::uint64_t stream(TrialStream s, std::size_t i) const {
+    return derive_seed(c_.seed, {static_cast<std::uint64_t>(s), static_cast<std::uint64_t>(i)});
+  }
+
+  // The scenario episode e starts from: the next of the list, or a random start drawn from the episode's seed.
+  const world::Scenario& start_of(int e) {
+    const world::Scenario& listed = c_.scenarios[std::size_t(e) % c_.scenarios.size()];
+    const double share_random = c_.sim->config().training.random_starts;
     if (share_random > 0.0) {
       Rng draw(stream(TrialStream::kTrainingStart, std::size_t(e)));
       if (unit_uniform(draw) < share_random) {
-        random = game::random_start(sim, *scenario, draw());
-        scenario = &random;
+        random_ = game::random_start(*c_.sim, listed, draw());
+        return random_;
       }
     }
-    const int p = static_cast<int>(scenario->pursuers.size()), q = static_cast<int>(scenario->evaders.size());
-    assert(p <= pursuers && q <= evaders);
-    const bool pursuers_learn = e < pursuer_episodes, evaders_learn = e < evader_episodes;
-    const int k = entries.empty() ? -1
-                                  : pool->choose(stream(TrialStream::kTrainingOpponent, std::size_t(e)), pursuers_learn,
-                                                 evaders_learn);
-    playing.clear();
-    const game::Sim* played = &sim;
-    if (k < 0) {
-      for (int i = 0; i < p; ++i) playing.push_back(pursuers_learn ? &lineup[i] : &resting[std::size_t(i)]);
-      for (int j = 0; j < q; ++j) playing.push_back(evaders_learn ? &lineup[pursuers + j] : &resting[std::size_t(pursuers + j)]);
-    } else {
-      const OpponentPool::Entry& entry = entries[std::size_t(k)];
-      played = &entry.sim;
-      const bool trains_pursuers = entry.learner == game::Role::kPursuer;
-      auto& opponent = classic[std::size_t(k)];
-      if (!opponent) {
-        opponent = std::make_unique<game::Lineup>();
-        game::add_configured(*opponent, entry.sim.config(), trains_pursuers ? game::Role::kEvader : game::Role::kPursuer,
-                             trains_pursuers ? evaders : pursuers, stream(TrialStream::kPoolOpponents, std::size_t(k)));
-      }
-      for (int i = 0; i < p; ++i) playing.push_back(trains_pursuers ? &lineup[i] : &(*opponent)[i]);
-      for (int j = 0; j < q; ++j) playing.push_back(trains_pursuers ? &(*opponent)[j] : &lineup[pursuers + j]);
-    }
-    results.push_back(game::play(*played, state, *scenario, playing, /*learning=*/true,
-                                 stream(TrialStream::kTrainingEpisode, std::size_t(e))));
-    opponents.push_back(k);
-    if (progress) progress->episode_done();
+    return listed;
   }
+
+  // Co-learning: the lineup's own policies, each resting once its role's learning share is over.
+  const game::Sim& choose_co_learning(const world::Scenario& s, bool pursuers_learn, bool evaders_learn) {
+    const int p = static_cast<int>(s.pursuers.size()), q = static_cast<int>(s.evaders.size());
+    assert(p <= c_.pursuers && q <= evaders_);
+    playing_.clear();
+    for (int i = 0; i < p; ++i) playing_.push_back(pursuers_learn ? &lineup_[i] : &resting_[std::size_t(i)]);
+    for (int j = 0; j < q; ++j) {
+      const int at = c_.pursuers + j;
+      playing_.push_back(evaders_learn ? &lineup_[at] : &resting_[std::size_t(at)]);
+    }
+    return *c_.sim;
+  }
+
+  // A pool episode: the learning role's policies (the same objects, so learning carries on) beside the pool
+  // entry's classic policies.
+  const game::Sim& choose_pool_entry(const world::Scenario& s, int k) {
+    const int p = static_cast<int>(s.pursuers.size()), q = static_cast<int>(s.evaders.size());
+    assert(p <= c_.pursuers && q <= evaders_);
+    const OpponentPool::Entry& entry = entries_[std::size_t(k)];
+    const bool trains_pursuers = entry.learner == game::Role::kPursuer;
+    auto& opponent = classic_[std::size_t(k)];
+    if (!opponent) {
+      opponent = std::make_unique<game::Lineup>();
+      game::add_configured(*opponent, entry.sim.config(), trains_pursuers ? game::Role::kEvader : game::Role::kPursuer,
+                           trains_pursuers ? evaders_ : c_.pursuers, stream(TrialStream::kPoolOpponents, std::size_t(k)));
+    }
+    playing_.clear();
+    for (int i = 0; i < p; ++i) playing_.push_back(trains_pursuers ? &lineup_[i] : &(*opponent)[i]);
+    for (int j = 0; j < q; ++j) playing_.push_back(trains_pursuers ? &(*opponent)[j] : &lineup_[c_.pursuers + j]);
+    return entry.sim;
+  }
+
+  const TrainingContext& c_;
+  game::Lineup& lineup_;
+  std::span<const OpponentPool::Entry> entries_;
+  std::vector<std::unique_ptr<game::Lineup>> classic_;  // per pool entry, built on first use
+  std::vector<Resting> resting_;                         // per lineup policy: it, not learning
+  std::vector<game::Policy*> playing_;                   // the current episode's policies, in agent order
+  world::Scenario random_;                               // the current episode's random start
+  int evaders_;
+  int pursuer_episodes_, evader_episodes_;
+};
+
+}  // namespace
+
+TrainingResult train_lineup(const TrainingContext& context, game::Lineup& lineup, game::SimState& state) {
+  const game::Sim& sim = *context.sim;
+  if (sim.config().training.procedure != game::TrainingProcedure::kCoLearning && context.pool == nullptr) {
+    throw std::logic_error("train_lineup: the configuration trains with an opponent pool, but none was given");
+  }
+  TrainingResult r;
+  r.episodes.reserve(static_cast<std::size_t>(context.episodes));
+  r.opponents.reserve(static_cast<std::size_t>(context.episodes));
+  Trainer trainer(context, lineup);
+  for (int e = 0; e < context.episodes; ++e) {
+    sweep::throw_if_stopped(context.stop);
+    auto [result, opponent] = trainer.play(e, state);
+    r.episodes.push_back(result);
+    r.opponents.push_back(opponent);
+    if (context.progress) context.progress->episode_done();
+  }
+  return r;
 }
 
 std::vector<std::string> pool_opponent_names(const OpponentPool& pool, std::span<const int> opponents) {

@@ -11,16 +11,18 @@
 #include <string>
 #include <vector>
 
-#include "experiment/parallel_runner.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
 #include "game/sim.hpp"
+#include "sweep/parallel_runner.hpp"
 #include "world/arena.hpp"
 
-namespace peg3d::experiment {
-
+namespace peg3d::sweep {
 class ProgressReporter;
+}
+
+namespace peg3d::experiment {
 
 /// Seeds of a trial's streams, derived from its root seed.
 enum class TrialStream : std::uint64_t {
@@ -36,18 +38,33 @@ std::uint64_t stream_seed(std::uint64_t trial_seed, TrialStream s);
 
 class OpponentPool;
 
-/// Plays `episodes` learning episodes with `lineup`: its first `pursuers` policies are pursuers, the rest
-/// evaders, at least as many of each as any scenario has (a smaller scenario plays the first ones). Episode e
-/// starts from scenarios[e % size] (or, with training.random_starts, from a random_start() of its agents) and,
-/// with a pool, plays the opponent pool->choose() draws for it (co-learning for -1). A role past its
-/// training.*_learning share of the episodes plays greedily without learning. Every stream derives from `seed`
-/// as TrialStream says. Appends each episode's result and opponent entry (-1: co-learning) to `results` and
-/// `opponents`; tells `progress` of each episode; throws RunCancelled when `stop` asks. Throws std::logic_error
-/// when the configuration trains with an opponent pool and none is given.
-void train_lineup(const game::Sim& sim, const OpponentPool* pool, game::Lineup& lineup, int pursuers,
-                  std::span<const world::Scenario> scenarios, std::uint64_t seed, int episodes, const StopCheck& stop,
-                  ProgressReporter* progress, game::SimState& state, std::vector<game::EpisodeResult>& results,
-                  std::vector<int>& opponents);
+/// What a training plays besides the learners themselves.
+struct TrainingContext {
+  const game::Sim* sim = nullptr;  ///< the game the lineup learns in; its configuration's `training` settings apply
+  /// The classic opponents mixed in (its Sims share the arena of `sim`); null or empty: co-learning only.
+  const OpponentPool* pool = nullptr;
+  std::span<const world::Scenario> scenarios{};///< episode e starts from scenarios[e % size], >= 1 of them
+  int pursuers = 0;                            ///< the lineup's first `pursuers` policies are pursuers, the rest evaders
+  std::uint64_t seed = 0;                      ///< the trial's root seed; every stream derives from it (TrialStream)
+  int episodes = 0;                            ///< learning episodes, >= 0
+  sweep::StopCheck stop{};                     ///< polled before every episode; true throws RunCancelled
+  sweep::ProgressReporter* progress = nullptr;  ///< told of every episode; null: none
+};
+
+/// What a training did, episode by episode.
+struct TrainingResult {
+  std::vector<game::EpisodeResult> episodes;  ///< one per training episode, in order (the learning curve)
+  std::vector<int> opponents;                 ///< per episode: its opponent-pool entry, -1 for co-learning
+};
+
+/// Plays context.episodes learning episodes with `lineup` (at least as many policies of each role as any
+/// scenario has agents; a smaller scenario plays the first ones), in `state` (scratch, reused). Episode e
+/// starts from scenarios[e % size] (or, with training.random_starts, from a random_start() of its agents)
+/// and, with a pool, plays the opponent pool->choose() draws for it (co-learning for -1). A role past its
+/// training.*_learning share of the episodes plays greedily without learning. Every stream derives from
+/// context.seed as TrialStream says. Throws RunCancelled when context.stop asks, std::logic_error when the
+/// configuration trains with an opponent pool and none is given.
+TrainingResult train_lineup(const TrainingContext& context, game::Lineup& lineup, game::SimState& state);
 
 /// The classic opponents of an opponent-pool training, each with the Sim it is played in (the game
 /// configuration with every agent of the opponent's role playing it). Built once per sweep, before any run,

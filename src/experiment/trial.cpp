@@ -3,33 +3,41 @@
 #include <cassert>
 
 #include "core/random.hpp"
-#include "experiment/progress_reporter.hpp"
+#include "sweep/progress_reporter.hpp"
 
 namespace peg3d::experiment {
 
 int TrialResult::train_captures() const {
   int n = 0;
-  for (const auto& e : training) n += e.captured();
+  for (const auto& e : training.episodes) n += e.captured();
   return n;
 }
 
-TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec, ProgressReporter* progress) {
+TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec) {
   assert(spec.scenario != nullptr);
   const world::Scenario& scenario = *spec.scenario;
   TrialResult r;
   game::Lineup lineup;
-  game::add_configured(lineup, sim.config(), game::Role::kPursuer, static_cast<int>(scenario.pursuers.size()),
+  const int pursuers = static_cast<int>(scenario.pursuers.size());
+  game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers,
                        stream_seed(spec.seed, TrialStream::kPursuer), &r.pursuer_models);
   game::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(scenario.evaders.size()),
                        stream_seed(spec.seed, TrialStream::kEvader), &r.evader_models);
   game::SimState state(sim);
-  train_lineup(sim, spec.pool, lineup, static_cast<int>(scenario.pursuers.size()), {&scenario, 1}, spec.seed,
-               spec.episodes, spec.stop, progress, state, r.training, r.training_opponent);
-  throw_if_stopped(spec.stop);
+  r.training = train_lineup({.sim = &sim,
+                             .pool = spec.pool,
+                             .scenarios = {&scenario, 1},
+                             .pursuers = pursuers,
+                             .seed = spec.seed,
+                             .episodes = spec.episodes,
+                             .stop = spec.stop,
+                             .progress = spec.progress},
+                            lineup, state);
+  sweep::throw_if_stopped(spec.stop);
   if (spec.keep_trace) r.trace.reserve(sim.max_steps(), scenario.agents());
   r.evaluation = game::play(sim, state, scenario, lineup.policies(), /*learning=*/false,
                             stream_seed(spec.seed, TrialStream::kEvaluation), spec.keep_trace ? &r.trace : nullptr);
-  if (progress) progress->episode_done();
+  if (spec.progress) spec.progress->episode_done();
   return r;
 }
 

@@ -6,42 +6,39 @@
 #include <cstdint>
 #include <vector>
 
-#include "experiment/parallel_runner.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
 #include "game/sim.hpp"
+#include "sweep/parallel_runner.hpp"
 
 namespace peg3d::experiment {
-
-class ProgressReporter;
 
 struct TrialSpec {
   const world::Scenario* scenario = nullptr;
   std::uint64_t seed = 0;   ///< the trial's root seed
   int episodes = 200;       ///< training episodes, >= 0
   bool keep_trace = false;  ///< record every step of the evaluation episode
-  StopCheck stop;           ///< polled before every episode; a stop request throws RunCancelled
+  sweep::StopCheck stop{};  ///< polled before every episode; a stop request throws RunCancelled
   /// The classic opponents mixed into training (experiment/training.hpp); null or empty: co-learning only.
   const OpponentPool* pool = nullptr;
+  sweep::ProgressReporter* progress = nullptr;  ///< told of every episode; null: none
 };
 
 struct TrialResult {
-  game::EpisodeResult evaluation;             ///< the greedy episode after training
-  std::vector<game::EpisodeResult> training;  ///< one per training episode (the learning curve)
-  std::vector<int> training_opponent;         ///< per training episode: its pool entry, or -1 (co-learning)
-  game::Trace trace;                          ///< the evaluation's steps when keep_trace
-  game::RoleModels pursuer_models;            ///< the trained FACL models of each role (empty when none learns)
+  game::EpisodeResult evaluation;  ///< the greedy episode after training
+  TrainingResult training;         ///< the training episodes (the learning curve) and their opponents
+  game::Trace trace;               ///< the evaluation's steps when keep_trace
+  game::RoleModels pursuer_models;  ///< the trained FACL models of each role (empty when none learns)
   game::RoleModels evader_models;
 
   int train_captures() const;
 };
 
 /// Trains and evaluates the agents the Sim's configuration names: co-learning, with spec.pool's classic
-/// opponents mixed in when given (its Sims must share the arena of `sim`). `progress` (optional) is told of every
-/// episode. Throws RunCancelled when spec.stop asks to stop (checked between episodes, so a run gives up
-/// within one episode's time).
-TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec, ProgressReporter* progress = nullptr);
+/// opponents mixed in when given (its Sims must share the arena of `sim`). Throws RunCancelled when spec.stop
+/// asks to stop (checked between episodes, so a run gives up within one episode's time).
+TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec);
 
 /// Plays one greedy evaluation episode of already-built policies, in a state of the caller's (reused across
 /// calls to spare building its collision world).

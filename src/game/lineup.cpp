@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/random.hpp"
+#include "game/policy_factory.hpp"
 
 namespace peg3d::game {
 

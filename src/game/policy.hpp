@@ -3,9 +3,6 @@
 // agent learns, learn() with the reward of that step and what it sees after it. Policies never touch the
 // world or the other agent's state beyond the view they are given.
 
-#include <cstdint>
-#include <memory>
-
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
 #include "geometry/kinematics.hpp"
@@ -47,8 +44,5 @@ class Policy {
     (void)terminal;
   }
 };
-
-/// Builds the policy named by config.policy for `role`; `seed` feeds any randomness it has.
-std::unique_ptr<Policy> make_policy(const AgentConfig& config, Role role, std::uint64_t seed);
 
 }  // namespace peg3d::game

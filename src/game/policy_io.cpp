@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.hpp"
 #include "core/config_json.hpp"
+#include "core/input_files.hpp"
 #include "core/validation.hpp"
 
 namespace peg3d::game {
@@ -143,6 +145,22 @@ std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std
     if (e.line() != 0 || text.empty() || e.field().empty()) throw;
     throw PolicyFormatError(file, json_line_of(text, e.field()), e.field(), e.message());
   }
+}
+
+void save_policy(const std::filesystem::path& file, const FaclModel& model) {
+  write_file_atomically(file, policy_to_json(model).dump(2) + "\n");
+}
+
+std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role) {
+  std::string text;
+  nlohmann::json doc;
+  try {
+    text = read_input_file(file, "policy file");
+    doc = parse_json_text(text, file);
+  } catch (const InputError& e) {
+    throw PolicyFormatError(file, e.line(), e.field(), e.message());
+  }
+  return policy_from_json(doc, file, role, text);
 }
 
 }  // namespace peg3d::game

@@ -1,5 +1,5 @@
 #pragma once
-// Trained FACL models as versioned JSON documents: the agent's role and configuration (which fix the rule
+// Trained FACL models as versioned JSON documents, and their files: the agent's role and configuration (which fix the rule
 // bases) and every channel's actor and critic consequents. Doubles are written with round-trip precision,
 // so a loaded model acts exactly as the saved one.
 //
@@ -43,5 +43,12 @@ nlohmann::json policy_to_json(const FaclModel& model);
 std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& document, const std::filesystem::path& file = {},
                                             std::optional<Role> expected_role = std::nullopt,
                                             std::string_view text = {});
+
+/// Saves a trained FACL model as its document, pretty-printed, atomically (complete or absent).
+void save_policy(const std::filesystem::path& file, const FaclModel& model);
+
+/// Loads a policy document for an agent of `role`. Throws PolicyFormatError (an InputError) naming the file
+/// when it cannot be read, is not JSON, does not fit, or was saved for the other role.
+std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role);
 
 }  // namespace peg3d::game

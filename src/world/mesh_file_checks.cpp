@@ -15,7 +15,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/input_files.hpp"
-#include "world/triangle_mesh.hpp"
 
 namespace peg3d::world {
 namespace {

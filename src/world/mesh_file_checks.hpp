@@ -5,10 +5,19 @@
 // /dev/zero or ../../secret. These checks refuse such files with a message naming the declaration; the
 // bounded import (triangle_mesh.cpp) is the second line for whatever they miss.
 
+#include <cstdint>
 #include <filesystem>
 #include <string_view>
 
+#include "core/error.hpp"
+
 namespace peg3d::world {
+
+/// A mesh file that cannot be used; what() says why, naming the file.
+class MeshError : public InputError {
+ public:
+  using InputError::InputError;
+};
 
 /// The formats peg3d imports, as a message lists them.
 inline constexpr std::string_view kAcceptedMeshFormats = "OBJ (.obj), STL (.stl), PLY (.ply), OFF (.off), glTF 2 (.gltf, .glb), 3DS (.3ds)";

@@ -18,7 +18,6 @@
 
 #include "core/bounded_child.hpp"
 #include "world/map_spec.hpp"
-#include "world/mesh_file_checks.hpp"
 
 namespace peg3d::world {
 

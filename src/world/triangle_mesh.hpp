@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
 #include "geometry/vector.hpp"
+#include "world/mesh_file_checks.hpp"
 
 namespace peg3d::world {
 
@@ -24,12 +24,6 @@ struct TriangleMesh {
   std::size_t triangle_count() const { return faces.size(); }
   /// Axis-aligned bounds of the vertices (lo > hi when empty).
   Box bounds() const;
-};
-
-/// A mesh file that cannot be used; what() says why, naming the file.
-class MeshError : public InputError {
- public:
-  using InputError::InputError;
 };
 
 /// How long and how much memory one mesh import may take before it is given up (see import_mesh). Both grow

@@ -15,8 +15,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "experiment/paper_experiment.hpp"
-#include "experiment/result_files.hpp"
+#include "game/config_file.hpp"
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
 #include "game/policy_io.hpp"
@@ -72,7 +71,7 @@ TEST(ExperimentBrokenInputs, EveryBrokenConfigurationIsRefusedAsExpected) {
     const auto want = expectations.find(name);
     ASSERT_NE(want, expectations.end()) << "expect.txt has no line for " << name;
     try {
-      load_game_config(entry.path().string());
+      game::load_game_config(entry.path().string());
       ADD_FAILURE() << "accepted";
     } catch (const InputError& e) {
       expect_error(e, entry.path(), want->second);
@@ -98,7 +97,7 @@ class ExperimentBrokenPolicy : public ::testing::Test {
     const fs::path file = dir_ / "policy.json";
     std::ofstream(file, std::ios::binary) << text;
     try {
-      load_policy(file, game::Role::kPursuer);
+      game::load_policy(file, game::Role::kPursuer);
       ADD_FAILURE() << "accepted";
     } catch (const game::PolicyFormatError& e) {
       expect_error(e, file, want);
@@ -121,7 +120,7 @@ class ExperimentBrokenPolicy : public ::testing::Test {
 TEST_F(ExperimentBrokenPolicy, TheUnbrokenPolicyLoads) {
   const fs::path file = dir_ / "good.json";
   std::ofstream(file) << good_.dump(1);
-  EXPECT_NE(load_policy(file, game::Role::kPursuer), nullptr);
+  EXPECT_NE(game::load_policy(file, game::Role::kPursuer), nullptr);
 }
 
 TEST_F(ExperimentBrokenPolicy, TablesOfTheWrongShapeAreRefused) {

@@ -42,7 +42,7 @@ def main():
     # Under the sanitized suite: OpenMPI keeps allocations until exit, and LeakSanitizer reports them with
     # stacks whose frames show as "<unknown module>", which no suppression can name.
     # Leaks are not checked in the ranks; the same code runs leak-checked in one process in every other test,
-    # and the distributed protocol in tests/experiment/distributed_sweep_test.cpp, with threads as ranks.
+    # and the distributed protocol in tests/sweep/distributed_sweep_test.cpp, with threads as ranks.
     os.environ["ASAN_OPTIONS"] = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS", ""), "detect_leaks=0"]))
     t0 = time.monotonic()
 

@@ -9,9 +9,9 @@
 
 #include "core/hash.hpp"
 #include "core/random.hpp"
-#include "experiment/parallel_runner.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
+#include "sweep/parallel_runner.hpp"
 #include "world/map_spec.hpp"
 
 namespace peg3d::experiment {
@@ -88,7 +88,7 @@ std::uint64_t sweep_hash(const char* map, int episodes, int threads) {
   const game::Sim sim(arena, game::preset("peg3d"));
   const auto& scenarios = arena->map().scenarios;
   std::vector<std::uint64_t> hashes(scenarios.size());
-  run_indexed(scenarios.size(), threads, [&](std::size_t i) {
+  sweep::run_indexed(scenarios.size(), threads, [&](std::size_t i) {
     hashes[i] = train_and_hash(sim, scenarios[i], derive_seed(2024, {i}), episodes);
   });
   Fnv1a all;

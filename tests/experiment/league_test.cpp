@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "experiment/league_experiment.hpp"
+#include "experiment/league_report.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::experiment {
@@ -31,11 +32,11 @@ Algorithm algorithm(const std::string& name, const std::string& preset) {
 
 LeagueSettings small(int threads = 1) {
   LeagueSettings s;
-  s.seed = 3;
-  s.train_seeds = 2;
+  s.sweep.seed = 3;
+  s.sweep.repeats = 2;  // training seeds
   s.eval_seeds = 2;
-  s.episodes = 4;
-  s.threads = threads;
+  s.sweep.episodes = 4;
+  s.sweep.threads = threads;
   return s;
 }
 
@@ -64,8 +65,8 @@ TEST(League, EntrantsAreTheTrainedPoliciesOfEverySeedThenTheClassicOnes) {
 TEST(League, EveryPairingMeetsAtEveryStartAndSeedWhateverTheThreads) {
   const League one = league({algorithm("a", "peg3d")}, small(1));
   const League two = league({algorithm("a", "peg3d")}, small(2));
-  const auto g1 = one.run(nullptr, true);
-  const auto g2 = two.run(nullptr, true);
+  const auto g1 = one.run(true);
+  const auto g2 = two.run(true);
   // 2 trained + 3 classic per role, 2 starts x 2 evaluation seeds.
   ASSERT_EQ(g1.size(), 5u * 5u * 2u * 2u);
   EXPECT_EQ(g1.size(), one.games());
@@ -86,8 +87,8 @@ TEST(League, EveryPairingMeetsAtEveryStartAndSeedWhateverTheThreads) {
 TEST(League, ClassicGamesDoNotDependOnWhoElsePlays) {
   // The game at a start and seed is seeded by the start alone: adding an algorithm to the league leaves the
   // classic-against-scripted games as they were, so every pairing at one start is a paired comparison.
-  const auto small_league = league({algorithm("a", "peg3d")}, small()).run(nullptr, true);
-  const auto big_league = league({algorithm("a", "peg3d"), algorithm("b", "robust")}, small()).run(nullptr, true);
+  const auto small_league = league({algorithm("a", "peg3d")}, small()).run(true);
+  const auto big_league = league({algorithm("a", "peg3d"), algorithm("b", "robust")}, small()).run(true);
   int compared = 0;
   for (const auto& g : small_league) {
     if (g.pursuer.find('#') != std::string::npos || g.evader.find('#') != std::string::npos) continue;
@@ -129,10 +130,10 @@ TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
   // initial_heading applies, so an algorithm set to random matches train_heading = random on a chase one.
   const auto pursuer_table = [](const Algorithm& a, std::optional<game::InitialHeading> heading) {
     LeagueSettings s = small();
-    s.train_seeds = 1;
+    s.sweep.repeats = 1;
     s.train_heading = heading;
     const League l = league({a}, s);
-    l.run(nullptr, true);
+    l.run(true);
     const auto table = l.models(0, 0, Role::kPursuer).models.at(0)->tables(0).actor_table();
     return std::vector<double>(table.begin(), table.end());
   };
@@ -148,7 +149,7 @@ TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
 
 TEST(League, MatrixCountsTheGamesOfEachPairing) {
   const League l = league({algorithm("a", "peg3d")}, small());
-  const auto games = l.run(nullptr, true);
+  const auto games = l.run(true);
   const auto groups = league_matrix(l, games, true);
   const auto entrants = league_matrix(l, games, false);
   EXPECT_EQ(groups.size(), 4u * 4u);    // a, pure-pursuit, pn, apollonius x a, flee, flee-apollonius, random

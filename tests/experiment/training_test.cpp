@@ -129,13 +129,13 @@ TEST(Training, ARoleStopsLearningAfterItsShareOfTheEpisodes) {
   EXPECT_EQ(tables_hash(six.pursuer_models), tables_hash(three.pursuer_models));
   EXPECT_NE(tables_hash(six.evader_models), tables_hash(three.evader_models));
   for (std::size_t e = 3; e < 6; ++e) {
-    const int k = six.training_opponent[e];
+    const int k = six.training.opponents[e];
     if (k >= 0) {
       EXPECT_EQ(pool.entries()[std::size_t(k)].learner, Role::kEvader) << e;
     }
   }
   // The first three episodes are the same either way.
-  for (std::size_t e = 0; e < 3; ++e) EXPECT_EQ(six.training[e].steps, three.training[e].steps);
+  for (std::size_t e = 0; e < 3; ++e) EXPECT_EQ(six.training.episodes[e].steps, three.training.episodes[e].steps);
 }
 
 TEST(Training, RandomStartsChangeWhereEpisodesStartAndStayAFunctionOfTheSeed) {
@@ -150,8 +150,8 @@ TEST(Training, RandomStartsChangeWhereEpisodesStartAndStayAFunctionOfTheSeed) {
   const TrialResult b2 = run_trial(random, {&s, 5, 6, false, {}, &pool});
   int moved = 0;
   for (std::size_t e = 0; e < 6; ++e) {
-    moved += a.training[e].pursuer_return != b.training[e].pursuer_return;
-    EXPECT_EQ(b.training[e].pursuer_return, b2.training[e].pursuer_return);
+    moved += a.training.episodes[e].pursuer_return != b.training.episodes[e].pursuer_return;
+    EXPECT_EQ(b.training.episodes[e].pursuer_return, b2.training.episodes[e].pursuer_return);
   }
   EXPECT_GT(moved, 0);
   EXPECT_EQ(tables_hash(b.pursuer_models), tables_hash(b2.pursuer_models));
@@ -171,11 +171,11 @@ TEST(Training, AZeroShareTrainsExactlyAsCoLearning) {
   const auto& s = arena()->map().scenarios[0];
   const TrialResult ra = run_trial(a, {&s, 7, 12, false, {}, nullptr});
   const TrialResult rb = run_trial(b, {&s, 7, 12, false, {}, &pool});
-  ASSERT_EQ(ra.training.size(), rb.training.size());
-  for (std::size_t e = 0; e < ra.training.size(); ++e) {
-    EXPECT_EQ(ra.training[e].steps, rb.training[e].steps);
-    EXPECT_EQ(ra.training[e].pursuer_return, rb.training[e].pursuer_return);
-    EXPECT_EQ(rb.training_opponent[e], -1);
+  ASSERT_EQ(ra.training.episodes.size(), rb.training.episodes.size());
+  for (std::size_t e = 0; e < ra.training.episodes.size(); ++e) {
+    EXPECT_EQ(ra.training.episodes[e].steps, rb.training.episodes[e].steps);
+    EXPECT_EQ(ra.training.episodes[e].pursuer_return, rb.training.episodes[e].pursuer_return);
+    EXPECT_EQ(rb.training.opponents[e], -1);
   }
   EXPECT_EQ(tables_hash(ra.pursuer_models), tables_hash(rb.pursuer_models));
   EXPECT_EQ(tables_hash(ra.evader_models), tables_hash(rb.evader_models));
@@ -192,7 +192,7 @@ TEST(Training, APoolEpisodeTeachesOnlyTheLearningRole) {
   ASSERT_EQ(pool.entries().size(), 1u);
   const auto& s = arena()->map().scenarios[0];
   const TrialResult r = run_trial(sim, {&s, 7, 6, false, {}, &pool});
-  for (const int k : r.training_opponent) EXPECT_EQ(k, 0);
+  for (const int k : r.training.opponents) EXPECT_EQ(k, 0);
 
   game::GameConfig untrained = c;
   untrained.training.procedure = game::TrainingProcedure::kCoLearning;
@@ -208,11 +208,11 @@ TEST(Training, APooledTrialIsAFunctionOfItsSeed) {
   const auto& s = arena()->map().scenarios[0];
   const TrialResult a = run_trial(sim, {&s, 11, 16, false, {}, &pool});
   const TrialResult b = run_trial(sim, {&s, 11, 16, false, {}, &pool});
-  EXPECT_EQ(a.training_opponent, b.training_opponent);
+  EXPECT_EQ(a.training.opponents, b.training.opponents);
   EXPECT_EQ(tables_hash(a.pursuer_models), tables_hash(b.pursuer_models));
   EXPECT_EQ(tables_hash(a.evader_models), tables_hash(b.evader_models));
   int pooled = 0;
-  for (const int k : a.training_opponent) pooled += k >= 0;
+  for (const int k : a.training.opponents) pooled += k >= 0;
   EXPECT_GT(pooled, 0);
   EXPECT_LT(pooled, 16);
 }

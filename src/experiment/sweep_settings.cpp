@@ -1,0 +1,25 @@
+#include "experiment/sweep_settings.hpp"
+
+#include "core/random.hpp"
+
+namespace peg3d::experiment {
+
+std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat) {
+  return derive_seed(root, {static_cast<std::uint64_t>(scenario), static_cast<std::uint64_t>(repeat)});
+}
+
+nlohmann::ordered_json scenario_run_seeds(const std::vector<world::Scenario>& scenarios, int repeats,
+                                          std::uint64_t root) {
+  nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+  for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
+    for (int rep = 0; rep < repeats; ++rep) {
+      runs.push_back({{"run", sc * static_cast<std::size_t>(repeats) + static_cast<std::size_t>(rep)},
+                      {"scenario", scenarios[sc].name},
+                      {"repeat", rep},
+                      {"seed", run_seed(root, static_cast<int>(sc), rep)}});
+    }
+  }
+  return runs;
+}
+
+}  // namespace peg3d::experiment
