@@ -227,6 +227,19 @@ struct TeamConfig {
   AgentCollisions agent_collisions = AgentCollisions::kNone;
   CaptureReward capture_reward = CaptureReward::kIndividual;
   bool operator==(const TeamConfig&) const = default;
+
+  /// The rule by which an agent of `role` chooses its opponent.
+  OpponentChoice opponent_rule(Role role) const { return role == Role::kPursuer ? pursuer_target : evader_threat; }
+  /// Whether an agent of role a and one of role b collide (agent_collisions).
+  bool collide(Role a, Role b) const {
+    switch (agent_collisions) {
+      case AgentCollisions::kNone: return false;
+      case AgentCollisions::kOpponents: return a != b;
+      case AgentCollisions::kTeammates: return a == b;
+      case AgentCollisions::kAll: return true;
+    }
+    return false;
+  }
 };
 
 /// How the FACL agents of a trial train (the experiments carry it out: experiment/training.hpp,

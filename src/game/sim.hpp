@@ -27,19 +27,13 @@
 #include "game/percept.hpp"
 #include "game/policy.hpp"
 #include "game/reward.hpp"
+#include "game/starts.hpp"
 #include "world/arena.hpp"
 #include "world/collision_world.hpp"
 #include "world/mover_timeline.hpp"
 #include "world/moving_field.hpp"
 
 namespace peg3d::game {
-
-/// A start that the game cannot play: an agent's sphere overlaps an obstacle or (when agents collide) another
-/// agent. what() names the map file, the start's line and field, and what it overlaps.
-class StartError : public InputError {
- public:
-  using InputError::InputError;
-};
 
 /// An agent touching an obstacle or another agent.
 struct CollisionEvent {
@@ -145,7 +139,10 @@ class SimState {
 
   /// Per-step working storage, sized by reset().
   struct Scratch {
+    std::vector<Heading> heading;         ///< each agent's heading this step, from the constraint layer
+    std::vector<Vec3> direction;          ///< its unit direction
     std::vector<KinematicState> next;     ///< where each agent moves this step
+    std::vector<std::optional<world::Contact>> hit;  ///< its first contact with a static obstacle this step
     std::vector<double> target_before;    ///< d to its opponent at the start of the step
     std::vector<double> obstacle_before;  ///< d_O at the start of the step
     std::vector<Vec3> positions;          ///< start positions (reset)

@@ -1,0 +1,34 @@
+#include "game/views.hpp"
+
+namespace peg3d::game {
+
+ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p) {
+  const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(p) : sim.arena().nearest_shape(p);
+  if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
+    // Moving obstacles where they are now, exactly.
+    const world::MoverPoint m = movers->nearest(p, st.time, n.distance);
+    if (m.mover >= 0) return {m.distance, m.point, true};
+  }
+  return {n.distance, n.point, n.found};
+}
+
+void update_view(const Sim& sim, SimState& st, int i) {
+  AgentState& a = st.agents[std::size_t(i)];
+  const AgentState& o = st.agents[std::size_t(a.opponent)];
+  AgentView& v = a.view;
+  v.role = a.role;
+  v.index = i;
+  v.opponent = a.opponent;
+  v.self = a.kinematics;
+  v.other = o.kinematics;
+  v.self_speed = a.config->speed;
+  v.other_speed = o.config->speed;
+  v.dt = sim.config().dt;
+  v.time = st.time;
+  v.arena = sim.arena().bounds();
+  v.field = sense_obstacle(sim, st, a.kinematics.position);
+  v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
+                       sim.arena().max_distance());
+}
+
+}  // namespace peg3d::game

@@ -1,0 +1,29 @@
+#pragma once
+// How the agents of a state see it: the map's nearest obstacle at the state's time (its shapes and, on a map
+// with moving obstacles, the nearer of them and the movers), and each agent's view rebuilt from the state.
+// reset() and step() build every view this way; the guard's look-ahead senses through a StateProbe.
+
+#include "game/constraints.hpp"
+#include "game/sim.hpp"
+
+namespace peg3d::game {
+
+/// The map's obstacle nearest to p at the state's time: its shapes only (whether the arena's faces count is the
+/// agent's observation setting, not the map's) and, on a map with movers, the nearer of them and the field.
+ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& p);
+
+/// The guard's look ahead senses as the agent does.
+class StateProbe final : public ObstacleProbe {
+ public:
+  StateProbe(const Sim& sim, const SimState& state) : sim_(sim), state_(state) {}
+  ObstacleSense nearest(const Vec3& p) const override { return sense_obstacle(sim_, state_, p); }
+
+ private:
+  const Sim& sim_;
+  const SimState& state_;
+};
+
+/// Rebuilds agent i's view from its position and its opponent's state (its `opponent` must be set).
+void update_view(const Sim& sim, SimState& state, int i);
+
+}  // namespace peg3d::game
