@@ -19,6 +19,7 @@
 #include "game/facl_policy.hpp"
 #include "game/lineup.hpp"
 #include "world/arena.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 
 namespace {

@@ -21,6 +21,7 @@
 #include "core/random.hpp"
 #include "world/arena.hpp"
 #include "world/collision_world.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 #include "world/mover_timeline.hpp"
 #include "world/moving_field.hpp"

@@ -21,8 +21,9 @@
 #include "cli_common.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
+#include "world/mover_timeline.hpp"
 
 namespace {
 

@@ -17,6 +17,7 @@
 #include "game/policy_factory.hpp"
 #include "game/policy_io.hpp"
 #include "geometry/angles.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 
 namespace peg3d::regress {

@@ -225,15 +225,11 @@ std::string seconds(double t) { return fmt::format("{:.6f} s", t); }
 std::string metres(double d) { return fmt::format("{:.6f} m", d); }
 std::string quat_text(const Quat& q) { return fmt::format("(w {:.6f}, {:.6f}, {:.6f}, {:.6f})", q.w(), q.x(), q.y(), q.z()); }
 
-}  // namespace
+bool differs(double x, double y, double t) { return std::abs(x - y) > t; }
 
-std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, bool strict,
-                                      std::vector<std::string>* notes) {
-  std::vector<std::string> d;
-  const auto differs = [](double x, double y, double t) { return std::abs(x - y) > t; };
-  if (e.outcome != a.outcome) d.push_back(fmt::format("outcome {} -> {}", e.outcome, a.outcome));
-  if (e.steps != a.steps) d.push_back(fmt::format("steps {} -> {}", e.steps, a.steps));
-  if (differs(e.time, a.time, tol.time)) d.push_back(fmt::format("end time {} -> {}", seconds(e.time), seconds(a.time)));
+using Differences = std::vector<std::string>;
+
+void compare_events(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
   const std::size_t events = std::max(e.events.size(), a.events.size());
   for (std::size_t i = 0; i < events; ++i) {
     const std::string where = fmt::format("event {}", i + 1);
@@ -262,6 +258,9 @@ std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog&
       d.push_back(fmt::format("{}: penetration {} -> {}", where, metres(x.penetration), metres(y.penetration)));
     }
   }
+}
+
+void compare_captures(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
   const std::size_t captures = std::max(e.captures.size(), a.captures.size());
   for (std::size_t i = 0; i < captures; ++i) {
     const std::string where = fmt::format("capture {}", i + 1);
@@ -283,6 +282,9 @@ std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog&
       d.push_back(fmt::format("{}: distance {} -> {}", where, metres(x.distance), metres(y.distance)));
     }
   }
+}
+
+void compare_agents(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
   if (e.agents.size() != a.agents.size()) d.push_back(fmt::format("agents {} -> {}", e.agents.size(), a.agents.size()));
   for (std::size_t i = 0; i < std::min(e.agents.size(), a.agents.size()); ++i) {
     const LoggedAgent& x = e.agents[i];
@@ -298,6 +300,9 @@ std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog&
     if (differs(x.path, y.path, tol.length)) d.push_back(fmt::format("{}: path {} -> {}", where, metres(x.path), metres(y.path)));
     if (x.active != y.active) d.push_back(fmt::format("{}: in the game {} -> {}", where, x.active ? "yes" : "no", y.active ? "yes" : "no"));
   }
+}
+
+void compare_movers(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
   if (e.movers.size() != a.movers.size()) d.push_back(fmt::format("movers {} -> {}", e.movers.size(), a.movers.size()));
   for (std::size_t i = 0; i < std::min(e.movers.size(), a.movers.size()); ++i) {
     const LoggedMover& x = e.movers[i];
@@ -314,6 +319,20 @@ std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog&
       d.push_back(fmt::format("{}: final orientation {} -> {}", where, quat_text(x.orientation), quat_text(y.orientation)));
     }
   }
+}
+
+}  // namespace
+
+std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, bool strict,
+                                      std::vector<std::string>* notes) {
+  Differences d;
+  if (e.outcome != a.outcome) d.push_back(fmt::format("outcome {} -> {}", e.outcome, a.outcome));
+  if (e.steps != a.steps) d.push_back(fmt::format("steps {} -> {}", e.steps, a.steps));
+  if (differs(e.time, a.time, tol.time)) d.push_back(fmt::format("end time {} -> {}", seconds(e.time), seconds(a.time)));
+  compare_events(e, a, tol, d);
+  compare_captures(e, a, tol, d);
+  compare_agents(e, a, tol, d);
+  compare_movers(e, a, tol, d);
   if (e.trajectory_hash != a.trajectory_hash) {
     const std::string text = fmt::format("trajectory hash {:#018x} -> {:#018x}", e.trajectory_hash, a.trajectory_hash);
     if (strict) {

@@ -46,6 +46,27 @@ std::optional<JsonDifference> difference_at(const nlohmann::json& a, const nlohm
 
 std::string shown_json(const nlohmann::json& j) { return j.is_null() ? std::string("(none)") : brief(j); }
 
+// The header line `j` of `file`: a journal of this format and version, of the sweep with `setup` and `runs`.
+void check_header(const std::filesystem::path& file, nlohmann::json& j, const nlohmann::json& setup, std::size_t runs) {
+  if (!j.is_object() || !j.contains("format") || j["format"] != kJournalFormat) {
+    throw InputError(file, 1, "format", fmt::format("not a peg3d run journal (expected \"{}\")", kJournalFormat));
+  }
+  if (!j.contains("version") || j["version"] != kJournalVersion) {
+    throw InputError(file, 1, "version",
+                     fmt::format("journal version {} is not supported (this peg3d reads {})",
+                                 shown_json(j.contains("version") ? j["version"] : nlohmann::json()), kJournalVersion));
+  }
+  if (const auto d = first_difference(j.contains("setup") ? j["setup"] : nlohmann::json(), setup)) {
+    throw InputError(file, 1, d->field.empty() ? "setup" : "setup." + d->field,
+                     fmt::format("the journal's sweep has {}, this one {}: a journal resumes only the sweep that "
+                                 "wrote it",
+                                 shown_json(d->a), shown_json(d->b)));
+  }
+  if (!j.contains("runs") || !j["runs"].is_number_unsigned() || j["runs"].get<std::size_t>() != runs) {
+    throw InputError(file, 1, "runs", fmt::format("the journal's sweep has {} runs, this one {}", shown_json(j["runs"]), runs));
+  }
+}
+
 }  // namespace
 
 std::optional<JsonDifference> first_difference(const nlohmann::json& a, const nlohmann::json& b) {
@@ -134,24 +155,7 @@ std::unique_ptr<RunJournal> RunJournal::resume(const std::filesystem::path& file
     }
     if (number == 1) {
       if (!complete || !parsed) throw InputError(file, 1, "", complete ? why : "the header line is incomplete");
-      if (!j.is_object() || !j.contains("format") || j["format"] != kJournalFormat) {
-        throw InputError(file, 1, "format", fmt::format("not a peg3d run journal (expected \"{}\")", kJournalFormat));
-      }
-      if (!j.contains("version") || j["version"] != kJournalVersion) {
-        throw InputError(file, 1, "version",
-                         fmt::format("journal version {} is not supported (this peg3d reads {})",
-                                     shown_json(j.contains("version") ? j["version"] : nlohmann::json()), kJournalVersion));
-      }
-      if (const auto d = first_difference(j.contains("setup") ? j["setup"] : nlohmann::json(), expected)) {
-        throw InputError(file, 1, d->field.empty() ? "setup" : "setup." + d->field,
-                         fmt::format("the journal's sweep has {}, this one {}: a journal resumes only the sweep that "
-                                     "wrote it",
-                                     shown_json(d->a), shown_json(d->b)));
-      }
-      if (!j.contains("runs") || !j["runs"].is_number_unsigned() || j["runs"].get<std::size_t>() != runs) {
-        throw InputError(file, 1, "runs",
-                         fmt::format("the journal's sweep has {} runs, this one {}", shown_json(j["runs"]), runs));
-      }
+      check_header(file, j, expected, runs);
       good_end += line.size() + 1;
       continue;
     }

@@ -146,6 +146,95 @@ ReplayScene::ReplayScene(const world::Arena& arena, const ReplaySettings& settin
   }
 }
 
+namespace {
+
+// Agent i's recorded track, every frame: position, heading, activity, the vector to its nearest obstacle, its
+// fuzzy inputs, actions and rewards.
+nlohmann::json agent_track(const game::Trace& trace, int i) {
+  std::vector<float> position, heading, obstacle, inputs, action, reward;
+  std::vector<std::uint8_t> active;
+  for (int k = 0; k < trace.frame_count(); ++k) {
+    const game::AgentFrame& f = trace.at(k, i);
+    push(position, f.state.position);
+    heading.push_back(float(f.state.heading.alpha));
+    heading.push_back(float(f.state.heading.theta));
+    active.push_back(f.active ? 1 : 0);
+    push(obstacle, f.percept.obstacle.found ? Vec3(f.percept.obstacle.point - f.state.position) : Vec3::Zero());
+    const game::Percept& q = f.percept;
+    for (double v : {q.target_distance, q.target.azimuth, q.target.elevation, q.obstacle.distance,
+                     q.to_obstacle.azimuth, q.to_obstacle.elevation}) {
+      inputs.push_back(float(v));
+    }
+    action.push_back(float(f.command.d_alpha));
+    action.push_back(float(f.command.d_theta));
+    reward.push_back(float(f.reward));
+  }
+  return {{"position_f32", encoded(position)}, {"heading_f32", encoded(heading)}, {"active_u8", encoded(active)},
+          {"obstacle_f32", encoded(obstacle)}, {"inputs_f32", encoded(inputs)},   {"action_f32", encoded(action)},
+          {"reward_f32", encoded(reward)}};
+}
+
+// Each mover's pose at the sampled frames, into the scene's movers.
+void mover_poses(nlohmann::json& j, const world::MoverTimeline& movers, const game::Trace& trace,
+                 const std::vector<std::uint32_t>& samples) {
+  for (int m = 0; m < movers.count(); ++m) {
+    std::vector<float> poses;
+    poses.reserve(samples.size() * 7);
+    for (std::uint32_t k : samples) {
+      const Pose p = movers.pose(m, trace.times[k]);
+      push(poses, p.position);
+      for (double q : {p.orientation.x(), p.orientation.y(), p.orientation.z(), p.orientation.w()}) {
+        poses.push_back(float(q));
+      }
+    }
+    j["movers"][std::size_t(m)]["poses_f32"] = encoded(poses);
+  }
+}
+
+// Pursuer i and evader e at the sampled frames: the Apollonius sphere (centre and radius; a plane as radius
+// -1 at the midpoint) and the pursuer's motion cone (axis and half-angle).
+nlohmann::json pair_samples(const game::Trace& trace, int i, int e, double vp, double ve,
+                            const std::vector<std::uint32_t>& samples) {
+  std::vector<float> sphere, cone;
+  sphere.reserve(samples.size() * 4);
+  cone.reserve(samples.size() * 4);
+  for (std::uint32_t k : samples) {
+    const Vec3& p = trace.at(int(k), i).state.position;
+    const Vec3& x = trace.at(int(k), e).state.position;
+    if (ve <= 0.0) {  // a motionless evader: the surface shrinks to the evader itself
+      push(sphere, x);
+      sphere.push_back(0.0f);
+    } else {
+      const ApolloniusSurface s(p, x, ve / vp);
+      push(sphere, s.is_plane() ? Vec3((p + x) / 2.0) : s.sphere().center);
+      sphere.push_back(s.is_plane() ? -1.0f : float(s.sphere().radius));
+    }
+    const Vec3 pe = x - p;
+    push(cone, pe.norm() > 0.0 ? Vec3(pe.normalized()) : Vec3::UnitX());
+    cone.push_back(float(pursuer_cone_half_angle(vp, ve)));
+  }
+  return {{"pursuer", i}, {"evader", e}, {"apollonius_f32", encoded(sphere)}, {"cone_f32", encoded(cone)}};
+}
+
+// The trace's collisions and captures, each at its frame.
+void trace_events(nlohmann::json& j, const game::Trace& trace) {
+  const int frames = trace.frame_count();
+  j["collisions"] = nlohmann::json::array();
+  for (const game::CollisionEvent& c : trace.collisions) {
+    j["collisions"].push_back({{"frame", std::min(c.step, frames - 1)},
+                               {"time", c.time},
+                               {"agent", c.agent},
+                               {"kind", world::to_string(c.kind)},
+                               {"point", vec(c.point)}});
+  }
+  j["captures"] = nlohmann::json::array();
+  for (const game::CaptureEvent& c : trace.captures) {
+    j["captures"].push_back({{"frame", std::min(c.step, frames - 1)}, {"time", c.time}, {"pursuer", c.pursuer}, {"evader", c.evader}});
+  }
+}
+
+}  // namespace
+
 nlohmann::json replay_json(const ReplayScene& scene, const game::Sim& sim, const game::Trace& trace,
                            const ReplayInfo& info) {
   const game::GameConfig& config = sim.config();
@@ -162,101 +251,30 @@ nlohmann::json replay_json(const ReplayScene& scene, const game::Sim& sim, const
   // Every recorded frame of every agent.
   std::vector<double> speeds(std::size_t(n), 0.0);
   j["agents"] = nlohmann::json::array();
-  std::vector<int> rank_of(std::size_t(n), 0);
   for (int i = 0, pursuers = 0, evaders = 0; i < n; ++i) {
     const game::Role role = trace.roles[std::size_t(i)];
-    rank_of[std::size_t(i)] = role == game::Role::kPursuer ? pursuers++ : evaders++;
-    const game::AgentConfig& a = config.agent(role, rank_of[std::size_t(i)]);
+    const game::AgentConfig& a = config.agent(role, role == game::Role::kPursuer ? pursuers++ : evaders++);
     speeds[std::size_t(i)] = a.speed;
-    std::vector<float> position, heading, obstacle, inputs, action, reward;
-    std::vector<std::uint8_t> active;
-    for (int k = 0; k < frames; ++k) {
-      const game::AgentFrame& f = trace.at(k, i);
-      push(position, f.state.position);
-      heading.push_back(float(f.state.heading.alpha));
-      heading.push_back(float(f.state.heading.theta));
-      active.push_back(f.active ? 1 : 0);
-      push(obstacle, f.percept.obstacle.found ? Vec3(f.percept.obstacle.point - f.state.position) : Vec3::Zero());
-      const game::Percept& q = f.percept;
-      for (double v : {q.target_distance, q.target.azimuth, q.target.elevation, q.obstacle.distance,
-                       q.to_obstacle.azimuth, q.to_obstacle.elevation}) {
-        inputs.push_back(float(v));
-      }
-      action.push_back(float(f.command.d_alpha));
-      action.push_back(float(f.command.d_theta));
-      reward.push_back(float(f.reward));
-    }
     j["agents"].push_back({{"name", game::agent_label(trace, i)},
                            {"role", game::to_string(role)},
                            {"radius", a.radius},
                            {"speed", a.speed},
-                           {"track",
-                            {{"position_f32", encoded(position)},
-                             {"heading_f32", encoded(heading)},
-                             {"active_u8", encoded(active)},
-                             {"obstacle_f32", encoded(obstacle)},
-                             {"inputs_f32", encoded(inputs)},
-                             {"action_f32", encoded(action)},
-                             {"reward_f32", encoded(reward)}}}});
+                           {"track", agent_track(trace, i)}});
   }
 
   // What the trace does not hold, sampled: where the movers are, and each pair's Apollonius sphere and cone.
   const std::vector<std::uint32_t> samples = sample_frames(frames, scene.settings().max_pose_samples);
   j["pose_frames_u32"] = encoded(samples);
-  if (const world::MoverTimeline* movers = sim.movers()) {
-    for (int m = 0; m < movers->count(); ++m) {
-      std::vector<float> poses;
-      poses.reserve(samples.size() * 7);
-      for (std::uint32_t k : samples) {
-        const Pose p = movers->pose(m, trace.times[k]);
-        push(poses, p.position);
-        for (double q : {p.orientation.x(), p.orientation.y(), p.orientation.z(), p.orientation.w()}) {
-          poses.push_back(float(q));
-        }
-      }
-      j["movers"][std::size_t(m)]["poses_f32"] = encoded(poses);
-    }
-  }
+  if (const world::MoverTimeline* movers = sim.movers()) mover_poses(j, *movers, trace, samples);
   j["pairs"] = nlohmann::json::array();
   for (int i = 0; i < n; ++i) {
     if (trace.roles[std::size_t(i)] != game::Role::kPursuer) continue;
     for (int e = 0; e < n; ++e) {
       if (trace.roles[std::size_t(e)] != game::Role::kEvader) continue;
-      const double vp = speeds[std::size_t(i)], ve = speeds[std::size_t(e)];
-      std::vector<float> sphere, cone;
-      sphere.reserve(samples.size() * 4);
-      cone.reserve(samples.size() * 4);
-      for (std::uint32_t k : samples) {
-        const Vec3& p = trace.at(int(k), i).state.position;
-        const Vec3& x = trace.at(int(k), e).state.position;
-        if (ve <= 0.0) {  // a motionless evader: the surface shrinks to the evader itself
-          push(sphere, x);
-          sphere.push_back(0.0f);
-        } else {
-          const ApolloniusSurface s(p, x, ve / vp);
-          push(sphere, s.is_plane() ? Vec3((p + x) / 2.0) : s.sphere().center);
-          sphere.push_back(s.is_plane() ? -1.0f : float(s.sphere().radius));
-        }
-        const Vec3 pe = x - p;
-        push(cone, pe.norm() > 0.0 ? Vec3(pe.normalized()) : Vec3::UnitX());
-        cone.push_back(float(pursuer_cone_half_angle(vp, ve)));
-      }
-      j["pairs"].push_back({{"pursuer", i}, {"evader", e}, {"apollonius_f32", encoded(sphere)}, {"cone_f32", encoded(cone)}});
+      j["pairs"].push_back(pair_samples(trace, i, e, speeds[std::size_t(i)], speeds[std::size_t(e)], samples));
     }
   }
-
-  j["collisions"] = nlohmann::json::array();
-  for (const game::CollisionEvent& c : trace.collisions) {
-    j["collisions"].push_back({{"frame", std::min(c.step, frames - 1)},
-                               {"time", c.time},
-                               {"agent", c.agent},
-                               {"kind", world::to_string(c.kind)},
-                               {"point", vec(c.point)}});
-  }
-  j["captures"] = nlohmann::json::array();
-  for (const game::CaptureEvent& c : trace.captures) {
-    j["captures"].push_back({{"frame", std::min(c.step, frames - 1)}, {"time", c.time}, {"pursuer", c.pursuer}, {"evader", c.evader}});
-  }
+  trace_events(j, trace);
   return j;
 }
 

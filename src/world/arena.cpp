@@ -183,6 +183,64 @@ void write_cache(const std::filesystem::path& file, std::uint64_t key, const Dis
 
 }  // namespace
 
+void Arena::import_meshes() {
+  MapSpec& spec = spec_;
+  for (std::size_t i = 0; i < spec.meshes.size(); ++i) {
+    try {
+      meshes_.push_back(spec.meshes[i].imported ? *spec.meshes[i].imported : load_terrain_mesh(spec.meshes[i]));
+      spec.meshes[i].imported.reset();  // the Arena keeps one copy of the triangles
+    } catch (const MeshError& e) {
+      throw MapError(spec.source, spec.meshes[i].line, fmt::format("terrain[{}].file", i), e.what());
+    }
+    stats_.triangles += meshes_.back().triangle_count();
+    // Starts are checked against solid terrain at every reset: index the triangles once.
+    solid_index_.push_back(spec.meshes[i].solid_below ? VerticalRayIndex(meshes_.back()) : VerticalRayIndex());
+  }
+}
+
+void Arena::load_or_build_field(const VoxelGrid& grid, std::size_t peak, const BuildOptions& options) {
+  const MapSpec& spec = spec_;
+  ArenaStats& st = stats_;
+  const ArenaFaces faces{spec.floor_is_obstacle, spec.ceiling_is_obstacle, spec.walls_is_obstacle};
+  st.cache_key = content_key(spec, meshes_);
+  st.cache_status = "off";
+  if (options.cache_dir) {
+    st.cache_file = *options.cache_dir / fmt::format("{:016x}.pegworld", st.cache_key);
+    std::string why;
+    if (auto cached = read_cache(st.cache_file, st.cache_key, grid, spec.max_distance, spec.bounds, faces, why)) {
+      field_ = std::move(cached->field);
+      octree_bt_ = std::move(cached->octree_bt);
+      st.occupied_voxels = cached->occupied_voxels;
+      st.loaded_from_cache = true;
+      st.cache_status = "hit";
+      return;
+    }
+    st.cache_status = why;
+  }
+  st.build_peak_bytes = peak;
+  const auto tv = std::chrono::steady_clock::now();
+  Occupancy occupancy(grid);
+  for (const auto& s : spec.spheres) occupancy.add_sphere(s);
+  for (const auto& c : spec.cylinders) occupancy.add_cylinder(c);
+  for (std::size_t i = 0; i < meshes_.size(); ++i) occupancy.add_mesh(meshes_[i], spec.meshes[i].solid_below);
+  st.voxelize_seconds = seconds_since(tv);
+
+  FieldBuild built = build_distance_field(occupancy, spec.max_distance, spec.bounds, faces);
+  field_ = std::move(built.field);
+  octree_bt_ = std::move(built.octree_bt);
+  st.occupied_voxels = built.occupied_voxels;
+  st.octree_seconds = built.octree_seconds;
+  st.edt_seconds = built.edt_seconds;
+  if (options.cache_dir) {
+    try {
+      write_cache(st.cache_file, st.cache_key, field_, octree_bt_, st.occupied_voxels);
+      st.cache_status = st.cache_status == "miss" ? "stored" : st.cache_status + "; stored";
+    } catch (const std::exception& e) {
+      st.cache_status = fmt::format("not stored ({})", e.what());  // a read-only cache must not stop a run
+    }
+  }
+}
+
 std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   std::shared_ptr<Arena> arena(new Arena());
@@ -196,18 +254,7 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
   st.spheres = spec.spheres.size();
   st.cylinders = spec.cylinders.size();
   st.meshes = spec.meshes.size();
-  for (std::size_t i = 0; i < spec.meshes.size(); ++i) {
-    try {
-      arena->meshes_.push_back(spec.meshes[i].imported ? *spec.meshes[i].imported : load_terrain_mesh(spec.meshes[i]));
-      spec.meshes[i].imported.reset();  // the Arena keeps one copy of the triangles
-    } catch (const MeshError& e) {
-      throw MapError(spec.source, spec.meshes[i].line, fmt::format("terrain[{}].file", i), e.what());
-    }
-    st.triangles += arena->meshes_.back().triangle_count();
-    // Starts are checked against solid terrain at every reset: index the triangles once.
-    arena->solid_index_.push_back(spec.meshes[i].solid_below ? VerticalRayIndex(arena->meshes_.back()) : VerticalRayIndex());
-  }
-
+  arena->import_meshes();
   validate_movers(spec, arena->meshes_);
 
   const VoxelGrid grid = VoxelGrid::around(spec.bounds, spec.resolution);
@@ -221,48 +268,7 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
                                spec.resolution, grid.cell_count(), peak / 1048576.0,
                                options.max_field_bytes / 1048576.0));
   }
-
-  const ArenaFaces faces{spec.floor_is_obstacle, spec.ceiling_is_obstacle, spec.walls_is_obstacle};
-  st.cache_key = content_key(spec, arena->meshes_);
-  st.cache_status = "off";
-  if (options.cache_dir) {
-    st.cache_file = *options.cache_dir / fmt::format("{:016x}.pegworld", st.cache_key);
-    std::string why;
-    if (auto cached = read_cache(st.cache_file, st.cache_key, grid, spec.max_distance, spec.bounds, faces, why)) {
-      arena->field_ = std::move(cached->field);
-      arena->octree_bt_ = std::move(cached->octree_bt);
-      st.occupied_voxels = cached->occupied_voxels;
-      st.loaded_from_cache = true;
-      st.cache_status = "hit";
-    } else {
-      st.cache_status = why;
-    }
-  }
-
-  if (!st.loaded_from_cache) {
-    st.build_peak_bytes = peak;
-    const auto tv = std::chrono::steady_clock::now();
-    Occupancy occupancy(grid);
-    for (const auto& s : spec.spheres) occupancy.add_sphere(s);
-    for (const auto& c : spec.cylinders) occupancy.add_cylinder(c);
-    for (std::size_t i = 0; i < arena->meshes_.size(); ++i) occupancy.add_mesh(arena->meshes_[i], spec.meshes[i].solid_below);
-    st.voxelize_seconds = seconds_since(tv);
-
-    FieldBuild built = build_distance_field(occupancy, spec.max_distance, spec.bounds, faces);
-    arena->field_ = std::move(built.field);
-    arena->octree_bt_ = std::move(built.octree_bt);
-    st.occupied_voxels = built.occupied_voxels;
-    st.octree_seconds = built.octree_seconds;
-    st.edt_seconds = built.edt_seconds;
-    if (options.cache_dir) {
-      try {
-        write_cache(st.cache_file, st.cache_key, arena->field_, arena->octree_bt_, st.occupied_voxels);
-        st.cache_status = st.cache_status == "miss" ? "stored" : st.cache_status + "; stored";
-      } catch (const std::exception& e) {
-        st.cache_status = fmt::format("not stored ({})", e.what());  // a read-only cache must not stop a run
-      }
-    }
-  }
+  arena->load_or_build_field(grid, peak, options);
   st.field_bytes = arena->field_.bytes();
   st.octree_bytes = arena->octree_bt_.size();
   st.build_seconds = seconds_since(t0);

@@ -116,6 +116,10 @@ class Arena {
 
  private:
   Arena() = default;
+  /// Imports the map's meshes (and indexes the solid ones for the start check), counting their triangles.
+  void import_meshes();
+  /// The distance field and octree over `grid`: read from the cache when it holds them, else built (and stored).
+  void load_or_build_field(const VoxelGrid& grid, std::size_t peak_bytes, const BuildOptions& options);
 
   MapSpec spec_;
   ArenaStats stats_;

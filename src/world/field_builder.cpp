@@ -80,6 +80,53 @@ std::string octree_with_shapes(const std::string& octree_bt, const VoxelGrid& g,
   return serialize(tree);
 }
 
+namespace {
+
+// Each grid cell's nearest occupied voxel, from dynamicEDT3D over `tree` (the voxels' indices; kNone where
+// none lies within the cap).
+std::vector<DistanceField::Cell> nearest_voxels(octomap::OcTree& tree, const VoxelGrid& g, double max_distance) {
+  auto to_point = [](const Vec3& v) {
+    return octomap::point3d(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
+  };
+  const octomap::point3d bbx_min = to_point(g.cell_center(0, 0, 0));
+  const octomap::point3d bbx_max = to_point(g.cell_center(g.size[0] - 1, g.size[1] - 1, g.size[2] - 1));
+  // One voxel diagonal beyond the cap: the compact field reports distances from a point to voxel boxes, which
+  // are at most a diagonal shorter than the centre-to-centre distances the EDT propagates.
+  const float edt_cap = static_cast<float>(max_distance + std::sqrt(3.0) * g.resolution);
+  std::vector<DistanceField::Cell> cells(g.cell_count());
+  DynamicEDTOctomap edt(edt_cap, &tree, bbx_min, bbx_max, /*treatUnknownAsOccupied=*/false);
+  edt.update(/*updateRealDist=*/true);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const double inv = 1.0 / g.resolution;
+  std::size_t n = 0;
+  for (int i = 0; i < g.size[0]; ++i) {
+    for (int j = 0; j < g.size[1]; ++j) {
+      for (int k = 0; k < g.size[2]; ++k, ++n) {
+        const octomap::point3d p = to_point(g.cell_center(i, j, k));
+        // The EDT leaves the obstacle unwritten when it found none within the cap.
+        octomap::point3d obstacle(nan, nan, nan);
+        float distance = 0.0f;
+        edt.getDistanceAndClosestObstacle(p, distance, obstacle);
+        if (distance < 0.0f || std::isnan(obstacle.x())) {
+          cells[n] = {DistanceField::kNone, DistanceField::kNone, DistanceField::kNone};
+          continue;
+        }
+        // The obstacle comes back as its voxel centre (float): half a cell from any face, so floor is exact.
+        int idx[3];
+        for (int a = 0; a < 3; ++a) {
+          idx[a] = static_cast<int>(std::floor(double(obstacle(a)) * inv)) - g.first[a];
+          assert(idx[a] >= 0 && idx[a] < g.size[a]);
+        }
+        cells[n] = {static_cast<std::uint16_t>(idx[0]), static_cast<std::uint16_t>(idx[1]),
+                    static_cast<std::uint16_t>(idx[2])};
+      }
+    }
+  }
+  return cells;
+}
+
+}  // namespace
+
 FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance, const Box& arena, ArenaFaces faces) {
   const VoxelGrid& g = occupancy.grid();
   FieldBuild out;
@@ -107,46 +154,7 @@ FieldBuild build_distance_field(const Occupancy& occupancy, double max_distance,
   out.octree_seconds = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  auto to_point = [](const Vec3& v) {
-    return octomap::point3d(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
-  };
-  const octomap::point3d bbx_min = to_point(g.cell_center(0, 0, 0));
-  const octomap::point3d bbx_max = to_point(g.cell_center(g.size[0] - 1, g.size[1] - 1, g.size[2] - 1));
-  // One voxel diagonal beyond the cap: the compact field reports distances from a point to voxel boxes, which
-  // are at most a diagonal shorter than the centre-to-centre distances the EDT propagates.
-  const float edt_cap = static_cast<float>(max_distance + std::sqrt(3.0) * g.resolution);
-  std::vector<DistanceField::Cell> cells(g.cell_count());
-  {
-    DynamicEDTOctomap edt(edt_cap, &tree, bbx_min, bbx_max, /*treatUnknownAsOccupied=*/false);
-    edt.update(/*updateRealDist=*/true);
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    const double inv = 1.0 / g.resolution;
-    std::size_t n = 0;
-    for (int i = 0; i < g.size[0]; ++i) {
-      for (int j = 0; j < g.size[1]; ++j) {
-        for (int k = 0; k < g.size[2]; ++k, ++n) {
-          const octomap::point3d p = to_point(g.cell_center(i, j, k));
-          // The EDT leaves the obstacle unwritten when it found none within the cap.
-          octomap::point3d obstacle(nan, nan, nan);
-          float distance = 0.0f;
-          edt.getDistanceAndClosestObstacle(p, distance, obstacle);
-          if (distance < 0.0f || std::isnan(obstacle.x())) {
-            cells[n] = {DistanceField::kNone, DistanceField::kNone, DistanceField::kNone};
-            continue;
-          }
-          // The obstacle comes back as its voxel centre (float): half a cell from any face, so floor is exact.
-          int idx[3];
-          for (int a = 0; a < 3; ++a) {
-            idx[a] = static_cast<int>(std::floor(double(obstacle(a)) * inv)) - g.first[a];
-            assert(idx[a] >= 0 && idx[a] < g.size[a]);
-          }
-          cells[n] = {static_cast<std::uint16_t>(idx[0]), static_cast<std::uint16_t>(idx[1]),
-                      static_cast<std::uint16_t>(idx[2])};
-        }
-      }
-    }
-  }
-  out.field = DistanceField(g, max_distance, std::move(cells), arena, faces);
+  out.field = DistanceField(g, max_distance, nearest_voxels(tree, g, max_distance), arena, faces);
   out.edt_seconds = seconds_since(t0);
 
   // The faces join the tree only now: the EDT does not need them (the field treats them as exact planes).

@@ -15,71 +15,20 @@
 #include "core/input_files.hpp"
 #include "core/yaml_input.hpp"
 #include "world/map_rules.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 #include "world/movers.hpp"
 #include "world/random_obstacles.hpp"
 #include "world/triangle_mesh.hpp"
+#include "world/yaml_reader.hpp"
 
 namespace peg3d::world {
-
-const Scenario* MapSpec::find_scenario(const std::string& wanted) const {
-  for (const Scenario& s : scenarios) {
-    if (s.name == wanted) return &s;
-  }
-  return nullptr;
-}
 
 namespace {
 
 using YAML::Node;
 
 constexpr int kFormatVersion = 1;
-
-int line_of(const Node& n) {
-  if (!n.IsDefined()) return 0;
-  const int line = n.Mark().line;
-  return line >= 0 ? line + 1 : 0;
-}
-
-std::string describe(const Node& n) {
-  switch (n.Type()) {
-    case YAML::NodeType::Null:
-      return "nothing (an empty value)";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Map:
-      return "a mapping";
-    case YAML::NodeType::Scalar:
-      return fmt::format("\"{}\"", shown(n.Scalar()));
-    default:
-      return "an undefined value";
-  }
-}
-
-/// Levenshtein distance, to suggest the key a typo meant.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string join(const std::vector<std::string_view>& items) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    if (i > 0) out += ", ";
-    out += items[i];
-  }
-  return out;
-}
 
 std::string format_vec(const Vec3& v) { return fmt::format("({}, {}, {})", v.x(), v.y(), v.z()); }
 
@@ -90,182 +39,13 @@ struct StartRef {
   int line;
 };
 
-class Loader {
+class Loader : public YamlReader {
  public:
-  explicit Loader(std::filesystem::path file) : file_(std::move(file)) {}
+  explicit Loader(std::filesystem::path file) : YamlReader(std::move(file), &throw_error<MapError>) {}
 
   MapSpec load();
 
  private:
-  /// A YAML mapping whose keys are checked: duplicates and (after allow()) unknown keys are errors.
-  class Fields {
-   public:
-    Fields(const Loader& loader, const Node& node, std::string path) : loader_(loader), node_(node), path_(std::move(path)) {
-      if (!node.IsMap()) loader.fail(node, path_, fmt::format("expected a mapping (key: value), got {}", describe(node)));
-      for (auto it = node.begin(); it != node.end(); ++it) {
-        const Node key = it->first;
-        if (!key.IsScalar()) loader.fail(key, path_, "keys must be plain words");
-        const std::string name = key.Scalar();
-        for (const auto& e : entries_) {
-          if (e.name == name) {
-            loader.fail(key, field(shown(name)), fmt::format("duplicate key (first given at line {})", line_of(e.key)));
-          }
-        }
-        // An empty value ("radius:") carries the mark of the next token: report it at its key instead.
-        if (it->second.IsNull()) loader.fail(key, field(name), "has no value");
-        entries_.push_back({name, key, it->second});
-      }
-    }
-
-    /// Rejects keys not in `allowed`, suggesting the nearest allowed one.
-    void allow(const std::vector<std::string_view>& allowed) const {
-      for (const auto& e : entries_) {
-        if (std::find(allowed.begin(), allowed.end(), e.name) != allowed.end()) continue;
-        std::string_view best;
-        std::size_t best_distance = 3;  // suggest only close matches
-        for (std::string_view a : allowed) {
-          const std::size_t d = edit_distance(e.name, a);
-          if (d < best_distance) best_distance = d, best = a;
-        }
-        const std::string hint = best.empty() ? "" : fmt::format("; did you mean '{}'?", best);
-        loader_.fail(e.key, field(shown(e.name)), fmt::format("unknown key (allowed: {}){}", join(allowed), hint));
-      }
-    }
-
-    const Node* find(std::string_view name) const {
-      for (const auto& e : entries_) {
-        if (e.name == name) return &e.value;
-      }
-      return nullptr;
-    }
-
-    const Node& need(std::string_view name) const {
-      if (const Node* n = find(name)) return *n;
-      loader_.fail(node_, field(name), "missing required field");
-    }
-
-    std::string field(std::string_view name) const {
-      return path_.empty() ? std::string(name) : fmt::format("{}.{}", path_, name);
-    }
-    const Node& node() const { return node_; }
-    const std::string& path() const { return path_; }
-
-   private:
-    struct Entry {
-      std::string name;
-      Node key;
-      Node value;
-    };
-    const Loader& loader_;
-    Node node_;
-    std::string path_;
-    std::vector<Entry> entries_;
-  };
-
-  [[noreturn]] void fail(int line, const std::string& field, const std::string& message) const {
-    throw MapError(file_, line, field, message);
-  }
-  [[noreturn]] void fail(const Node& at, const std::string& field, const std::string& message) const {
-    fail(line_of(at), field, message);
-  }
-
-  // Typed readers: each checks the YAML type and the value and fails with the field's name.
-  double number(const Node& n, const std::string& field) const {
-    if (!n.IsScalar() || n.Tag() == "!") fail(n, field, fmt::format("expected a number, got {}", describe(n)));
-    double v = 0.0;
-    if (!YAML::convert<double>::decode(n, v)) fail(n, field, fmt::format("expected a number, got {}", describe(n)));
-    if (!std::isfinite(v)) fail(n, field, fmt::format("must be a finite number, got {}", shown(n.Scalar())));
-    return v;
-  }
-  double positive(const Node& n, const std::string& field) const {
-    const double v = number(n, field);
-    if (!(v > 0.0)) fail(n, field, fmt::format("must be > 0, got {}", v));
-    return v;
-  }
-  double non_negative(const Node& n, const std::string& field) const {
-    const double v = number(n, field);
-    if (!(v >= 0.0)) fail(n, field, fmt::format("must be >= 0, got {}", v));
-    return v;
-  }
-  long long integer(const Node& n, const std::string& field) const {
-    long long v = 0;
-    if (!n.IsScalar() || n.Tag() == "!" || !YAML::convert<long long>::decode(n, v)) {
-      fail(n, field, fmt::format("expected an integer, got {}", describe(n)));
-    }
-    return v;
-  }
-  std::uint64_t unsigned_integer(const Node& n, const std::string& field) const {
-    unsigned long long v = 0;
-    if (!n.IsScalar() || n.Tag() == "!" || !YAML::convert<unsigned long long>::decode(n, v)) {
-      fail(n, field, fmt::format("expected a non-negative integer, got {}", describe(n)));
-    }
-    return v;
-  }
-  bool boolean(const Node& n, const std::string& field) const {
-    bool v = false;
-    if (!n.IsScalar() || n.Tag() == "!" || !YAML::convert<bool>::decode(n, v)) {
-      fail(n, field, fmt::format("expected true or false, got {}", describe(n)));
-    }
-    return v;
-  }
-  std::string text(const Node& n, const std::string& field) const {
-    if (!n.IsScalar() || n.Scalar().empty()) fail(n, field, fmt::format("expected a string, got {}", describe(n)));
-    return n.Scalar();
-  }
-  Vec3 vec3(const Node& n, const std::string& field) const {
-    if (!n.IsSequence() || n.size() != 3) {
-      fail(n, field, fmt::format("expected a list of 3 numbers [x, y, z], got {}",
-                                 n.IsSequence() ? fmt::format("a list of {}", n.size()) : describe(n)));
-    }
-    Vec3 v;
-    for (int i = 0; i < 3; ++i) v[i] = number(n[i], fmt::format("{}[{}]", field, i));
-    return v;
-  }
-  /// A positive range: a single number r (meaning [r, r]) or [min, max] with 0 < min <= max.
-  std::pair<double, double> positive_range(const Node& n, const std::string& field) const {
-    if (n.IsScalar()) {
-      const double v = positive(n, field);
-      return {v, v};
-    }
-    if (!n.IsSequence() || n.size() != 2) {
-      fail(n, field, fmt::format("expected a number or a list [min, max], got {}", describe(n)));
-    }
-    const double lo = positive(n[0], field + "[0]");
-    const double hi = positive(n[1], field + "[1]");
-    if (hi < lo) fail(n, field, fmt::format("min {} is larger than max {}", lo, hi));
-    return {lo, hi};
-  }
-  const Node& sequence(const Node& n, const std::string& field) const {
-    if (!n.IsSequence()) fail(n, field, fmt::format("expected a list, got {}", describe(n)));
-    return n;
-  }
-
-  /// The node of a field below a mapping, given relative to it ("path.speed", "size[1]"); the mapping itself
-  /// when the field is empty or not there (so an error always has a line).
-  Node node_of(const Fields& f, const std::string& relative) const {
-    Node node = f.node();
-    std::size_t start = 0;
-    while (start < relative.size()) {
-      const std::size_t dot = std::min(relative.find('.', start), relative.size());
-      std::string part = relative.substr(start, dot - start);
-      int index = -1;
-      if (const std::size_t b = part.find('['); b != std::string::npos) {
-        index = std::atoi(part.c_str() + b + 1);
-        part = part.substr(0, b);
-      }
-      if (!part.empty()) {
-        if (!node.IsMap() || !node[part]) return f.node();
-        node = node[part];
-      }
-      if (index >= 0) {
-        if (!node.IsSequence() || index >= static_cast<int>(node.size())) return f.node();
-        node = node[static_cast<std::size_t>(index)];
-      }
-      start = dot + 1;
-    }
-    return node;
-  }
-
   void read_arena(const Node& n, MapSpec& spec);
   void read_occupancy(const Node* n, MapSpec& spec);
   AgentStart read_agent(const Node& n, const std::string& field);
@@ -278,7 +58,6 @@ class Loader {
   void check_starts(const MapSpec& spec) const;
   void require_in_arena(const Node& n, const std::string& field, const Vec3& p, const MapSpec& spec) const;
 
-  std::filesystem::path file_;
   std::vector<StartRef> starts_;
 };
 
@@ -405,7 +184,7 @@ void Loader::read_terrain(const Node& n, const std::string& field, MapSpec& spec
   t.line = line_of(n);
   const Node& file_node = f.need("file");
   const std::filesystem::path rel = text(file_node, f.field("file"));
-  t.file = std::filesystem::absolute((file_.parent_path() / rel).lexically_normal());
+  t.file = std::filesystem::absolute((file().parent_path() / rel).lexically_normal());
   if (const Node* v = f.find("scale")) t.scale = number(*v, f.field("scale"));
   if (const Node* v = f.find("rotation_deg")) t.rotation_deg = vec3(*v, f.field("rotation_deg"));
   if (const Node* v = f.find("translation")) t.translation = vec3(*v, f.field("translation"));
@@ -588,7 +367,7 @@ void Loader::check_starts(const MapSpec& spec) const {
 MapSpec Loader::load() {
   Node root;
   try {
-    root = parse_yaml_text(read_input_file(file_, "map file"), file_);
+    root = parse_yaml_text(read_input_file(file(), "map file"), file());
   } catch (const MapError&) {
     throw;
   } catch (const InputError& e) {
@@ -597,7 +376,7 @@ MapSpec Loader::load() {
   if (!root.IsDefined() || root.IsNull()) fail(1, "", "the map file is empty");
 
   MapSpec spec;
-  spec.source = file_;
+  spec.source = file();
   const Fields top(*this, root, "");
   top.allow({"version", "name", "arena", "occupancy", "physics", "obstacles", "terrain", "movers", "random_obstacles",
              "start", "scenarios"});

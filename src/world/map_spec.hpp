@@ -1,6 +1,6 @@
 #pragma once
 // A map as plain data: the arena box, its obstacles, terrain meshes and agent starts, in metres. load_map()
-// reads the YAML format documented in docs/maps.md; nothing here exposes yaml-cpp.
+// (map_loader.hpp) reads the YAML format documented in docs/maps.md; nothing here exposes yaml-cpp.
 
 #include <filesystem>
 #include <optional>
@@ -160,9 +160,5 @@ class MapError : public InputError {
  public:
   using InputError::InputError;
 };
-
-/// Reads and validates a YAML map (docs/maps.md): every problem throws MapError naming file, line and
-/// field. Terrain meshes are imported to check them (missing, empty, malformed, no triangles, non-finite).
-MapSpec load_map(const std::filesystem::path& file);
 
 }  // namespace peg3d::world

@@ -60,53 +60,54 @@ bool is_number(std::string_view t) {
 
 // ---- PLY: element counts times the smallest size of one element must fit in the body. ----
 
-void check_ply(const fs::path& file, std::uintmax_t size) {
-  // A file whose body is walked is read once, whole; the header is its start.
-  const bool walked = size <= kMaxWalkedBytes;
-  const std::string text = walked ? read_input_file(file, "mesh file", kMaxWalkedBytes) : read_prefix(file, 1 << 20);
-  const std::string_view head = std::string_view(text).substr(0, std::size_t{1} << 20);
-  // assimp 5.2's PLY reader loops forever on a header cut short before "end_header", on some lines it does not
-  // know, and on an "end_header" not followed by a line break (the last two found by fuzzing): the header must
-  // be lines of the format's own keywords, ended by a line that is exactly "end_header".
-  std::size_t end = std::string::npos, body_start = std::string::npos;
+struct PlyProperty {
+  int size = 0;        // bytes of a scalar, or of a list's items
+  int count_size = 0;  // bytes of a list's count; 0 for a scalar
+};
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::uint64_t min_bytes = 0;  // of one element
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  bool ascii = true;
+  std::vector<PlyElement> elements;
+};
+
+int ply_type_size(const fs::path& file, const std::string& t) {
+  static const std::array<std::pair<const char*, int>, 16> kSizes{{{"char", 1}, {"int8", 1}, {"uchar", 1}, {"uint8", 1},
+                                                                   {"short", 2}, {"int16", 2}, {"ushort", 2}, {"uint16", 2},
+                                                                   {"int", 4}, {"int32", 4}, {"uint", 4}, {"uint32", 4},
+                                                                   {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}}};
+  for (const auto& [name, bytes] : kSizes) {
+    if (t == name) return bytes;
+  }
+  refuse(file, fmt::format("has a PLY property of unknown type '{}'", shown(t)));
+}
+
+// Where the PLY header's "end_header" line starts (npos when there is none) and where its line break is.
+// assimp 5.2's PLY reader loops forever on a header cut short before "end_header", on some lines it does not
+// know, and on an "end_header" not followed by a line break (the last two found by fuzzing): the header must
+// be lines of the format's own keywords, ended by a line that is exactly "end_header".
+std::pair<std::size_t, std::size_t> ply_header_end(std::string_view head) {
   for (std::size_t at = 0; at < head.size();) {
     const std::size_t eol = head.find('\n', at);
     if (eol == std::string::npos) break;
     std::string_view l = head.substr(at, eol - at);
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-    if (l == "end_header") {
-      end = at;
-      body_start = eol;
-      break;
-    }
+    if (l == "end_header") return {at, eol};
     at = eol + 1;
   }
-  if (end == std::string::npos) refuse(file, "is malformed: its PLY header has no end_header line");
-  const std::uintmax_t body = size - (body_start + 1);
-  std::istringstream lines(std::string(head.substr(0, end)));
+  return {std::string::npos, std::string::npos};
+}
+
+// The header's lines (before end_header): each a keyword of the format, the elements with their counts and
+// the smallest size of one.
+PlyHeader read_ply_header(const fs::path& file, std::string_view header) {
+  PlyHeader h;
+  std::istringstream lines{std::string(header)};
   std::string line;
-  bool ascii = true;
-  struct Property {
-    int size = 0;        // bytes of a scalar, or of a list's items
-    int count_size = 0;  // bytes of a list's count; 0 for a scalar
-  };
-  struct Element {
-    std::string name;
-    std::uint64_t count = 0;
-    std::uint64_t min_bytes = 0;  // of one element
-    std::vector<Property> properties;
-  };
-  std::vector<Element> elements;
-  const auto type_size = [&](const std::string& t) -> int {
-    static const std::array<std::pair<const char*, int>, 16> kSizes{{{"char", 1}, {"int8", 1}, {"uchar", 1}, {"uint8", 1},
-                                                                     {"short", 2}, {"int16", 2}, {"ushort", 2}, {"uint16", 2},
-                                                                     {"int", 4}, {"int32", 4}, {"uint", 4}, {"uint32", 4},
-                                                                     {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}}};
-    for (const auto& [name, bytes] : kSizes) {
-      if (t == name) return bytes;
-    }
-    refuse(file, fmt::format("has a PLY property of unknown type '{}'", shown(t)));
-  };
   bool first = true;
   while (std::getline(lines, line)) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -125,7 +126,7 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
                                     (all_words[1] == "ascii" || all_words[1] == "binary_little_endian" ||
                                      all_words[1] == "binary_big_endian")) ||
                                    (key == "element" && n == 3) ||
-                                   (key == "property" && !elements.empty() && (n == 3 || (n == 5 && all_words[1] == "list")));
+                                   (key == "property" && !h.elements.empty() && (n == 3 || (n == 5 && all_words[1] == "list")));
     if (!printable || !known) {
       refuse(file, fmt::format("is malformed: its PLY header has a line that is not {}", first ? "'ply' first" : "a PLY keyword"));
     }
@@ -133,79 +134,71 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
     if (key == "format") {
       std::string f;
       words >> f;
-      ascii = f == "ascii";
+      h.ascii = f == "ascii";
     } else if (key == "element") {
-      Element e;
+      PlyElement e;
       std::string count;
       words >> e.name >> count;
       if (!parse_count(count, e.count)) refuse(file, fmt::format("declares a PLY element '{}' with count '{}'", shown(e.name), shown(count)));
-      elements.push_back(e);
-    } else if (key == "property" && !elements.empty()) {
+      h.elements.push_back(e);
+    } else if (key == "property" && !h.elements.empty()) {
       std::string type;
       words >> type;
       if (type == "list") {
         std::string count_type, item_type;
         words >> count_type >> item_type;
-        elements.back().properties.push_back({type_size(item_type), type_size(count_type)});
-        elements.back().min_bytes += ascii ? 2 : std::uint64_t(type_size(count_type));  // an empty list
+        h.elements.back().properties.push_back({ply_type_size(file, item_type), ply_type_size(file, count_type)});
+        h.elements.back().min_bytes += h.ascii ? 2 : std::uint64_t(ply_type_size(file, count_type));  // an empty list
       } else {
-        elements.back().properties.push_back({type_size(type), 0});
-        elements.back().min_bytes += ascii ? 2 : std::uint64_t(type_size(type));  // ascii: a digit and a space
+        h.elements.back().properties.push_back({ply_type_size(file, type), 0});
+        h.elements.back().min_bytes += h.ascii ? 2 : std::uint64_t(ply_type_size(file, type));  // ascii: a digit and a space
       }
     }
   }
-  std::uint64_t need = 0;
-  for (const Element& e : elements) {
-    if (e.min_bytes > 0 && e.count > body / e.min_bytes) {
-      refuse(file, fmt::format("declares {} PLY elements '{}' of at least {} bytes each, but its body holds {} bytes", e.count,
-                               shown(e.name), e.min_bytes, body));
-    }
-    need += e.count * e.min_bytes;
-    if (need > body) refuse(file, fmt::format("declares PLY elements needing at least {} bytes, but its body holds {}", need, body));
-  }
-  // The lists' lengths are in the body: walk it, so no list asks the importer for more items than follow.
-  if (!walked || body_start == std::string::npos) return;
-  const std::string& all = text;
-  const bool big_endian = head.find("binary_big_endian") < end;
-  std::size_t at = body_start + 1;
-  const auto list_too_long = [&](const Element& e, std::uint64_t i, std::uint64_t n) {
-    refuse(file, fmt::format("is malformed: PLY element '{}' {} has a list of {} items, more than the file holds", shown(e.name), i, n));
+  return h;
+}
+
+[[noreturn]] void ply_list_too_long(const fs::path& file, const PlyElement& e, std::uint64_t i, std::uint64_t n) {
+  refuse(file, fmt::format("is malformed: PLY element '{}' {} has a list of {} items, more than the file holds", shown(e.name), i, n));
+}
+
+// An ASCII body from `at`: every token a number, no list longer than the tokens that could follow.
+void walk_ply_ascii(const fs::path& file, const std::string& all, std::size_t at, const PlyHeader& h) {
+  const auto next_token = [&]() -> std::string_view {
+    while (at < all.size() && std::isspace(static_cast<unsigned char>(all[at]))) ++at;
+    const std::size_t start = at;
+    while (at < all.size() && !std::isspace(static_cast<unsigned char>(all[at]))) ++at;
+    return std::string_view(all).substr(start, at - start);
   };
-  if (ascii) {
-    const auto next_token = [&]() -> std::string_view {
-      while (at < all.size() && std::isspace(static_cast<unsigned char>(all[at]))) ++at;
-      const std::size_t start = at;
-      while (at < all.size() && !std::isspace(static_cast<unsigned char>(all[at]))) ++at;
-      return std::string_view(all).substr(start, at - start);
-    };
-    for (const Element& e : elements) {
-      for (std::uint64_t i = 0; i < e.count; ++i) {
-        for (const Property& p : e.properties) {
-          const std::string_view token = next_token();
-          if (token.empty()) return;  // cut short: the importer says so
-          // assimp crashes on some bytes that are not text inside an ASCII body (found by fuzzing).
-          if (!is_number(token)) {
-            refuse(file, fmt::format("is malformed: PLY element '{}' {} holds '{}', not a number", shown(e.name), i, shown(token)));
-          }
-          if (p.count_size == 0) continue;
-          std::uint64_t n = 0;
-          if (!parse_count(std::string(token), n)) return;
-          if (n > (all.size() - at) / 2 + 1) list_too_long(e, i, n);
-          for (std::uint64_t k = 0; k < n; ++k) {
-            const std::string_view item = next_token();
-            if (item.empty()) return;
-            if (!is_number(item)) {
-              refuse(file, fmt::format("is malformed: PLY element '{}' {} holds '{}', not a number", shown(e.name), i, shown(item)));
-            }
-          }
+  const auto not_a_number = [&](const PlyElement& e, std::uint64_t i, std::string_view token) {
+    refuse(file, fmt::format("is malformed: PLY element '{}' {} holds '{}', not a number", shown(e.name), i, shown(token)));
+  };
+  for (const PlyElement& e : h.elements) {
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      for (const PlyProperty& p : e.properties) {
+        const std::string_view token = next_token();
+        if (token.empty()) return;  // cut short: the importer says so
+        // assimp crashes on some bytes that are not text inside an ASCII body (found by fuzzing).
+        if (!is_number(token)) not_a_number(e, i, token);
+        if (p.count_size == 0) continue;
+        std::uint64_t n = 0;
+        if (!parse_count(std::string(token), n)) return;
+        if (n > (all.size() - at) / 2 + 1) ply_list_too_long(file, e, i, n);
+        for (std::uint64_t k = 0; k < n; ++k) {
+          const std::string_view item = next_token();
+          if (item.empty()) return;
+          if (!is_number(item)) not_a_number(e, i, item);
         }
       }
     }
-    return;
   }
-  for (const Element& e : elements) {
+}
+
+// A binary body from `at`: no list count larger than the items that could follow.
+void walk_ply_binary(const fs::path& file, const std::string& all, std::size_t at, const PlyHeader& h, bool big_endian) {
+  for (const PlyElement& e : h.elements) {
     for (std::uint64_t i = 0; i < e.count; ++i) {
-      for (const Property& p : e.properties) {
+      for (const PlyProperty& p : e.properties) {
         if (p.count_size == 0) {
           at += std::size_t(p.size);
           continue;
@@ -217,11 +210,38 @@ void check_ply(const fs::path& file, std::uintmax_t size) {
           n = (n << 8) | byte;
         }
         at += std::size_t(p.count_size);
-        if (n > (all.size() - at) / std::size_t(p.size)) list_too_long(e, i, n);
+        if (n > (all.size() - at) / std::size_t(p.size)) ply_list_too_long(file, e, i, n);
         at += std::size_t(n) * std::size_t(p.size);
       }
       if (at > all.size()) return;
     }
+  }
+}
+
+void check_ply(const fs::path& file, std::uintmax_t size) {
+  // A file whose body is walked is read once, whole; the header is its start.
+  const bool walked = size <= kMaxWalkedBytes;
+  const std::string text = walked ? read_input_file(file, "mesh file", kMaxWalkedBytes) : read_prefix(file, 1 << 20);
+  const std::string_view head = std::string_view(text).substr(0, std::size_t{1} << 20);
+  const auto [end, body_start] = ply_header_end(head);
+  if (end == std::string::npos) refuse(file, "is malformed: its PLY header has no end_header line");
+  const std::uintmax_t body = size - (body_start + 1);
+  const PlyHeader h = read_ply_header(file, head.substr(0, end));
+  std::uint64_t need = 0;
+  for (const PlyElement& e : h.elements) {
+    if (e.min_bytes > 0 && e.count > body / e.min_bytes) {
+      refuse(file, fmt::format("declares {} PLY elements '{}' of at least {} bytes each, but its body holds {} bytes", e.count,
+                               shown(e.name), e.min_bytes, body));
+    }
+    need += e.count * e.min_bytes;
+    if (need > body) refuse(file, fmt::format("declares PLY elements needing at least {} bytes, but its body holds {}", need, body));
+  }
+  // The lists' lengths are in the body: walk it, so no list asks the importer for more items than follow.
+  if (!walked || body_start == std::string::npos) return;
+  if (h.ascii) {
+    walk_ply_ascii(file, text, body_start + 1, h);
+  } else {
+    walk_ply_binary(file, text, body_start + 1, h, head.find("binary_big_endian") < end);
   }
 }
 
@@ -309,37 +329,27 @@ const nlohmann::json& list(const nlohmann::json& doc, const char* key, const fs:
   return *it;
 }
 
-void check_gltf(const fs::path& file, std::uintmax_t size, bool binary) {
-  if (size > kMaxWalkedBytes) return;  // larger glTF files go to the bounded import unchecked
-  const std::string bytes = read_input_file(file, "mesh file", kMaxWalkedBytes);
-  std::string_view json_text = bytes;
-  std::uint64_t bin_chunk = 0;
-  if (binary) {
-    const auto u32 = [&](std::size_t at) {
-      std::uint32_t v = 0;
-      if (at + 4 <= bytes.size()) std::memcpy(&v, bytes.data() + at, 4);
-      return v;
-    };
-    if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) refuse(file, "is not a binary glTF (no 'glTF' header)");
-    if (u32(8) != bytes.size()) refuse(file, fmt::format("declares {} bytes in its glTF header, but has {}", u32(8), bytes.size()));
-    const std::uint64_t json_length = u32(12);
-    if (json_length > bytes.size() - 20) refuse(file, fmt::format("declares a JSON chunk of {} bytes, beyond its end", json_length));
-    json_text = std::string_view(bytes).substr(20, json_length);
-    const std::size_t bin_at = 20 + json_length;
-    if (bin_at + 8 <= bytes.size()) {
-      bin_chunk = u32(bin_at);
-      if (bin_chunk > bytes.size() - bin_at - 8) refuse(file, fmt::format("declares a BIN chunk of {} bytes, beyond its end", bin_chunk));
-    }
+// A binary glTF's container: its JSON chunk (returned) and the size of its BIN chunk (0 when none).
+std::string_view glb_chunks(const fs::path& file, const std::string& bytes, std::uint64_t& bin_chunk) {
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    if (at + 4 <= bytes.size()) std::memcpy(&v, bytes.data() + at, 4);
+    return v;
+  };
+  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) refuse(file, "is not a binary glTF (no 'glTF' header)");
+  if (u32(8) != bytes.size()) refuse(file, fmt::format("declares {} bytes in its glTF header, but has {}", u32(8), bytes.size()));
+  const std::uint64_t json_length = u32(12);
+  if (json_length > bytes.size() - 20) refuse(file, fmt::format("declares a JSON chunk of {} bytes, beyond its end", json_length));
+  const std::size_t bin_at = 20 + json_length;
+  if (bin_at + 8 <= bytes.size()) {
+    bin_chunk = u32(bin_at);
+    if (bin_chunk > bytes.size() - bin_at - 8) refuse(file, fmt::format("declares a BIN chunk of {} bytes, beyond its end", bin_chunk));
   }
-  nlohmann::json doc;
-  try {
-    doc = parse_json_text(json_text, file);
-  } catch (const InputError& e) {
-    const std::string& m = e.message();  // its "last read" can quote a whole base64 buffer
-    refuse(file, "is not valid glTF JSON: " + (m.size() <= 160 ? m : m.substr(0, 157) + "..."));
-  }
-  if (!doc.is_object()) refuse(file, "is not a glTF document (expected a JSON object)");
+  return std::string_view(bytes).substr(20, json_length);
+}
 
+// Each buffer's declared length against its data (the BIN chunk, a data: URI, or a safe file beside the mesh).
+std::vector<std::uint64_t> gltf_buffers(const fs::path& file, const nlohmann::json& doc, std::uint64_t bin_chunk) {
   std::vector<std::uint64_t> buffer_bytes;
   const nlohmann::json& buffers = list(doc, "buffers", file);
   for (std::size_t b = 0; b < buffers.size(); ++b) {
@@ -366,6 +376,11 @@ void check_gltf(const fs::path& file, std::uintmax_t size, bool binary) {
     }
     buffer_bytes.push_back(declared);
   }
+  return buffer_bytes;
+}
+
+// Views inside their buffers, and accessors' counts within their views.
+void gltf_views_and_accessors(const fs::path& file, const nlohmann::json& doc, const std::vector<std::uint64_t>& buffer_bytes) {
   std::vector<std::uint64_t> view_bytes;
   const nlohmann::json& views = list(doc, "bufferViews", file);
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -392,7 +407,10 @@ void check_gltf(const fs::path& file, std::uintmax_t size, bool binary) {
                                     : kMaxMeshFileBytes;
     if (count > limit) refuse(file, fmt::format("declares {}.count = {}, more than its data can hold", field, count));
   }
-  // Nodes: every child index valid, no node the child of two parents or of itself, no deeper than 64.
+}
+
+// Nodes: every child index valid, no node the child of two parents or of itself, no deeper than 64.
+void gltf_node_tree(const fs::path& file, const nlohmann::json& doc) {
   const nlohmann::json& nodes = list(doc, "nodes", file);
   std::vector<int> parent(nodes.size(), -1);
   for (std::size_t n = 0; n < nodes.size(); ++n) {
@@ -414,6 +432,23 @@ void check_gltf(const fs::path& file, std::uintmax_t size, bool binary) {
       if (++depth > 64) refuse(file, fmt::format("nests node {} more than 64 deep (or in a cycle)", n));
     }
   }
+}
+
+void check_gltf(const fs::path& file, std::uintmax_t size, bool binary) {
+  if (size > kMaxWalkedBytes) return;  // larger glTF files go to the bounded import unchecked
+  const std::string bytes = read_input_file(file, "mesh file", kMaxWalkedBytes);
+  std::uint64_t bin_chunk = 0;
+  const std::string_view json_text = binary ? glb_chunks(file, bytes, bin_chunk) : std::string_view(bytes);
+  nlohmann::json doc;
+  try {
+    doc = parse_json_text(json_text, file);
+  } catch (const InputError& e) {
+    const std::string& m = e.message();  // its "last read" can quote a whole base64 buffer
+    refuse(file, "is not valid glTF JSON: " + (m.size() <= 160 ? m : m.substr(0, 157) + "..."));
+  }
+  if (!doc.is_object()) refuse(file, "is not a glTF document (expected a JSON object)");
+  gltf_views_and_accessors(file, doc, gltf_buffers(file, doc, bin_chunk));
+  gltf_node_tree(file, doc);
 }
 
 // ---- 3DS: chunks (id u16, length u32 including the 6-byte header) nested inside their parents. ----

@@ -12,6 +12,7 @@
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
 #include "sweep/parallel_runner.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 
 namespace peg3d::experiment {

@@ -11,6 +11,7 @@
 #include "game/episode.hpp"
 #include "game/scripted_policies.hpp"
 #include "test_arena.hpp"
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 #include "world/mover_timeline.hpp"
 

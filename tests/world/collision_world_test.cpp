@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "world/collision_world.hpp"
+#include "world/map_loader.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

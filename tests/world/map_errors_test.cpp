@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 #include "world_test_support.hpp"
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
 #include "world/obstacle_geometry.hpp"
 #include "world/random_obstacles.hpp"

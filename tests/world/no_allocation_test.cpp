@@ -12,6 +12,7 @@
 
 #include "../support/counting_new.hpp"
 #include "world/collision_world.hpp"
+#include "world/map_loader.hpp"
 #include "world_test_support.hpp"
 
 namespace {
