@@ -38,14 +38,11 @@ std::size_t generalize_run_count(const game::Sim& train, const GeneralizeSetting
 nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s) {
   nlohmann::json maps = nlohmann::json::array();
   for (const EvalMap& m : evals) maps.push_back({{"name", m.name}, {"map_hash", results::map_content_hash(m.sim.arena())}});
-  return {{"experiment", "generalize"},
-          {"peg3d", results::peg3d_build_json()},
-          {"map_hash", results::map_content_hash(train.arena())},
-          {"eval_maps", std::move(maps)},
-          {"seed", s.sweep.seed},
-          {"episodes", s.sweep.episodes},
-          {"repeats", s.sweep.repeats},
-          {"config", config::to_json(train.config())}};
+  nlohmann::json setup = setup_header("generalize", train.arena(), s.sweep);
+  setup["eval_maps"] = std::move(maps);
+  setup["repeats"] = s.sweep.repeats;
+  setup["config"] = config::to_json(train.config());
+  return setup;
 }
 
 nlohmann::ordered_json generalize_seeds(const game::Sim& train, const GeneralizeSettings& s) {

@@ -117,21 +117,18 @@ nlohmann::json League::setup() const {
   nlohmann::json pursuers = nlohmann::json::array(), evaders = nlohmann::json::array();
   for (const auto k : settings_.classic_pursuers) pursuers.push_back(game::to_string(k));
   for (const auto k : settings_.classic_evaders) evaders.push_back(game::to_string(k));
-  return {{"experiment", "league"},
-          {"peg3d", results::peg3d_build_json()},
-          {"map_hash", results::map_content_hash(*train_)},
-          {"eval_maps", std::move(maps)},
-          {"seed", settings_.sweep.seed},
-          {"episodes", settings_.sweep.episodes},
-          {"train_seeds", train_seeds()},
-          {"eval_seeds", settings_.eval_seeds},
-          {"eval_heading", config::enum_name(game::kInitialHeadingNames, settings_.eval_heading)},
-          {"train_heading", settings_.train_heading
-                                ? nlohmann::json(config::enum_name(game::kInitialHeadingNames, *settings_.train_heading))
-                                : nlohmann::json("config")},
-          {"classic_pursuers", std::move(pursuers)},
-          {"classic_evaders", std::move(evaders)},
-          {"algorithms", algorithms_json(algorithms_)}};
+  nlohmann::json setup = setup_header("league", *train_, settings_.sweep);
+  setup["eval_maps"] = std::move(maps);
+  setup["train_seeds"] = train_seeds();
+  setup["eval_seeds"] = settings_.eval_seeds;
+  setup["eval_heading"] = config::enum_name(game::kInitialHeadingNames, settings_.eval_heading);
+  setup["train_heading"] = settings_.train_heading
+                               ? nlohmann::json(config::enum_name(game::kInitialHeadingNames, *settings_.train_heading))
+                               : nlohmann::json("config");
+  setup["classic_pursuers"] = std::move(pursuers);
+  setup["classic_evaders"] = std::move(evaders);
+  setup["algorithms"] = algorithms_json(algorithms_);
+  return setup;
 }
 
 const game::RoleModels& League::models(int a, int t, game::Role role) const {

@@ -62,17 +62,14 @@ nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& 
     h.add_text(game::policy_to_json(*m).dump());
     return nlohmann::json(fmt::format("fnv1a64:{:016x}", h.value()));
   };
-  return {{"experiment", "matchup"},
-          {"peg3d", results::peg3d_build_json()},
-          {"map_hash", results::map_content_hash(arena)},
-          {"seed", s.sweep.seed},
-          {"episodes", s.sweep.episodes},
-          {"repeats", s.sweep.repeats},
-          {"pursuers", std::move(pursuers)},
-          {"evaders", std::move(evaders)},
-          {"pursuer_policy_hash", policy_hash(s.pursuer_policy)},
-          {"evader_policy_hash", policy_hash(s.evader_policy)},
-          {"config", config::to_json(base)}};
+  nlohmann::json setup = setup_header("matchup", arena, s.sweep);
+  setup["repeats"] = s.sweep.repeats;
+  setup["pursuers"] = std::move(pursuers);
+  setup["evaders"] = std::move(evaders);
+  setup["pursuer_policy_hash"] = policy_hash(s.pursuer_policy);
+  setup["evader_policy_hash"] = policy_hash(s.evader_policy);
+  setup["config"] = config::to_json(base);
+  return setup;
 }
 
 nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& s) {

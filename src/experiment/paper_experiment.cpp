@@ -34,14 +34,11 @@ std::size_t paper_run_count(const world::Arena& arena, const std::vector<Algorit
 }
 
 nlohmann::json paper_setup(const world::Arena& arena, const std::vector<Algorithm>& algorithms, const PaperSettings& s) {
-  return {{"experiment", "paper"},
-          {"peg3d", results::peg3d_build_json()},
-          {"map_hash", results::map_content_hash(arena)},
-          {"seed", s.sweep.seed},
-          {"episodes", s.sweep.episodes},
-          {"repeats", s.sweep.repeats},
-          {"trace_repeat", s.trace_repeat},
-          {"algorithms", algorithms_json(algorithms)}};
+  nlohmann::json setup = setup_header("paper", arena, s.sweep);
+  setup["repeats"] = s.sweep.repeats;
+  setup["trace_repeat"] = s.trace_repeat;
+  setup["algorithms"] = algorithms_json(algorithms);
+  return setup;
 }
 
 nlohmann::ordered_json paper_run_info(const PaperSettings& s) {

@@ -1,8 +1,17 @@
 #include "experiment/sweep_settings.hpp"
 
 #include "core/random.hpp"
+#include "results/run_info.hpp"
 
 namespace peg3d::experiment {
+
+nlohmann::json setup_header(const char* experiment, const world::Arena& map, const SweepSettings& s) {
+  return {{"experiment", experiment},
+          {"peg3d", results::peg3d_build_json()},
+          {"map_hash", results::map_content_hash(map)},
+          {"seed", s.seed},
+          {"episodes", s.episodes}};
+}
 
 std::uint64_t run_seed(std::uint64_t root, int scenario, int repeat) {
   return derive_seed(root, {static_cast<std::uint64_t>(scenario), static_cast<std::uint64_t>(repeat)});

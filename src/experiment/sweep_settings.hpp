@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sweep/sweep_control.hpp"
+#include "world/arena.hpp"
 #include "world/map_spec.hpp"
 
 namespace peg3d::experiment {
@@ -23,6 +24,10 @@ struct SweepSettings {
   int threads = 0;              ///< worker threads per process, 0: every core of its CPU affinity; results do not depend on it
   sweep::SweepControl control{};  ///< journal, stop request, ranks and progress (none by default)
 };
+
+/// What every sweep's journal header starts with: {"experiment", "peg3d" (version and commit), "map_hash" (of the
+/// map it trains on), "seed", "episodes"}; each experiment adds what else its results depend on.
+nlohmann::json setup_header(const char* experiment, const world::Arena& map, const SweepSettings& settings);
 
 /// The seed of a scenario's repeat: derive_seed(root, {scenario, repeat}), shared by every algorithm and
 /// pairing that plays that start, so that they are compared on paired runs.
