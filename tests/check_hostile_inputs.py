@@ -4,7 +4,10 @@ starts with "error:" and names the file, within 10 s, peak memory under 1 GB (th
 and no output written.
 
   meshes    tests/data/meshes/hostile/*   each as the terrain of a small map, through peg-matchup
-  maps      tests/data/maps/broken/*.yaml through peg-map check
+  maps      tests/data/maps/broken/*.yaml and tests/data/maps/hostile/*.yaml (maps that load but would build or
+            simulate too much: aliases, generators, motion over its budget) through peg-map check
+  heavy     tests/data/maps/heavy/*.yaml, valid maps at the limits, through peg-map check: exit status 0, within
+            10 s, under 1 GB
   configs   tests/data/configs/broken/*.json through peg-matchup --config
   policies  broken policy files made here (and a FIFO, a directory, /dev/zero) through peg-matchup
 
@@ -23,8 +26,9 @@ LIMIT_SECONDS = 10.0
 LIMIT_KB = 1024 * 1024  # 1 GiB, as ru_maxrss counts
 
 
-def run(cmd, named, out_dir):
-    """Runs cmd and checks the contract for an input error that names `named`."""
+def run(cmd, named, out_dir, expect_error=True):
+    """Runs cmd and checks the contract for an input error that names `named` (or, with expect_error false, that
+    it succeeds within the same time and memory)."""
     shutil.rmtree(out_dir, ignore_errors=True)
     start = time.monotonic()
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
@@ -39,6 +43,12 @@ def run(cmd, named, out_dir):
     # wait4 has been done by communicate; the rusage of the whole tree comes from RUSAGE_CHILDREN's maximum.
     err = err.decode(errors="replace")
     what = f"{os.path.basename(cmd[0])} on {named}"
+    if not expect_error:
+        if p.returncode != 0:
+            failures.append(f"{what}: exit status {p.returncode}, expected 0: {err[-400:]}")
+        if seconds > LIMIT_SECONDS:
+            failures.append(f"{what}: took {seconds:.1f} s")
+        return
     if p.returncode != 2:
         failures.append(f"{what}: exit status {p.returncode}, expected 2: {err[-400:]}")
     if not err.startswith("error:") or os.path.basename(named) not in err:
@@ -70,10 +80,15 @@ def main():
         run([matchup, "--map", map_file, *quick], name, out)
         counts["meshes"] = counts.get("meshes", 0) + 1
 
-    broken_maps = os.path.join(source, "tests", "data", "maps", "broken")
-    for name in sorted(os.listdir(broken_maps)):
-        run([peg_map, "check", os.path.join(broken_maps, name), "--no-cache"], name, out)
-        counts["maps"] = counts.get("maps", 0) + 1
+    for folder in ("broken", "hostile"):
+        maps = os.path.join(source, "tests", "data", "maps", folder)
+        for name in sorted(os.listdir(maps)):
+            run([peg_map, "check", os.path.join(maps, name), "--no-cache"], name, out)
+            counts["maps"] = counts.get("maps", 0) + 1
+    heavy = os.path.join(source, "tests", "data", "maps", "heavy")
+    for name in sorted(os.listdir(heavy)):
+        run([peg_map, "check", os.path.join(heavy, name), "--no-cache"], name, out, expect_error=False)
+        counts["heavy"] = counts.get("heavy", 0) + 1
 
     configs = os.path.join(source, "tests", "data", "configs", "broken")
     for name in sorted(n for n in os.listdir(configs) if n.endswith(".json")):

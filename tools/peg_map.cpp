@@ -115,6 +115,10 @@ int main(int argc, char** argv) {
 
   CLI::App* check = app.add_subcommand("check", "load MAP and print what it holds, build time and memory");
   add_common(*check, common);
+  bool motion = false;
+  check->add_flag("--motion", motion,
+                  "also simulate the movers over a whole game of the default configuration and say what it took "
+                  "(time and memory of the timeline)");
 
   CLI::App* distance = app.add_subcommand("distance", "distance from (X, Y, Z) to the nearest obstacle");
   add_common(*distance, common);
@@ -151,6 +155,18 @@ int main(int argc, char** argv) {
       const peg3d::game::Sim sim(arena, peg3d::game::preset("peg3d"));
       fmt::print("starts     every agent of every scenario fits (radii {:g} m and {:g} m)\n",
                  sim.config().pursuer.radius, sim.config().evader.radius);
+      if (const auto* timeline = sim.movers()) {
+        if (motion) timeline->simulate_all();
+        const auto t = timeline->stats();
+        fmt::print("motion     {:g} s, {} dynamic bodies at {} keyframes/s in {} blocks; worst case {} (budget {})\n",
+                   timeline->duration(), t.dynamic_bodies, t.keyframe_hz, t.blocks, mib(double(t.worst_case_bytes)),
+                   mib(double(peg3d::world::MoverTimeline::kMaxBytes)));
+        if (motion) {
+          fmt::print("simulated  in {:.3f} s, {} held; {} body-blocks at rest stored once, {} moving\n",
+                     t.simulate_seconds, mib(double(t.bytes)), t.resting_entries, t.moving_entries);
+          fmt::print("peak RSS   {}\n", mib(peak_rss_bytes()));
+        }
+      }
     } else if (distance->parsed()) {
       const peg3d::Vec3 p(x, y, z);
       const auto n = arena->nearest_obstacle(p);

@@ -1,5 +1,7 @@
 #include "game/starts.hpp"
 
+#include <array>
+
 #include <fmt/format.h>
 
 #include "core/validation.hpp"
@@ -37,8 +39,16 @@ void check_start(const world::Arena& arena, const GameConfig& g, const world::Mo
                                    c->penetration));
     }
     if (movers != nullptr) {
-      for (int m = 0; m < movers->count(); ++m) {
-        const double gap = signed_distance(movers->mover(m).shape, movers->pose(m, 0.0), positions[std::size_t(i)]) - radius;
+      // The movers near the start (a superset of those it overlaps), in index order; all of them when the
+      // index cannot say.
+      std::array<int, 256> near;
+      const Vec3& p = positions[std::size_t(i)];
+      int n = movers->candidates({p, p}, radius, 0.0, 0.0, near);
+      const bool all = n < 0 || n > static_cast<int>(near.size());
+      if (all) n = movers->count();
+      for (int k = 0; k < n; ++k) {
+        const int m = all ? k : near[std::size_t(k)];
+        const double gap = signed_distance(movers->mover(m).shape, movers->pose(m, 0.0), p) - radius;
         if (gap < 0.0) {
           throw StartError(file, a.line, a.field.empty() ? "scenario " + s.name : a.field,
                            fmt::format("scenario '{}': the {} (radius {} m) starts overlapping {} (penetration {:.3f} m)",

@@ -209,12 +209,16 @@ void Loader::read_terrain(const Node& n, const std::string& field, MapSpec& spec
 
 void Loader::read_physics(const Node& n, MapSpec& spec) {
   const Fields f(*this, n, "physics");
-  f.allow({"gravity", "rate_hz", "faces_are_physical"});
+  f.allow({"gravity", "rate_hz", "keyframe_hz", "faces_are_physical"});
   spec.physics.line = line_of(n);
   if (const Node* v = f.find("gravity")) spec.physics.gravity = vec3(*v, f.field("gravity"));
   if (const Node* v = f.find("rate_hz")) {
     const long long r = integer(*v, f.field("rate_hz"));
     spec.physics.rate_hz = static_cast<int>(std::clamp<long long>(r, -1, 1000000));
+  }
+  if (const Node* v = f.find("keyframe_hz")) {
+    const long long r = integer(*v, f.field("keyframe_hz"));
+    spec.physics.keyframe_hz = static_cast<int>(std::clamp<long long>(r, -1, 1000000));
   }
   if (const Node* v = f.find("faces_are_physical")) spec.physics.faces_are_physical = boolean(*v, f.field("faces_are_physical"));
   if (const Problem p = check_physics(spec.physics)) fail(f.need(p.field), f.field(p.field), p.message);
@@ -306,7 +310,12 @@ void Loader::read_generator(const Node& n, const std::string& field, MapSpec& sp
   }
   const Node& count_node = f.need("count");
   const long long count = integer(count_node, f.field("count"));
-  if (count < 0 || count > 1000000) fail(count_node, f.field("count"), fmt::format("must lie in [0, 1000000], got {}", count));
+  const long long left = kMaxObstacles - static_cast<long long>(spec.spheres.size() + spec.cylinders.size());
+  if (count < 0 || count > left) {
+    fail(count_node, f.field("count"),
+         fmt::format("must lie in [0, {}] (a map holds at most {} obstacles, {} before this generator), got {}",
+                     std::max(left, 0LL), kMaxObstacles, spec.spheres.size() + spec.cylinders.size(), count));
+  }
   g.count = static_cast<int>(count);
   const Node& radius_node = f.need("radius");
   std::tie(g.radius_min, g.radius_max) = positive_range(radius_node, f.field("radius"));
@@ -407,6 +416,9 @@ MapSpec Loader::load() {
 
   if (const Node* list = top.find("obstacles")) {
     sequence(*list, "obstacles");
+    if (list->size() > std::size_t(kMaxObstacles)) {
+      fail(*list, "obstacles", fmt::format("lists {} obstacles, more than the {} a map may hold", list->size(), kMaxObstacles));
+    }
     for (std::size_t i = 0; i < list->size(); ++i) read_obstacle((*list)[i], fmt::format("obstacles[{}]", i), spec);
   }
   if (const Node* list = top.find("terrain")) {
@@ -417,6 +429,9 @@ MapSpec Loader::load() {
   if (const Node* n = top.find("physics")) read_physics(*n, spec);
   if (const Node* list = top.find("movers")) {
     sequence(*list, "movers");
+    if (list->size() > std::size_t(kMaxMovers)) {
+      fail(*list, "movers", fmt::format("lists {} movers, more than the {} a map may hold", list->size(), kMaxMovers));
+    }
     for (std::size_t i = 0; i < list->size(); ++i) read_mover((*list)[i], fmt::format("movers[{}]", i), spec);
   }
   if (const Node* list = top.find("random_obstacles")) {

@@ -1,6 +1,11 @@
 #include "world/map_rules.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -104,6 +109,11 @@ Problem check_scenario_name(std::string_view name) {
 Problem check_physics(const PhysicsSpec& physics) {
   if (physics.rate_hz < 1 || physics.rate_hz > 100000) {
     return {"rate_hz", fmt::format("must lie in [1, 100000], got {}", physics.rate_hz)};
+  }
+  if (physics.keyframe_hz < 0 || physics.keyframe_hz > physics.rate_hz ||
+      (physics.keyframe_hz > 0 && physics.rate_hz % physics.keyframe_hz != 0)) {
+    return {"keyframe_hz", fmt::format("must be 0 (every substep) or divide rate_hz = {} into whole substeps, got {}",
+                                       physics.rate_hz, physics.keyframe_hz)};
   }
   return finite("gravity", physics.gravity);
 }
@@ -219,7 +229,57 @@ Problem check_mover_clear_of_start(const MoverSpec& m, const Vec3& start) {
   return {"", fmt::format("holds the agent start {} at t = 0", vec_text(start))};
 }
 
+namespace {
+
+// Whether two dynamic bodies start inside each other: balls that overlap, or either's centre inside the other
+// (copies of one body, which Bullet would fling apart with every pair in contact at once).
+bool start_inside(const MoverSpec& a, const MoverSpec& b) {
+  const Pose pa = start_pose(a), pb = start_pose(b);
+  if (a.shape.kind == Shape::Kind::kSphere && b.shape.kind == Shape::Kind::kSphere) {
+    return (pa.position - pb.position).norm() < a.shape.radius + b.shape.radius;
+  }
+  return signed_distance(a.shape, pa, pb.position) < 0.0 || signed_distance(b.shape, pb, pa.position) < 0.0;
+}
+
+// The first pair (lower index second) of dynamic bodies that start inside each other, by a grid of cells two
+// of the largest bounding radii wide: only bodies in neighbouring cells can.
+std::optional<std::pair<std::size_t, std::size_t>> dynamic_overlap(const MapSpec& spec) {
+  double reach = 0.0;
+  for (const MoverSpec& m : spec.movers) {
+    if (!m.kinematic()) reach = std::max(reach, m.shape.bounding_radius());
+  }
+  if (!(reach > 0.0)) return std::nullopt;
+  const double cell = 2.0 * reach;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+  const auto key = [](long x, long y, long z) {
+    return (std::uint64_t(x & 0x1fffff) << 42) | (std::uint64_t(y & 0x1fffff) << 21) | std::uint64_t(z & 0x1fffff);
+  };
+  for (std::size_t i = 0; i < spec.movers.size(); ++i) {
+    const MoverSpec& m = spec.movers[i];
+    if (m.kinematic()) continue;
+    const long cx = std::lround(std::floor(m.start.x() / cell)), cy = std::lround(std::floor(m.start.y() / cell)),
+               cz = std::lround(std::floor(m.start.z() / cell));
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == grid.end()) continue;
+          for (const std::size_t j : it->second) {
+            if (start_inside(spec.movers[j], m)) return std::pair{i, j};
+          }
+        }
+    grid[key(cx, cy, cz)].push_back(i);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 void validate_movers(const MapSpec& spec, const std::vector<TriangleMesh>& meshes) {
+  if (const auto pair = dynamic_overlap(spec)) {
+    throw MapError(spec.source, spec.movers[pair->first].line, fmt::format("movers[{}]", pair->first),
+                   fmt::format("starts inside dynamic body movers[{}]: dynamic bodies must start apart", pair->second));
+  }
   for (std::size_t i = 0; i < spec.movers.size(); ++i) {
     const MoverSpec& m = spec.movers[i];
     const std::string field = fmt::format("movers[{}]", i);
@@ -244,6 +304,13 @@ void validate_map(const MapSpec& spec) {
   };
   if (auto p = check_arena(spec.bounds.lo, spec.bounds.size())) fail("arena", p);
   if (auto p = check_occupancy(spec.bounds, spec.resolution, spec.max_distance)) fail("occupancy", p);
+  if (spec.spheres.size() + spec.cylinders.size() > std::size_t(kMaxObstacles)) {
+    fail("obstacles", {"", fmt::format("{} obstacles, more than the {} a map may hold",
+                                       spec.spheres.size() + spec.cylinders.size(), kMaxObstacles)});
+  }
+  if (spec.movers.size() > std::size_t(kMaxMovers)) {
+    fail("movers", {"", fmt::format("{} movers, more than the {} a map may hold", spec.movers.size(), kMaxMovers)});
+  }
   for (std::size_t i = 0; i < spec.spheres.size(); ++i)
     if (auto p = check_sphere(spec.spheres[i], spec.bounds)) fail(fmt::format("spheres[{}]", i), p);
   for (std::size_t i = 0; i < spec.cylinders.size(); ++i)

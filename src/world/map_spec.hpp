@@ -95,6 +95,10 @@ struct MoverSpec {
 struct PhysicsSpec {
   Vec3 gravity = Vec3(0, 0, -9.81);  ///< m/s^2
   int rate_hz = 240;                 ///< physics substeps per second; the game step must be a whole number of them
+  /// Poses of the dynamic bodies kept per second for the game (world/mover_timeline.hpp), between which their
+  /// motion is interpolated; 0: every substep (rate_hz, the exact simulated motion). rate_hz must be a whole
+  /// multiple of it.
+  int keyframe_hz = 0;
   bool faces_are_physical = true;    ///< the arena's six faces are static planes for dynamic bodies
   int line = 0;                      ///< line of `physics` in the map file (0: unknown)
 };
@@ -111,6 +115,11 @@ struct AgentStart {
 
 /// Most agents of one role in a scenario.
 inline constexpr int kMaxAgentsPerRole = 256;
+/// Most static obstacles (spheres and cylinders, listed and generated) in a map: what every run's collision world
+/// holds, per thread. Bounds what a small map file can make a program build before it refuses the file.
+inline constexpr int kMaxObstacles = 10000;
+/// Most moving obstacles in a map (their motion is bounded separately: world/mover_timeline.hpp).
+inline constexpr int kMaxMovers = 5000;
 
 /// One named set of starts: one or more pursuers and one or more evaders (the paper plays one of each).
 struct Scenario {

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
+
+#include <fmt/format.h>
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btInternalEdgeUtility.h>
@@ -55,7 +59,9 @@ bool adjust_internal_edges(btManifoldPoint& cp, const btCollisionObjectWrapper* 
 // One Bullet dynamics world holding a map's static geometry and its movers, stepped at the map's rate.
 class Physics {
  public:
-  Physics(const MapSpec& spec, const std::vector<TriangleMesh>& meshes) {
+  /// The map's static geometry from `spec` and `meshes` (kept by reference: Bullet reads their arrays in place)
+  /// and the movers of `movers` (kept by reference).
+  Physics(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, const std::vector<MoverSpec>& movers) {
     world_.setGravity(bt(spec.physics.gravity));
     // Static bodies: friction and restitution 1, so that a contact's combined values (Bullet multiplies the
     // two bodies') are the mover's own.
@@ -88,18 +94,30 @@ class Physics {
         add_static(std::make_unique<btStaticPlaneShape>(bt(Vec3(-n)), -b.hi[axis]), Vec3::Zero());
       }
     }
-    for (const MoverSpec& m : spec.movers) add_mover(m);
+    for (const MoverSpec& m : movers) add_mover(m);
   }
 
   ~Physics() {
     for (auto& b : bodies_) world_.removeRigidBody(b.get());
   }
 
-  // Moves the scripted movers to their poses at `t_next` and steps the world by h.
+  // Moves the scripted movers to their poses at `t_next` and steps the world by h. Once every dynamic body
+  // sleeps in a world without scripted movers nothing can wake one: the world holds still, to the bit, and is
+  // no longer stepped.
   void step(double t_next, double h) {
-    for (std::size_t i = 0; i < movers_.size(); ++i) {
-      if (!movers_[i].spec->kinematic()) continue;
-      movers_[i].state->setWorldTransform(bt(scripted_pose(*movers_[i].spec, t_next)));
+    if (still_) return;
+    bool kinematic = false, awake = false;
+    for (Mover& m : movers_) {
+      if (m.spec->kinematic()) {
+        m.state->setWorldTransform(bt(m.motion.pose(t_next)));
+        kinematic = true;
+      } else {
+        awake = awake || m.body->getActivationState() != ISLAND_SLEEPING;
+      }
+    }
+    if (!kinematic && !awake) {
+      still_ = true;
+      return;
     }
     world_.stepSimulation(h, 1, h);
   }
@@ -111,6 +129,7 @@ class Physics {
     const MoverSpec* spec;
     btRigidBody* body;
     btDefaultMotionState* state;
+    ScriptedMotion motion;  ///< a path's or orbit's; unused for a dynamic body
   };
 
   btRigidBody* add_static(std::unique_ptr<btCollisionShape> shape, const Vec3& at) {
@@ -150,7 +169,7 @@ class Physics {
       body->setCcdSweptSphereRadius(0.9 * size);
     }
     world_.addRigidBody(body.get());
-    movers_.push_back({&m, body.get(), state.get()});
+    movers_.push_back({&m, body.get(), state.get(), ScriptedMotion(m)});
     shapes_.push_back(std::move(shape));
     states_.push_back(std::move(state));
     bodies_.push_back(std::move(body));
@@ -167,72 +186,287 @@ class Physics {
   std::vector<std::unique_ptr<btDefaultMotionState>> states_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   std::vector<Mover> movers_;
+  bool still_ = false;  ///< every body sleeps and nothing moves: no step changes anything any more
 };
 
 // The rotation angle between two orientations, rad.
 double angle_between(const Quat& a, const Quat& b) { return a.angularDistance(b); }
 
+// Two poses equal to the bit: a body Bullet put to sleep keeps its transform exactly.
+bool same_bits(const Pose& a, const Pose& b) {
+  return std::memcmp(a.position.data(), b.position.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), 4 * sizeof(double)) == 0;
+}
+
+// Bounds are widened by this much (m), so that rounding in building them never leaves a point of a mover out.
+constexpr double kBoundsMargin = 1e-6;
+
+// Scripted movers' bounds over a block are sampled this many times at most; between samples the speed bound
+// covers the rest.
+constexpr long kScriptedSamples = 8;
+
+struct Layout {
+  int stride = 1;
+  long substeps = 0, keyframes = 0, block_keyframes = 1;
+  std::size_t blocks = 1;
+};
+
+Layout layout_of(const PhysicsSpec& physics, double duration) {
+  Layout l;
+  l.stride = physics.keyframe_hz > 0 ? physics.rate_hz / physics.keyframe_hz : 1;
+  l.substeps = static_cast<long>(std::ceil(duration * physics.rate_hz - 1e-9));
+  l.keyframes = (l.substeps + l.stride - 1) / l.stride;
+  const double per_s = static_cast<double>(physics.rate_hz) / l.stride;
+  l.block_keyframes = std::max(1L, std::lround(MoverTimeline::kBlockSeconds * per_s));
+  l.blocks = static_cast<std::size_t>(std::max(1L, (l.keyframes + l.block_keyframes - 1) / l.block_keyframes));
+  return l;
+}
+
 }  // namespace
 
-MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration)
-    : movers_(spec.movers), rate_hz_(spec.physics.rate_hz) {
-  const double h = 1.0 / rate_hz_;
-  substeps_ = static_cast<long>(std::ceil(duration * rate_hz_ - 1e-9));
-  duration_ = substeps_ * h;
-  dynamic_index_.assign(movers_.size(), -1);
-  for (std::size_t i = 0; i < movers_.size(); ++i) {
-    if (movers_[i].kinematic()) continue;
-    dynamic_index_[i] = static_cast<int>(poses_.size());
-    poses_.emplace_back();
-    poses_.back().reserve(std::size_t(substeps_) + 1);
+// One block of the timeline: keyframes first..last (a block shares its end keyframes with its neighbours) of
+// every dynamic body, stored once for a body at rest over the whole block, and the movers' bounds over it.
+struct MoverTimeline::Block {
+  long first = 0, last = 0;
+  std::vector<std::uint32_t> start;   ///< per dynamic body: index in poses of its keyframe `first`
+  std::vector<std::uint8_t> resting;  ///< per dynamic body: 1 when one pose holds for the whole block
+  std::vector<Pose> poses;
+  BoxTree index;                      ///< leaf m: mover m's bounds over the block's time span
+
+  const Pose& at(int row, long k) const {
+    return poses[start[std::size_t(row)] + (resting[std::size_t(row)] ? 0 : std::size_t(k - first))];
   }
-  if (poses_.empty()) return;  // scripted movers only: nothing to simulate
-  Physics physics(spec, meshes);
-  const auto record = [&] {
-    for (std::size_t i = 0; i < movers_.size(); ++i) {
-      if (dynamic_index_[i] >= 0) poses_[std::size_t(dynamic_index_[i])].push_back(physics.pose(i));
-    }
-  };
-  record();
-  for (long k = 0; k < substeps_; ++k) {
-    physics.step((k + 1) * h, h);
+  std::size_t bytes() const {
+    return sizeof(Block) + start.capacity() * sizeof(std::uint32_t) + resting.capacity() + poses.capacity() * sizeof(Pose) +
+           index.bytes();
+  }
+};
+
+// The Bullet world the dynamic bodies move in, advanced keyframe by keyframe as blocks are built.
+class MoverTimeline::Simulation {
+ public:
+  Simulation(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, const std::vector<MoverSpec>& movers,
+             const std::vector<int>& dynamic_index, int dynamic)
+      : physics_(spec, meshes, movers), dynamic_index_(dynamic_index), h_(1.0 / spec.physics.rate_hz), tracks_(std::size_t(dynamic)) {
     record();
   }
+
+  /// Every dynamic body's keyframes first..last (the first one is where the last call ended), `stride` substeps
+  /// apart, in tracks()[row].
+  void advance(long first, long last, int stride) {
+    for (auto& t : tracks_) {
+      const Pose start = t.empty() ? Pose{} : t.back();
+      t.clear();
+      t.push_back(start);
+    }
+    for (long k = first; k < last; ++k) {
+      for (int j = 0; j < stride; ++j, ++substep_) physics_.step((substep_ + 1) * h_, h_);
+      record();
+    }
+  }
+  const std::vector<std::vector<Pose>>& tracks() const { return tracks_; }
+
+ private:
+  void record() {
+    for (std::size_t i = 0; i < dynamic_index_.size(); ++i) {
+      if (dynamic_index_[i] >= 0) tracks_[std::size_t(dynamic_index_[i])].push_back(physics_.pose(i));
+    }
+  }
+
+  Physics physics_;
+  const std::vector<int>& dynamic_index_;
+  double h_;
+  long substep_ = 0;
+  std::vector<std::vector<Pose>> tracks_;  ///< per dynamic body: the keyframes of the block being built
+};
+
+std::size_t MoverTimeline::worst_case_bytes(const MapSpec& spec, double duration) {
+  const Layout l = layout_of(spec.physics, duration);
+  std::size_t dynamic = 0;
+  for (const MoverSpec& m : spec.movers) dynamic += !m.kinematic();
+  const std::size_t poses = dynamic * (std::size_t(l.keyframes) + l.blocks) * sizeof(Pose);
+  // Per block: the pose offsets and rest flags, the bounds of every mover with its share of the tree's nodes.
+  const std::size_t per_block = sizeof(Block) + dynamic * (sizeof(std::uint32_t) + 1) + spec.movers.size() * (sizeof(Box) + 24);
+  return poses + l.blocks * per_block;
+}
+
+MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
+                             std::size_t max_bytes)
+    : movers_(spec.movers), rate_hz_(spec.physics.rate_hz) {
+  const Layout l = layout_of(spec.physics, duration);
+  stride_ = l.stride;
+  keyframes_per_s_ = static_cast<double>(rate_hz_) / stride_;
+  keyframes_ = l.keyframes;
+  block_keyframes_ = l.block_keyframes;
+  duration_ = static_cast<double>(keyframes_ * stride_) * (1.0 / rate_hz_);
+  dynamic_index_.assign(movers_.size(), -1);
+  scripted_.reserve(movers_.size());
+  for (std::size_t i = 0; i < movers_.size(); ++i) {
+    scripted_.emplace_back(movers_[i]);
+    if (!movers_[i].kinematic()) dynamic_index_[i] = dynamic_++;
+  }
+  worst_case_bytes_ = worst_case_bytes(spec, duration);
+  if (worst_case_bytes_ > max_bytes) {
+    const double per_keyframe_hz = static_cast<double>(worst_case_bytes_) / keyframes_per_s_;
+    const int fits = static_cast<int>(std::floor(static_cast<double>(max_bytes) / per_keyframe_hz));
+    throw MapError(spec.source, spec.physics.line, "physics.keyframe_hz",
+                   fmt::format("{} dynamic bodies over {:g} s at {:g} keyframes/s need up to {:.0f} MiB for their "
+                               "motion (every body moving all the time), more than the budget of {:.0f} MiB: store "
+                               "fewer keyframes (physics.keyframe_hz at most about {}, dividing rate_hz = {}), fewer "
+                               "bodies or a shorter game",
+                               dynamic_, duration, keyframes_per_s_, worst_case_bytes_ / 1048576.0,
+                               max_bytes / 1048576.0, std::max(fits, 0), rate_hz_));
+  }
+  blocks_.resize(l.blocks);
+  if (dynamic_ > 0) simulation_ = std::make_unique<Simulation>(spec, meshes, movers_, dynamic_index_, dynamic_);
+}
+
+MoverTimeline::~MoverTimeline() = default;
+
+std::size_t MoverTimeline::block_at(double t) const {
+  const double u = std::clamp(t * rate_hz_ / stride_, 0.0, static_cast<double>(keyframes_));
+  const auto b = static_cast<std::size_t>(static_cast<long>(u) / block_keyframes_);
+  return std::min(b, blocks_.size() - 1);
+}
+
+const MoverTimeline::Block& MoverTimeline::block(std::size_t b) const {
+  if (b >= ready_.load(std::memory_order_acquire)) simulate_through(b);
+  return *blocks_[b];
+}
+
+void MoverTimeline::simulate_through(std::size_t b) const {
+  const std::lock_guard lock(simulate_mutex_);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t r = ready_.load(std::memory_order_relaxed); r <= b; ++r) {
+    auto block = std::make_unique<Block>();
+    block->first = static_cast<long>(r) * block_keyframes_;
+    block->last = std::min(keyframes_, block->first + block_keyframes_);
+    const long n = block->last - block->first + 1;
+    // The dynamic bodies' keyframes, each body's stored once when it did not move over the whole block.
+    block->start.resize(std::size_t(dynamic_));
+    block->resting.resize(std::size_t(dynamic_));
+    if (simulation_) {
+      simulation_->advance(block->first, block->last, stride_);
+      std::size_t total = 0;
+      for (const auto& t : simulation_->tracks()) {
+        total += std::all_of(t.begin(), t.end(), [&](const Pose& p) { return same_bits(p, t.front()); }) ? 1 : std::size_t(n);
+      }
+      block->poses.reserve(total);
+      for (int row = 0; row < dynamic_; ++row) {
+        const auto& t = simulation_->tracks()[std::size_t(row)];
+        const bool rests = std::all_of(t.begin(), t.end(), [&](const Pose& p) { return same_bits(p, t.front()); });
+        block->start[std::size_t(row)] = static_cast<std::uint32_t>(block->poses.size());
+        block->resting[std::size_t(row)] = rests ? 1 : 0;
+        if (rests) {
+          block->poses.push_back(t.front());
+          ++resting_entries_;
+        } else {
+          block->poses.insert(block->poses.end(), t.begin(), t.end());
+          ++moving_entries_;
+        }
+      }
+    }
+    // Every mover's bounds over the block's time span.
+    std::vector<Box> bounds(movers_.size());
+    const double t_first = static_cast<double>(block->first * stride_) / rate_hz_;
+    const double t_last = static_cast<double>(block->last * stride_) / rate_hz_;
+    for (std::size_t m = 0; m < movers_.size(); ++m) {
+      const MoverSpec& spec = movers_[m];
+      Box box{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
+      double widen = spec.shape.bounding_radius() + kBoundsMargin;
+      if (spec.kinematic()) {
+        // Samples in time, and between two of them the centre moves at most speed * interval / 2 from the nearer.
+        const long samples = std::min(kScriptedSamples, std::max(1L, n - 1));
+        for (long s = 0; s <= samples; ++s) {
+          const Vec3 c = scripted_[m].pose(t_first + (t_last - t_first) * static_cast<double>(s) / samples).position;
+          box.lo = box.lo.cwiseMin(c), box.hi = box.hi.cwiseMax(c);
+        }
+        widen += scripted_speed(spec) * 0.5 * (t_last - t_first) / samples;
+      } else {
+        const int row = dynamic_index_[m];
+        const long kmax = block->resting[std::size_t(row)] ? block->first : block->last;
+        for (long k = block->first; k <= kmax; ++k) {
+          const Vec3& c = block->at(row, k).position;
+          box.lo = box.lo.cwiseMin(c), box.hi = box.hi.cwiseMax(c);
+        }
+      }
+      box.lo.array() -= widen;
+      box.hi.array() += widen;
+      bounds[m] = box;
+    }
+    block->index = BoxTree(bounds);
+    bytes_.fetch_add(block->bytes(), std::memory_order_relaxed);
+    blocks_[r] = std::move(block);
+    ready_.store(r + 1, std::memory_order_release);
+  }
+  if (ready_.load(std::memory_order_relaxed) == blocks_.size()) simulation_.reset();  // every keyframe is stored
+  simulate_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+const Pose& MoverTimeline::keyframe(int row, long k) const {
+  const std::size_t b = std::min(static_cast<std::size_t>(k / block_keyframes_), blocks_.size() - 1);
+  return block(b).at(row, k);
 }
 
 Pose MoverTimeline::pose(int m, double t) const {
   const MoverSpec& spec = movers_[std::size_t(m)];
-  if (spec.kinematic()) return scripted_pose(spec, t);
-  const std::vector<Pose>& row = poses_[std::size_t(dynamic_index_[std::size_t(m)])];
-  if (substeps_ == 0) return row.front();
-  const double u = std::clamp(t * rate_hz_, 0.0, static_cast<double>(substeps_));
-  const long k = std::min(static_cast<long>(u), substeps_ - 1);
+  if (spec.kinematic()) return scripted_[std::size_t(m)].pose(t);
+  const int row = dynamic_index_[std::size_t(m)];
+  if (keyframes_ == 0) return keyframe(row, 0);
+  const double u = std::clamp(t * rate_hz_ / stride_, 0.0, static_cast<double>(keyframes_));
+  const long k = std::min(static_cast<long>(u), keyframes_ - 1);
   const double s = u - static_cast<double>(k);
-  const Pose& a = row[std::size_t(k)];
-  const Pose& b = row[std::size_t(k + 1)];
+  // Keyframes k and k + 1 lie in one block: the one of k (a block ends with the first keyframe of the next).
+  const Block& b = block(std::min(static_cast<std::size_t>(k / block_keyframes_), blocks_.size() - 1));
+  const Pose& p0 = b.at(row, k);
+  const Pose& p1 = b.at(row, k + 1);
   // A ball's orientation does not change where its points are: skip the spherical interpolation.
-  if (spec.shape.kind == Shape::Kind::kSphere) return {a.position + s * (b.position - a.position), a.orientation};
-  return interpolate(a, b, s);
+  if (spec.shape.kind == Shape::Kind::kSphere) return {p0.position + s * (p1.position - p0.position), p0.orientation};
+  return interpolate(p0, p1, s);
 }
 
 double MoverTimeline::travel_bound(int m, double t0, double t1) const {
   const MoverSpec& spec = movers_[std::size_t(m)];
   if (spec.kinematic()) return scripted_speed(spec) * (t1 - t0);  // orientation is fixed
-  const std::vector<Pose>& row = poses_[std::size_t(dynamic_index_[std::size_t(m)])];
+  const int row = dynamic_index_[std::size_t(m)];
   const double r = spec.shape.bounding_radius();
-  const long k0 = std::clamp(static_cast<long>(std::floor(t0 * rate_hz_)), 0L, substeps_);
-  const long k1 = std::clamp(static_cast<long>(std::ceil(t1 * rate_hz_)), 0L, substeps_);
-  // Any point of the body: its centre's path plus the arc its farthest point sweeps, substep by substep.
+  const long k0 = std::clamp(static_cast<long>(std::floor(t0 * rate_hz_ / stride_)), 0L, keyframes_);
+  const long k1 = std::clamp(static_cast<long>(std::ceil(t1 * rate_hz_ / stride_)), 0L, keyframes_);
+  // Any point of the body: its centre's path plus the arc its farthest point sweeps, keyframe by keyframe.
   double bound = 0.0;
   for (long k = k0; k < k1; ++k) {
-    const Pose& a = row[std::size_t(k)];
-    const Pose& b = row[std::size_t(k + 1)];
-    bound += (b.position - a.position).norm() + angle_between(a.orientation, b.orientation) * r;
+    const Block& b = block(std::min(static_cast<std::size_t>(k / block_keyframes_), blocks_.size() - 1));
+    const Pose& a = b.at(row, k);
+    const Pose& c = b.at(row, k + 1);
+    bound += (c.position - a.position).norm() + angle_between(a.orientation, c.orientation) * r;
   }
   return bound;
 }
 
+void MoverTimeline::nearer(int m, const Vec3& p, double t, MoverPoint& best) const {
+  const MoverSpec& spec = movers_[std::size_t(m)];
+  const Pose at = pose(m, t);
+  // Cheap rejection on the bounding ball before the exact distance. Not ">=": an equally near mover of a lower
+  // index than the best one found wins the tie, as in a visit in index order.
+  if ((p - at.position).norm() - spec.shape.bounding_radius() > best.distance) return;
+  const ShapePoint s = nearest_on_shape(spec.shape, at, p);
+  if (s.distance < best.distance || (best.mover >= 0 && s.distance == best.distance && m < best.mover)) {
+    best = {m, s.distance, s.point};
+  }
+}
+
 MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
+  if (!indexed(t, t)) return nearest_scan(p, t, cap);
+  MoverPoint best;
+  best.distance = cap;
+  block(block_at(t)).index.nearest(p, cap, [&](int m) {
+    nearer(m, p, t, best);
+    return best.distance;
+  });
+  return best;
+}
+
+MoverPoint MoverTimeline::nearest_scan(const Vec3& p, double t, double cap) const {
   MoverPoint best;
   best.distance = cap;
   for (int m = 0; m < count(); ++m) {
@@ -246,45 +480,95 @@ MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
   return best;
 }
 
+int MoverTimeline::candidates(const Box& box, double reach, double t0, double t1, std::span<int> out) const {
+  if (!indexed(t0, t1)) return -1;
+  const double widen = reach + kBoundsMargin;
+  const Box query{box.lo.array() - widen, box.hi.array() + widen};
+  std::size_t n = 0;
+  bool overflow = false;
+  for (std::size_t b = block_at(t0), last = block_at(t1); b <= last; ++b) {
+    block(b).index.overlapping(query, [&](int m) {
+      if (n < out.size()) {
+        out[n++] = m;
+      } else {
+        overflow = true;
+      }
+    });
+  }
+  if (overflow) return static_cast<int>(out.size()) + 1;
+  std::sort(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(n));
+  return static_cast<int>(std::unique(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(n)) - out.begin());
+}
+
+void MoverTimeline::contact_with(int m, const Vec3& from, const Vec3& to, double radius, double t0, double dt,
+                                 std::optional<MoverContact>& best) const {
+  const MoverSpec& spec = movers_[std::size_t(m)];
+  const double agent_travel = (to - from).norm();
+  const double mover_travel = travel_bound(m, t0, t0 + dt);
+  const double closing = agent_travel + mover_travel;  // relative travel over the whole step: a bound
+  // Rejection: too far apart for the step to close the gap.
+  const Pose p0 = pose(m, t0);
+  if ((from - p0.position).norm() - spec.shape.bounding_radius() - radius > closing + kContactTolerance) return;
+  // Conservative advancement: at s (fraction of the step) the gap g(s) can shrink by at most closing * ds, so
+  // advancing by g / closing never skips a contact, however fast the two move.
+  double s = 0.0;
+  for (int iteration = 0; iteration < 100000 && s <= 1.0; ++iteration) {
+    const Vec3 c = from + s * (to - from);
+    const Pose at = pose(m, t0 + s * dt);
+    const double signed_gap = signed_distance(spec.shape, at, c) - radius;
+    if (signed_gap <= kContactTolerance) {
+      if (best && best->fraction <= s) return;
+      const ShapePoint sp = nearest_on_shape(spec.shape, at, c);
+      Vec3 normal = c - sp.point;
+      if (normal.norm() == 0.0) normal = c - at.position;  // centre inside the shape: away from its centre
+      normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
+      MoverContact contact;
+      contact.mover = m;
+      contact.fraction = s;
+      contact.point = sp.distance > 0.0 ? sp.point : Vec3(c - radius * normal);
+      contact.normal = normal;
+      contact.penetration = s == 0.0 ? std::max(0.0, -signed_gap) : 0.0;
+      best = contact;
+      return;
+    }
+    if (closing <= 0.0) return;  // neither moves: the gap stays
+    s += signed_gap / closing;
+    if (best && s >= best->fraction) return;  // cannot beat a contact already found
+  }
+}
+
 std::optional<MoverContact> MoverTimeline::first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
                                                          double dt) const {
+  constexpr std::size_t kMaxCandidates = 256;
+  int found[kMaxCandidates];
+  const int n = candidates({from.cwiseMin(to), from.cwiseMax(to)}, radius + kContactTolerance, t0, t0 + dt, found);
+  if (n < 0 || n > static_cast<int>(kMaxCandidates)) return first_contact_scan(from, to, radius, t0, dt);
+  // In index order, as the scan: of equally early contacts the lower index wins.
   std::optional<MoverContact> best;
-  const double agent_travel = (to - from).norm();
-  for (int m = 0; m < count(); ++m) {
-    const MoverSpec& spec = movers_[std::size_t(m)];
-    const double mover_travel = travel_bound(m, t0, t0 + dt);
-    const double closing = agent_travel + mover_travel;  // relative travel over the whole step: a bound
-    // Rejection: too far apart for the step to close the gap.
-    const Pose p0 = pose(m, t0);
-    if ((from - p0.position).norm() - spec.shape.bounding_radius() - radius > closing + kContactTolerance) continue;
-    // Conservative advancement: at s (fraction of the step) the gap g(s) can shrink by at most closing * ds, so
-    // advancing by g / closing never skips a contact, however fast the two move.
-    double s = 0.0;
-    for (int iteration = 0; iteration < 100000 && s <= 1.0; ++iteration) {
-      const Vec3 c = from + s * (to - from);
-      const Pose at = pose(m, t0 + s * dt);
-      const double signed_gap = signed_distance(spec.shape, at, c) - radius;
-      if (signed_gap <= kContactTolerance) {
-        if (best && best->fraction <= s) break;
-        const ShapePoint sp = nearest_on_shape(spec.shape, at, c);
-        Vec3 normal = c - sp.point;
-        if (normal.norm() == 0.0) normal = c - at.position;  // centre inside the shape: away from its centre
-        normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
-        MoverContact contact;
-        contact.mover = m;
-        contact.fraction = s;
-        contact.point = sp.distance > 0.0 ? sp.point : Vec3(c - radius * normal);
-        contact.normal = normal;
-        contact.penetration = s == 0.0 ? std::max(0.0, -signed_gap) : 0.0;
-        best = contact;
-        break;
-      }
-      if (closing <= 0.0) break;  // neither moves: the gap stays
-      s += signed_gap / closing;
-      if (best && s >= best->fraction) break;  // cannot beat a contact already found
-    }
-  }
+  for (int i = 0; i < n; ++i) contact_with(found[i], from, to, radius, t0, dt, best);
   return best;
+}
+
+std::optional<MoverContact> MoverTimeline::first_contact_scan(const Vec3& from, const Vec3& to, double radius,
+                                                              double t0, double dt) const {
+  std::optional<MoverContact> best;
+  for (int m = 0; m < count(); ++m) contact_with(m, from, to, radius, t0, dt, best);
+  return best;
+}
+
+TimelineStats MoverTimeline::stats() const {
+  const std::lock_guard lock(simulate_mutex_);
+  TimelineStats s;
+  s.dynamic_bodies = dynamic_;
+  s.keyframe_hz = static_cast<int>(std::lround(keyframes_per_s_));
+  s.blocks = blocks_.size();
+  s.blocks_simulated = ready_.load(std::memory_order_relaxed);
+  s.worst_case_bytes = worst_case_bytes_;
+  s.bytes = bytes_.load(std::memory_order_relaxed);
+  s.resting_entries = resting_entries_;
+  s.moving_entries = moving_entries_;
+  s.simulate_seconds = simulate_seconds_;
+  return s;
 }
 
 }  // namespace peg3d::world

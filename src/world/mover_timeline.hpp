@@ -1,23 +1,39 @@
 #pragma once
 // Where every moving obstacle of a map is, at any time of a game. Scripted movers (paths, orbits) are exact
-// functions of time. Dynamic bodies are simulated once by a Bullet dynamics world (btDiscreteDynamicsWorld,
-// double precision) at the map's physics rate, with the static obstacles, the terrain, the arena's faces and
-// the scripted movers (kinematic bodies that push and are never pushed), and their pose at every substep is
-// kept. Agents do not enter this simulation: they never push a body (a contact stops the agent instead), so
-// the motion of every mover depends on the map alone, is computed once per map and shared read-only by all
-// runs and threads, and every run sees the same physical world from the same start.
+// functions of time. Dynamic bodies are simulated by a Bullet dynamics world (btDiscreteDynamicsWorld, double
+// precision) at the map's physics rate, with the static obstacles, the terrain, the arena's faces and the
+// scripted movers (kinematic bodies that push and are never pushed), and their poses are kept at the map's
+// keyframe rate (physics.keyframe_hz; by default every substep, the exact simulated motion). Agents do not enter
+// this simulation (push mode gives each run a world of its own: world/push_world.hpp), so the motion of every
+// mover depends on the map alone, is computed once per map and shared read-only by all runs and threads, and
+// every run sees the same physical world from the same start.
 //
-// The module also answers the two questions the game asks of movers at a time t: the nearest point of any
-// mover to a point (exact, per shape), and the first contact of an agent's sphere moving along a segment
-// during a game step with any mover, by conservative advancement on exact distances (no tunnelling at any
-// relative speed).
+// Memory is bounded and known before anything is simulated. The timeline is kept in blocks of a quarter of a
+// second; in a block, a body at rest (Bullet put it to sleep, so its pose stays the same to the bit) is stored
+// once, a moving body at every keyframe. The budget (kMaxBytes) is checked against the worst case, every body
+// moving all the time, and a map over it is refused with a MapError naming physics.keyframe_hz. Blocks are
+// simulated on demand, in order, under a lock, as the first query reaches them: building a Sim costs nothing,
+// and no run waits for motion it does not reach.
+//
+// Every block also holds a broadphase over the movers (a BoxTree of each mover's bounds over the block's time
+// span), so that the two questions the game asks of movers at a time t visit only the movers near the agent:
+// the nearest point of any mover to a point (exact, per shape), and the first contact of an agent's sphere
+// moving along a segment during a game step, by conservative advancement on exact distances (no tunnelling at
+// any relative speed). Both give the answers of a visit of every mover, to the bit (the *_scan versions, kept
+// for tests and for times outside the timeline).
 
+#include <atomic>
+#include <cstddef>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <span>
 #include <vector>
 
+#include "geometry/box_tree.hpp"
 #include "geometry/pose.hpp"
 #include "world/map_spec.hpp"
+#include "world/movers.hpp"
 #include "world/triangle_mesh.hpp"
 
 namespace peg3d::world {
@@ -38,43 +54,119 @@ struct MoverContact {
   double penetration = 0.0;      ///< m, when already overlapping at the start of the step
 };
 
+/// What a timeline holds and what it cost, for peg-map check and the performance pages.
+struct TimelineStats {
+  int dynamic_bodies = 0;
+  int keyframe_hz = 0;                ///< keyframes per second of the dynamic bodies
+  std::size_t blocks = 0;             ///< blocks of the whole duration
+  std::size_t blocks_simulated = 0;   ///< blocks built so far
+  std::size_t worst_case_bytes = 0;   ///< the budget's estimate: every body moving all the time
+  std::size_t bytes = 0;              ///< held now (poses and indices of the blocks built)
+  std::size_t resting_entries = 0;    ///< (body, block) pairs stored once because the body was at rest
+  std::size_t moving_entries = 0;     ///< (body, block) pairs stored at every keyframe
+  double simulate_seconds = 0.0;      ///< s of wall time spent simulating and indexing so far
+};
+
 class MoverTimeline {
  public:
   /// Contacts closer than this count as touching (m): it bounds conservative advancement's work.
   static constexpr double kContactTolerance = 1e-4;
+  /// Most bytes a timeline may need in the worst case (every dynamic body moving for the whole duration).
+  static constexpr std::size_t kMaxBytes = std::size_t{256} << 20;
+  /// Length of a block, s (its keyframes are the nearest whole number at the keyframe rate, at least one).
+  static constexpr double kBlockSeconds = 0.25;
 
-  /// Simulates the map's movers from 0 to at least `duration` s (scripted movers need no simulation).
-  /// `meshes` are the map's placed terrain meshes, in spec.meshes' order.
-  MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration);
+  /// The map's movers from 0 to at least `duration` s. `meshes` are the map's placed terrain meshes, in
+  /// spec.meshes' order, kept by reference until every block is simulated (the Arena owns them). Throws MapError
+  /// (naming physics.keyframe_hz and the estimate) when the worst case exceeds `max_bytes`. Simulates nothing.
+  MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
+                std::size_t max_bytes = kMaxBytes);
+  ~MoverTimeline();
+  MoverTimeline(const MoverTimeline&) = delete;
+  MoverTimeline& operator=(const MoverTimeline&) = delete;
 
   int count() const { return static_cast<int>(movers_.size()); }
   const MoverSpec& mover(int m) const { return movers_[std::size_t(m)]; }
-  /// s, the time the dynamic bodies were simulated to; past it they stay where they were.
+  /// s, the time the dynamic bodies are simulated to; past it they stay where they were.
   double duration() const { return duration_; }
   int rate_hz() const { return rate_hz_; }
+  /// Substeps of the physics between two stored keyframes (1: every substep).
+  int keyframe_stride() const { return stride_; }
 
   /// The pose of mover m at time t (s): exact for scripted movers; for dynamic bodies interpolated between the
-  /// simulated substeps (positions linearly, orientations spherically).
+  /// stored keyframes (positions linearly, orientations spherically).
   Pose pose(int m, double t) const;
 
-  /// The movers' point nearest to p at time t, if any lies within `cap` m. No allocation.
+  /// The movers' point nearest to p at time t, if any lies within `cap` m (the nearest, the lowest index among
+  /// equally near ones). No allocation.
   MoverPoint nearest(const Vec3& p, double t, double cap) const;
 
   /// The first contact, during the step [t0, t0 + dt], of a sphere of `radius` moving from `from` to `to` at
-  /// constant velocity with any mover; nullopt when it touches none. No allocation.
+  /// constant velocity with any mover (the earliest, the lowest index among equally early ones); nullopt when
+  /// it touches none. No allocation.
   std::optional<MoverContact> first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
                                             double dt) const;
+
+  /// Writes to `out` (ascending, at most out.size()) the movers whose bounds over [t0, t1] come within `reach`
+  /// of `box`: a superset of those within `reach` of it at any time of the interval. Returns how many there are
+  /// (more than out.size() when they did not fit; then out holds none), or -1 when [t0, t1] lies outside the
+  /// timeline (every mover may be near). No allocation.
+  int candidates(const Box& box, double reach, double t0, double t1, std::span<int> out) const;
+
+  /// nearest() and first_contact() by a visit of every mover: the reference the indexed queries must equal.
+  MoverPoint nearest_scan(const Vec3& p, double t, double cap) const;
+  std::optional<MoverContact> first_contact_scan(const Vec3& from, const Vec3& to, double radius, double t0,
+                                                 double dt) const;
 
   /// The largest distance any point of mover m moves during [t0, t1] (a bound, m).
   double travel_bound(int m, double t0, double t1) const;
 
+  /// The worst-case bytes of a map's timeline over `duration` s (what the budget is checked against).
+  static std::size_t worst_case_bytes(const MapSpec& spec, double duration);
+
+  /// What it holds now. Thread-safe.
+  TimelineStats stats() const;
+  /// Simulates every block now (the queries then never wait), for tools and benchmarks.
+  void simulate_all() const { simulate_through(blocks_.size() - 1); }
+
  private:
+  struct Block;
+  class Simulation;
+
+  /// Block b, simulated first when it is not yet.
+  const Block& block(std::size_t b) const;
+  void simulate_through(std::size_t b) const;
+  std::size_t block_at(double t) const;
+  /// Keyframe k (0..keyframes_) of dynamic body `row`.
+  const Pose& keyframe(int row, long k) const;
+  /// Whether [t0, t1] lies within the timeline, where the blocks' bounds hold.
+  bool indexed(double t0, double t1) const { return t0 >= 0.0 && t1 <= duration_; }
+  /// The contact of mover m during the step, if it comes before `best` (first_contact's per-mover work).
+  void contact_with(int m, const Vec3& from, const Vec3& to, double radius, double t0, double dt,
+                    std::optional<MoverContact>& best) const;
+  /// Whether mover m at time t is nearer p than `best` (nearest's per-mover work).
+  void nearer(int m, const Vec3& p, double t, MoverPoint& best) const;
+
   std::vector<MoverSpec> movers_;
-  std::vector<int> dynamic_index_;   ///< per mover: its row in poses_, or -1 for scripted ones
-  std::vector<std::vector<Pose>> poses_;  ///< per dynamic body: pose at every substep 0..substeps
+  std::vector<ScriptedMotion> scripted_;  ///< per mover: its path or orbit, prepared (unused for dynamic bodies)
+  std::vector<int> dynamic_index_;  ///< per mover: its row among the dynamic bodies, or -1 for scripted ones
+  int dynamic_ = 0;
   double duration_ = 0.0;
   int rate_hz_ = 240;
-  long substeps_ = 0;
+  int stride_ = 1;            ///< substeps per keyframe
+  double keyframes_per_s_ = 240.0;
+  long keyframes_ = 0;        ///< index of the last keyframe (keyframes 0..keyframes_)
+  long block_keyframes_ = 1;  ///< keyframes per block (a block holds block_keyframes_ + 1, sharing its ends)
+  std::size_t worst_case_bytes_ = 0;
+
+  // Filled on demand: blocks_[b] is written once, under simulate_mutex_, before ready_ passes b.
+  mutable std::vector<std::unique_ptr<const Block>> blocks_;
+  mutable std::atomic<std::size_t> ready_{0};
+  mutable std::mutex simulate_mutex_;
+  mutable std::unique_ptr<Simulation> simulation_;  ///< null once every block is built
+  mutable std::atomic<std::size_t> bytes_{0};
+  mutable std::size_t resting_entries_ = 0, moving_entries_ = 0;  // under simulate_mutex_
+  mutable double simulate_seconds_ = 0.0;                         // under simulate_mutex_
 };
 
 }  // namespace peg3d::world

@@ -23,40 +23,65 @@ Quat orientation_deg(const Vec3& r) {
               Eigen::AngleAxisd(r.x() * k, Vec3::UnitX()));
 }
 
-Vec3 path_position(const PathMotion& path, double t) {
+ScriptedMotion::ScriptedMotion(const MoverSpec& m) : mover_(&m), orientation_(orientation_deg(m.rotation_deg)) {
+  if (m.motion == MoverSpec::Motion::kOrbit) {
+    const Vec3 a = m.orbit.axis.normalized();
+    const Vec3 ref = std::abs(a.x()) > 1.0 - 1e-12 ? Vec3::UnitY() : Vec3::UnitX();
+    u_ = (ref - ref.dot(a) * a).normalized();
+    v_ = a.cross(u_);
+  } else if (m.motion == MoverSpec::Motion::kPath) {
+    const auto& w = m.path.waypoints;
+    // Segments in travel order: 0..n-2 forward, then the closing one (loop) or the same ones backwards.
+    for (std::size_t i = 0; i + 1 < w.size(); ++i) {
+      lengths_.push_back((w[i + 1] - w[i]).norm());
+      open_ += lengths_.back();
+    }
+    closing_ = (w.front() - w.back()).norm();
+    cycle_ = m.path.loop ? open_ + closing_ : 2.0 * open_;
+  }
+}
+
+Pose ScriptedMotion::pose(double t) const {
+  Pose p;
+  p.orientation = orientation_;
+  if (mover_->motion == MoverSpec::Motion::kOrbit) {
+    const OrbitMotion& o = mover_->orbit;
+    const double w = o.phase + 2.0 * kPi * t / o.period;
+    p.position = o.center + o.radius * (std::cos(w) * u_ + std::sin(w) * v_);
+    return p;
+  }
+  const PathMotion& path = mover_->path;
   const auto& w = path.waypoints;
-  const std::size_t n = w.size();
-  // Segments in travel order: 0..n-2 forward, then the closing one (loop) or the same ones backwards.
-  double open = 0.0;
-  for (std::size_t i = 0; i + 1 < n; ++i) open += (w[i + 1] - w[i]).norm();
-  const double closing = (w.front() - w.back()).norm();
-  const double cycle = path.loop ? open + closing : 2.0 * open;
-  double s = std::fmod(path.speed * std::max(t, 0.0), cycle);
-  if (!path.loop && s > open) s = cycle - s;  // on the way back: the same point as going out
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    const double len = (w[i + 1] - w[i]).norm();
-    if (s <= len) return w[i] + (s / len) * (w[i + 1] - w[i]);
+  double s = std::fmod(path.speed * std::max(t, 0.0), cycle_);
+  if (!path.loop && s > open_) s = cycle_ - s;  // on the way back: the same point as going out
+  for (std::size_t i = 0; i < lengths_.size(); ++i) {
+    const double len = lengths_[i];
+    if (s <= len) {
+      p.position = w[i] + (s / len) * (w[i + 1] - w[i]);
+      return p;
+    }
     s -= len;
   }
   // The closing segment of a loop.
-  return closing > 0.0 ? Vec3(w.back() + (std::min(s, closing) / closing) * (w.front() - w.back())) : w.front();
-}
-
-Vec3 orbit_position(const OrbitMotion& o, double t) {
-  const Vec3 a = o.axis.normalized();
-  const Vec3 ref = std::abs(a.x()) > 1.0 - 1e-12 ? Vec3::UnitY() : Vec3::UnitX();
-  const Vec3 u = (ref - ref.dot(a) * a).normalized();
-  const Vec3 v = a.cross(u);
-  const double w = o.phase + 2.0 * kPi * t / o.period;
-  return o.center + o.radius * (std::cos(w) * u + std::sin(w) * v);
-}
-
-Pose scripted_pose(const MoverSpec& m, double t) {
-  Pose p;
-  p.orientation = orientation_deg(m.rotation_deg);
-  p.position = m.motion == MoverSpec::Motion::kOrbit ? orbit_position(m.orbit, t) : path_position(m.path, t);
+  p.position = closing_ > 0.0 ? Vec3(w.back() + (std::min(s, closing_) / closing_) * (w.front() - w.back())) : w.front();
   return p;
 }
+
+Vec3 path_position(const PathMotion& path, double t) {
+  MoverSpec m;
+  m.motion = MoverSpec::Motion::kPath;
+  m.path = path;
+  return ScriptedMotion(m).pose(t).position;
+}
+
+Vec3 orbit_position(const OrbitMotion& orbit, double t) {
+  MoverSpec m;
+  m.motion = MoverSpec::Motion::kOrbit;
+  m.orbit = orbit;
+  return ScriptedMotion(m).pose(t).position;
+}
+
+Pose scripted_pose(const MoverSpec& m, double t) { return ScriptedMotion(m).pose(t); }
 
 double scripted_speed(const MoverSpec& m) {
   return m.motion == MoverSpec::Motion::kOrbit ? 2.0 * kPi * m.orbit.radius / m.orbit.period : m.path.speed;

@@ -21,6 +21,22 @@ Vec3 path_position(const PathMotion& path, double t);
 /// u the unit direction of +x projected on the orbit's plane (+y when the axis is along x), v = axis x u.
 Vec3 orbit_position(const OrbitMotion& orbit, double t);
 
+/// A path or orbit mover prepared for evaluation at many times: what depends only on the mover (its
+/// orientation, an orbit's plane, a path's segment lengths) computed once, the rest by the same arithmetic as
+/// path_position and orbit_position, so that pose(t) is scripted_pose(mover, t) to the bit.
+class ScriptedMotion {
+ public:
+  explicit ScriptedMotion(const MoverSpec& mover);
+  Pose pose(double t) const;
+
+ private:
+  const MoverSpec* mover_;
+  Quat orientation_;
+  Vec3 u_ = Vec3::Zero(), v_ = Vec3::Zero();  ///< orbit: the plane's unit vectors
+  std::vector<double> lengths_;               ///< path: segment i's length, waypoint i to i + 1
+  double open_ = 0.0, closing_ = 0.0, cycle_ = 0.0;
+};
+
 /// The pose of a path or orbit mover at time t; its orientation stays as given.
 Pose scripted_pose(const MoverSpec& mover, double t);
 

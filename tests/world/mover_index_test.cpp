@@ -1,0 +1,232 @@
+// The movers' timeline as a store and an index (world/mover_timeline.hpp): the indexed queries give the answers
+// of a visit of every mover, to the bit, on a crowded map of scripted movers (slow and fast, every shape) and
+// dynamic bodies; bodies at rest are stored once; keyframes thinned by physics.keyframe_hz are the simulated
+// poses; the worst case is checked against the budget before anything is simulated; blocks are simulated only
+// when a query reaches them.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include "world/arena.hpp"
+#include "world/mover_timeline.hpp"
+#include "world/movers.hpp"
+#include "world_test_support.hpp"
+
+namespace peg3d::world {
+namespace {
+
+MoverSpec orbit(const Vec3& center, double radius, double period, double phase, const Shape& shape) {
+  MoverSpec m;
+  m.shape = shape;
+  m.motion = MoverSpec::Motion::kOrbit;
+  m.orbit = {center, radius, period, Vec3::UnitZ(), phase};
+  return m;
+}
+
+MoverSpec path(const Vec3& a, const Vec3& b, double speed, const Shape& shape) {
+  MoverSpec m;
+  m.shape = shape;
+  m.motion = MoverSpec::Motion::kPath;
+  m.path = {{a, b}, speed, false};
+  return m;
+}
+
+MoverSpec body(const Vec3& at, const Shape& shape) {
+  MoverSpec m;
+  m.shape = shape;
+  m.motion = MoverSpec::Motion::kDynamic;
+  m.start = at;
+  m.dynamic.mass = 5.0;
+  m.dynamic.restitution = 0.3;
+  return m;
+}
+
+const Shape kBall{Shape::Kind::kSphere, 0.4, 1.0, Vec3::Ones()};
+const Shape kPost{Shape::Kind::kCylinder, 0.3, 1.2, Vec3::Ones()};
+const Shape kCrate{Shape::Kind::kBox, 1.0, 1.0, Vec3(0.8, 0.5, 0.6)};
+
+// 300 movers in a 30 m box: orbits and paths of every shape (some at 25 m/s, several arena widths a second),
+// and dynamic bodies dropped onto the floor, that bounce and come to rest.
+MapSpec crowded(int keyframe_hz = 0) {
+  MapSpec spec = testing::empty_spec(Vec3(30, 30, 15), 0.5);
+  spec.physics.keyframe_hz = keyframe_hz;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Shape shapes[] = {kBall, kPost, kCrate};
+  for (int k = 0; k < 100; ++k) {
+    spec.movers.push_back(orbit(Vec3(15, 15, 2 + 11 * u(rng)), 2 + 10 * u(rng), 5 + 20 * u(rng), 6 * u(rng), shapes[k % 3]));
+  }
+  for (int k = 0; k < 100; ++k) {
+    const double y = 2 + 26 * u(rng), z = 2 + 11 * u(rng);
+    spec.movers.push_back(path(Vec3(2, y, z), Vec3(28, y, z), k % 10 == 0 ? 25.0 : 0.5 + 3 * u(rng), shapes[k % 3]));
+  }
+  for (int k = 0; k < 100; ++k) {
+    spec.movers.push_back(body(Vec3(1.5 + (k % 10) * 2.9, 1.5 + (k / 10) * 2.9, 1 + 5 * u(rng)), shapes[k % 2 == 0 ? 0 : 2]));
+  }
+  return spec;
+}
+
+bool same(const MoverPoint& a, const MoverPoint& b) {
+  return a.mover == b.mover && std::memcmp(&a.distance, &b.distance, sizeof(double)) == 0 && a.point == b.point;
+}
+
+bool same(const std::optional<MoverContact>& a, const std::optional<MoverContact>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  if (!a) return true;
+  return a->mover == b->mover && std::memcmp(&a->fraction, &b->fraction, sizeof(double)) == 0 && a->point == b->point &&
+         a->normal == b->normal && a->penetration == b->penetration;
+}
+
+TEST(WorldMoverIndex, IndexedQueriesGiveTheAnswersOfAVisitOfEveryMover) {
+  const auto arena = testing::build(crowded());
+  const auto t = arena->movers_until(12.0);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int near = 0, contacts = 0;
+  for (int q = 0; q < 4000; ++q) {
+    const double time = 11.9 * u(rng), dt = q % 4 == 0 ? 0.05 : 0.1;
+    const Vec3 p(30 * u(rng), 30 * u(rng), 15 * u(rng));
+    const double cap = q % 2 == 0 ? 5.0 : 1.5;
+    const MoverPoint a = t->nearest(p, time, cap), b = t->nearest_scan(p, time, cap);
+    ASSERT_TRUE(same(a, b)) << "query " << q << ": mover " << a.mover << " at " << a.distance << " against "
+                            << b.mover << " at " << b.distance;
+    near += a.mover >= 0;
+    // Agents' moves from a standstill to 3 m, some from inside a mover's path.
+    const Vec3 to = p + Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * (q % 5 == 0 ? 0.0 : 6.0);
+    const auto c = t->first_contact(p, to, 0.25, time, dt), d = t->first_contact_scan(p, to, 0.25, time, dt);
+    ASSERT_TRUE(same(c, d)) << "query " << q;
+    contacts += c.has_value();
+  }
+  std::printf("%d of 4000 points with a mover within the cap, %d contacts\n", near, contacts);
+  EXPECT_GT(near, 1000);
+  EXPECT_GT(contacts, 300);
+}
+
+TEST(WorldMoverIndex, AFastMoverIsFoundAtTheTimeOfImpactOfAVisitOfEveryMover) {
+  // A crate crossing at 25 m/s (2.5 m a step) towards an agent standing in its way, every step of its run.
+  MapSpec spec = testing::empty_spec(Vec3(40, 10, 10), 0.5);
+  spec.movers.push_back(path(Vec3(2, 5, 5), Vec3(38, 5, 5), 25.0, kCrate));
+  for (int k = 0; k < 50; ++k) spec.movers.push_back(orbit(Vec3(20, 5, 5), 3.0, 4.0 + k * 0.1, k * 0.3, kBall));
+  const auto t = testing::build(spec)->movers_until(3.0);
+  int hits = 0;
+  for (int k = 0; k < 28; ++k) {
+    const Vec3 agent(12, 5, 5);
+    const auto a = t->first_contact(agent, agent + Vec3(1, 0, 0), 0.25, 0.1 * k, 0.1);
+    ASSERT_TRUE(same(a, t->first_contact_scan(agent, agent + Vec3(1, 0, 0), 0.25, 0.1 * k, 0.1))) << k;
+    hits += a.has_value() && a->mover == 0;
+  }
+  EXPECT_GE(hits, 1);
+}
+
+TEST(WorldMoverIndex, OfEquallyNearOrEquallyEarlyMoversTheLowestIndexWins) {
+  // Twenty copies of one orbit and one path: every query ties between them.
+  MapSpec spec = testing::empty_spec(Vec3(30, 30, 15), 0.5);
+  for (int k = 0; k < 20; ++k) {
+    spec.movers.push_back(k % 2 ? orbit(Vec3(15, 15, 7), 5.0, 8.0, 1.0, kBall) : path(Vec3(3, 3, 3), Vec3(27, 27, 12), 4.0, kCrate));
+  }
+  // And pairs mirrored about x = 15 (exactly equal distances from any point of that plane), the higher index on
+  // either side.
+  for (int k = 0; k < 10; ++k) {
+    const double y = 2 + 2.5 * k, off = 2 + 0.5 * k;
+    const Vec3 left(15 - off, y, 7), right(15 + off, y, 7);
+    spec.movers.push_back(path(k % 2 ? left : right, (k % 2 ? left : right) + Vec3(0, 0, 4), 1.0, kBall));
+    spec.movers.push_back(path(k % 2 ? right : left, (k % 2 ? right : left) + Vec3(0, 0, 4), 1.0, kBall));
+  }
+  const auto t = testing::build(spec)->movers_until(5.0);
+  for (int k = 0; k < 10; ++k) {
+    for (int q = 0; q < 20; ++q) {
+      const Vec3 p(15, 2 + 2.5 * k, 6 + 0.3 * q);
+      const MoverPoint a = t->nearest(p, 0.2 * q, 30.0);
+      ASSERT_TRUE(same(a, t->nearest_scan(p, 0.2 * q, 30.0))) << k << " " << q;
+      ASSERT_NE(a.mover, 21 + 2 * k) << k << " " << q;  // of the mirrored pair, never the higher index
+    }
+  }
+  for (int q = 0; q < 100; ++q) {
+    const Vec3 p(5 + 0.2 * q, 10, 3 + 0.05 * q);
+    const MoverPoint a = t->nearest(p, 0.04 * q, 30.0);
+    ASSERT_TRUE(same(a, t->nearest_scan(p, 0.04 * q, 30.0))) << q;
+    const auto c = t->first_contact(p, Vec3(15, 15, 7), 0.25, 0.04 * q, 0.1);
+    ASSERT_TRUE(same(c, t->first_contact_scan(p, Vec3(15, 15, 7), 0.25, 0.04 * q, 0.1))) << q;
+    if (c) {
+      ASSERT_LE(c->mover, 1) << q;
+    }
+  }
+}
+
+TEST(WorldMoverIndex, BodiesAtRestAreStoredOnceAndTheBudgetHoldsTheWorstCase) {
+  const auto arena = testing::build(crowded());
+  const auto t = arena->movers_until(30.0);
+  EXPECT_EQ(t->stats().blocks_simulated, 0u);  // nothing until a query reaches it
+  (void)t->pose(250, 1.0);
+  EXPECT_EQ(t->stats().blocks_simulated, 5u);  // the blocks up to 1 s (4 a second), not one more
+  t->simulate_all();
+  const TimelineStats s = t->stats();
+  std::printf("%zu of %zu body-blocks at rest, %.1f MiB held of a worst case of %.1f MiB, simulated in %.3f s\n",
+              s.resting_entries, s.resting_entries + s.moving_entries, s.bytes / 1048576.0,
+              s.worst_case_bytes / 1048576.0, s.simulate_seconds);
+  EXPECT_GT(s.resting_entries, s.moving_entries);  // dropped bodies settle within seconds
+  EXPECT_LT(s.bytes, s.worst_case_bytes / 2);
+  // A resting body's pose does not change to the bit.
+  const Pose a = t->pose(250, 25.0), b = t->pose(250, 29.0);
+  EXPECT_EQ(a.position, b.position);
+  // Past the budget: refused, naming the setting that fits it, before anything is simulated.
+  MapSpec spec = crowded();
+  spec.movers.resize(200);
+  for (int k = 0; k < 1600; ++k) spec.movers.push_back(body(Vec3(1.5 + (k % 27), 1.5 + (k / 27 % 27), 2.0 + k / 729), kBall));
+  const auto big = testing::build(spec);
+  try {
+    (void)big->movers_until(100.0);
+    FAIL() << "a timeline over its budget was accepted";
+  } catch (const MapError& e) {
+    EXPECT_EQ(e.field(), "physics.keyframe_hz");
+    EXPECT_NE(std::string(e.what()).find("MiB"), std::string::npos) << e.what();
+  }
+  spec.physics.keyframe_hz = 10;
+  EXPECT_NO_THROW((void)testing::build(spec)->movers_until(100.0));
+}
+
+TEST(WorldMoverIndex, ThinnedKeyframesAreTheSimulatedPosesOfThoseInstants) {
+  const auto every = testing::build(crowded())->movers_until(4.0);
+  const auto thinned = testing::build(crowded(30))->movers_until(4.0);  // every 8th substep of 240
+  EXPECT_EQ(thinned->keyframe_stride(), 8);
+  double error = 0.0, worst_ratio = 0.0;
+  for (int m = 200; m < 300; ++m) {
+    for (int k = 0; k < 4 * 30; ++k) {
+      const double at = k * 8.0 / 240.0;
+      // The same substep of the same simulation (up to the last bits of reading a time back as a keyframe).
+      ASSERT_LT((every->pose(m, at).position - thinned->pose(m, at).position).norm(), 1e-9) << "mover " << m << " keyframe " << k;
+      // Half way to the next keyframe the motion is interpolated: off the simulated point by at most half the
+      // path the body ran between the two keyframes (where it changed course: an impact).
+      const double between = at + 4.0 / 240.0;
+      const double off = (every->pose(m, between).position - thinned->pose(m, between).position).norm();
+      const double path = every->travel_bound(m, at, at + 8.0 / 240.0);
+      error = std::max(error, off);
+      if (path > 0.0) worst_ratio = std::max(worst_ratio, off / path);
+      ASSERT_LE(off, 0.5 * path + 1e-9) << "mover " << m << " keyframe " << k;
+    }
+  }
+  std::printf("interpolated against simulated motion, half way between keyframes: up to %.3f m, %.2f of the path\n",
+              error, worst_ratio);
+}
+
+TEST(WorldMoverIndex, QueriesFromSeveralThreadsSimulateOnceAndAgree) {
+  const auto arena = testing::build(crowded());
+  const auto t = arena->movers_until(6.0);
+  std::vector<MoverPoint> out[2];
+  {
+    std::vector<std::jthread> threads;
+    for (int k = 0; k < 2; ++k) {
+      threads.emplace_back([&, k] {
+        for (int q = 0; q < 600; ++q) out[k].push_back(t->nearest(Vec3(15, 15, 1 + q % 10), 0.01 * q, 5.0));
+      });
+    }
+  }
+  for (int q = 0; q < 600; ++q) EXPECT_TRUE(same(out[0][std::size_t(q)], out[1][std::size_t(q)])) << q;
+  const auto fresh = testing::build(crowded())->movers_until(6.0);
+  for (int q = 0; q < 600; q += 37) EXPECT_TRUE(same(out[0][std::size_t(q)], fresh->nearest(Vec3(15, 15, 1 + q % 10), 0.01 * q, 5.0)));
+}
+
+}  // namespace
+}  // namespace peg3d::world
