@@ -86,6 +86,7 @@ void Trace::clear() {
   frames.clear();
   collisions.clear();
   captures.clear();
+  pushes.clear();
 }
 
 void Trace::record(const SimState& st, bool after_step) {
@@ -113,6 +114,7 @@ void Trace::record(const SimState& st, bool after_step) {
   if (after_step) {
     collisions.insert(collisions.end(), st.events.collisions.begin(), st.events.collisions.end());
     captures.insert(captures.end(), st.events.captures.begin(), st.events.captures.end());
+    pushes.insert(pushes.end(), st.events.pushes.begin(), st.events.pushes.end());
   }
 }
 

@@ -88,6 +88,7 @@ struct Trace {
   std::vector<AgentFrame> frames;          ///< frame-major: frames[k * agents + i]
   std::vector<CollisionEvent> collisions;  ///< every collision, in order
   std::vector<CaptureEvent> captures;      ///< every capture, in order
+  std::vector<PushEvent> pushes;           ///< push mode: every push, in order
 
   void reserve(int max_steps, int agent_count);
   void clear();

@@ -157,6 +157,14 @@ enum class MoverSensing {
 inline constexpr config::EnumNames<MoverSensing, 2> kMoverSensingNames{
     {{MoverSensing::kExact, "exact"}, {MoverSensing::kOctree, "octree"}}};
 
+/// How the map's dynamic bodies move (docs/maps.md compares the two).
+enum class MoverDynamics {
+  kShared,  ///< simulated once per map without the agents, shared by every run; a touch is a collision (the default)
+  kPush,    ///< every run simulates them with the agents as kinematic bodies, which push the pushable ones
+};
+inline constexpr config::EnumNames<MoverDynamics, 2> kMoverDynamicsNames{
+    {{MoverDynamics::kShared, "shared"}, {MoverDynamics::kPush, "push"}}};
+
 struct ObservationConfig {
   AngleInputs angles = AngleInputs::kAzimuthElevation;
   EvaderReference evader_reference = EvaderReference::kAwayFromPursuer;
@@ -280,6 +288,7 @@ struct GameConfig {
   CollisionMode collision = CollisionMode::kTerminate;
   InitialHeading initial_heading = InitialHeading::kChase;
   MoverSensing mover_sensing = MoverSensing::kExact;
+  MoverDynamics mover_dynamics = MoverDynamics::kShared;
   AgentConfig pursuer;  ///< every pursuer without an entry in `pursuers`
   AgentConfig evader;   ///< every evader without an entry in `evaders`
   /// Per-agent settings: the k-th pursuer of a scenario plays pursuers[k] when the list has it. In a
@@ -464,6 +473,9 @@ void visit_fields(V& v, C& c) {
   v.choice("mover_sensing", c.mover_sensing, kMoverSensingNames,
            "how agents sense moving obstacles: exact distances beside the static field, or an incrementally updated "
            "octree EDT (rebuilt at every reset: slow)");
+  v.choice("mover_dynamics", c.mover_dynamics, kMoverDynamicsNames,
+           "how dynamic bodies move: simulated once per map without the agents (shared), or in every run with the "
+           "agents pushing the pushable ones (push: costs a Bullet world per run; needs mover_sensing exact)");
   v.section("pursuer", c.pursuer, "every pursuer without its own entry in pursuers");
   v.section("evader", c.evader, "every evader without its own entry in evaders");
   v.sections("pursuers", c.pursuers, c.pursuer, "per-pursuer settings, by index in the scenario");

@@ -24,7 +24,7 @@ world::Scenario random_start(const Sim& sim, const world::Scenario& like, std::u
     // Clear of the map, and of the agents placed so far: their radii apart within a role, the gap across.
     const auto fits = [&](const Vec3& x) {
       if (arena.nearest_shape(x).distance < keep || arena.below_solid_terrain(x)) return false;
-      if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && movers->nearest(x, 0.0, keep).mover >= 0)
+      if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && movers->nearest_at_start(x, keep).mover >= 0)
         return false;
       for (int j = 0; j < i; ++j) {
         const double d = (x - placed[std::size_t(j)]).norm();

@@ -29,9 +29,12 @@ void clear_for(SimState& st, int n, int pursuers, const GameConfig& g) {
   st.scratch.positions.resize(size);
   st.events.agents.assign(size, AgentEvents{});
   st.events.collisions.clear();
-  st.events.collisions.reserve(3 * size);
+  st.events.collisions.reserve(4 * size);
   st.events.captures.clear();
   st.events.captures.reserve(size);
+  st.events.pushes.clear();
+  st.scratch.from.resize(size);
+  st.scratch.to.resize(size);
   st.events.terminal = st.events.truncated = false;
   st.time = 0.0;
   st.step = 0;
@@ -95,6 +98,14 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   initial_headings(g, st, scenario, seed);
   for (int i = 0; i < n; ++i) st.collider.place_agent(i, st.agents[std::size_t(i)].kinematics.position);
   check_start(sim.arena(), g, sim.movers(), st.collider, scenario, st.scratch.positions);
+  if (sim.pushes()) {
+    st.push = std::make_unique<world::PushWorld>(sim.arena(), sim.substeps());
+    for (int i = 0; i < n; ++i) st.push->add_agent(st.agents[std::size_t(i)].config->radius, st.agents[std::size_t(i)].kinematics.position);
+    st.scratch.touches.reserve(st.push->max_touches());
+    st.events.pushes.reserve(st.push->max_touches());
+  } else {
+    st.push.reset();
+  }
   if (sim.movers() != nullptr && g.mover_sensing == MoverSensing::kOctree) {
     st.moving_field = std::make_unique<world::MovingOccupancyField>(sim.arena());
     st.moving_field->set_time(*sim.movers(), 0.0);

@@ -1,5 +1,6 @@
 #include "game/sim.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -51,7 +52,14 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
                             fmt::format("{} Hz does not divide the game step dt = {} s into whole substeps",
                                         map.physics.rate_hz, config_->dt));
     }
-    movers_ = arena_->movers_until(config_->time_limit + config_->dt);
+    // Push mode: every run simulates the dynamic bodies itself; the shared timeline keeps the scripted movers.
+    pushes_ = config_->mover_dynamics == MoverDynamics::kPush &&
+              std::any_of(map.movers.begin(), map.movers.end(), [](const world::MoverSpec& m) { return !m.kinematic(); });
+    if (pushes_ && config_->mover_sensing != MoverSensing::kExact) {
+      throw InvalidParameter("mover_dynamics", "push", "needs mover_sensing = exact (the octree follows the shared timeline)");
+    }
+    substeps_ = static_cast<int>(std::lround(substeps));
+    movers_ = arena_->movers_until(config_->time_limit + config_->dt, !pushes_);
   }
   if (arena_->map().scenarios.empty()) return;
   world::CollisionWorld world(arena_);

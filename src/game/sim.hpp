@@ -32,6 +32,7 @@
 #include "world/collision_world.hpp"
 #include "world/mover_timeline.hpp"
 #include "world/moving_field.hpp"
+#include "world/push_world.hpp"
 
 namespace peg3d::game {
 
@@ -48,6 +49,16 @@ struct CollisionEvent {
   Vec3 normal = Vec3::UnitZ();            ///< unit, from the obstacle towards the agent
   double fraction = 0.0;                  ///< time of impact as a fraction of the step, [0, 1]
   double penetration = 0.0;               ///< m, overlap depth when already intersecting
+};
+
+/// An agent touching a pushable dynamic body (push mode): logged, not a collision.
+struct PushEvent {
+  int step = 0;                 ///< the step during which it happened (1 = the first step)
+  double time = 0.0;            ///< s, the end of the physics substep it was found at
+  int agent = 0;
+  int mover = -1;               ///< index in the map's movers
+  Vec3 point = Vec3::Zero();    ///< m, the body's point nearest the agent
+  Vec3 normal = Vec3::UnitZ();  ///< unit, from the body towards the agent
 };
 
 /// A pursuer coming within the capture distance of a free evader at the end of a step.
@@ -108,6 +119,7 @@ struct StepEvents {
   std::vector<AgentEvents> agents;         ///< one per agent
   std::vector<CollisionEvent> collisions;  ///< in the order detected (agents in index order); up to 3 per agent
   std::vector<CaptureEvent> captures;      ///< in evader index order
+  std::vector<PushEvent> pushes;           ///< push mode: each agent's pushes, agents in index order
   bool terminal = false;   ///< the game ended: every evader captured or a terminating collision
   bool truncated = false;  ///< the time limit ended it (not a terminal state of the game: learners bootstrap)
 };
@@ -135,6 +147,9 @@ class SimState {
   /// With mover_sensing = octree on a map with movers: the octree and EDT that follow the movers (rebuilt by
   /// every reset, so a run does not depend on the runs before it).
   std::unique_ptr<world::MovingOccupancyField> moving_field;
+  /// In push mode (Sim::pushes()): the run's own world of the dynamic bodies, with the agents (rebuilt by every
+  /// reset).
+  std::unique_ptr<world::PushWorld> push;
   StepEvents events;               ///< what the last step did
 
   /// Per-step working storage, sized by reset().
@@ -147,6 +162,8 @@ class SimState {
     std::vector<double> obstacle_before;  ///< d_O at the start of the step
     std::vector<Vec3> positions;          ///< start positions (reset)
     std::vector<Steering> commands;       ///< play()'s command buffer
+    std::vector<Vec3> from, to;           ///< push mode: each agent's move of the step
+    std::vector<world::BodyTouch> touches;  ///< push mode: what the agents touched in the step
     std::array<world::NearPoint, kMaxHeldPoints> near;  ///< the static obstacles within an agent's hold_range
     double capture_reach2 = 0.0;          ///< squared distance beyond which no capture is possible
   } scratch;
@@ -170,6 +187,11 @@ class Sim {
   int max_steps() const { return max_steps_; }
   /// Where the map's moving obstacles are over the whole episode (null when the map has none).
   const world::MoverTimeline* movers() const { return movers_.get(); }
+  /// Whether runs simulate the map's dynamic bodies themselves, with the agents pushing (push mode on a map
+  /// with dynamic bodies; then movers() holds the scripted movers alone).
+  bool pushes() const { return pushes_; }
+  /// Physics substeps per game step (maps with movers).
+  int substeps() const { return substeps_; }
 
   /// Throws StartError when an agent of `scenario`, with its configured radius and kept inside the arena,
   /// starts overlapping an obstacle or (when agents collide) another agent; InvalidParameter when the
@@ -181,6 +203,8 @@ class Sim {
   std::shared_ptr<const GameConfig> config_;  // shared by copies: agents' config pointers stay valid
   int max_steps_ = 0;
   std::shared_ptr<const world::MoverTimeline> movers_;
+  bool pushes_ = false;
+  int substeps_ = 1;
 };
 
 /// Puts `state` at the start of `scenario`: positions kept radius inside the arena, headings from the scenario

@@ -36,8 +36,8 @@ CollisionEvent event_of(const SimState& st, int i, const world::Contact& c, doub
 }
 
 void record_collision(SimState& st, const CollisionEvent& e) {
-  // Capacity 3n: at most a static or mover contact, a mover contact after a static stop, and an agent contact
-  // per agent.
+  // Capacity 4n: at most a static or mover contact, a mover contact after a static stop, an agent contact and
+  // (push mode) a solid body's per agent.
   st.events.collisions.push_back(e);
   st.events.agents[std::size_t(e.agent)].collided = true;
   ++st.agents[std::size_t(e.agent)].collisions;
@@ -81,6 +81,7 @@ void begin(SimState& st, std::span<const Steering> commands) {
   StepEvents& ev = st.events;
   ev.collisions.clear();
   ev.captures.clear();
+  ev.pushes.clear();
   ev.terminal = ev.truncated = false;
   for (int i = 0; i < st.agent_count(); ++i) {
     const AgentState& a = st.agents[std::size_t(i)];
@@ -224,6 +225,40 @@ void collide_agents(const Sim& sim, SimState& st) {
   }
 }
 
+// Push: in push mode the run's own world sweeps every active agent along its move in physics substeps; the
+// pushable bodies it meets are pushed (StepEvents::pushes) and a solid one stops it (a collision, recorded
+// after the step's other contacts).
+void push_bodies(const Sim& sim, SimState& st) {
+  if (!st.push) return;
+  const StepProfile::Scope profiled(StepProfile::kMovers);
+  const int n = st.agent_count();
+  for (int i = 0; i < n; ++i) {
+    const AgentState& a = st.agents[std::size_t(i)];
+    if (!a.active) st.push->remove_agent(i);
+    st.scratch.from[std::size_t(i)] = a.kinematics.position;
+    st.scratch.to[std::size_t(i)] = a.active ? st.scratch.next[std::size_t(i)].position : a.kinematics.position;
+  }
+  st.scratch.touches.clear();
+  st.push->advance(st.scratch.from, st.scratch.to, st.scratch.touches);
+  const double dt = sim.config().dt;
+  for (const world::BodyTouch& t : st.scratch.touches) {
+    if (!t.solid) {
+      st.events.pushes.push_back({st.step + 1, st.time + t.fraction * dt, t.agent, t.mover, t.point, t.normal});
+      continue;
+    }
+    KinematicState& k = st.scratch.next[std::size_t(t.agent)];
+    k.position = st.scratch.to[std::size_t(t.agent)];
+    st.collider.place_agent(st.agents[std::size_t(t.agent)].body, k.position);
+    world::MoverContact m;
+    m.mover = t.mover;
+    m.fraction = t.fraction;
+    m.point = t.point;
+    m.normal = t.normal;
+    m.penetration = t.penetration;
+    record_collision(st, event_of(st, t.agent, contact_of(t.agent, m), dt));
+  }
+}
+
 // Commit: every active agent takes its (possibly stopped) move; the clock advances by dt.
 void commit(const Sim& sim, SimState& st) {
   for (int i = 0; i < st.agent_count(); ++i) {
@@ -358,6 +393,7 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   collide_static(st);
   collide_movers(sim, st);
   collide_agents(sim, st);
+  push_bodies(sim, st);
   commit(sim, st);
   capture(sim, st);
   observe(sim, st);

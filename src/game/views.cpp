@@ -6,7 +6,12 @@ ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p) 
   const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(p) : sim.arena().nearest_shape(p);
   if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
     // Moving obstacles where they are now, exactly.
-    const world::MoverPoint m = movers->nearest(p, st.time, n.distance);
+    world::MoverPoint m = movers->nearest(p, st.time, n.distance);
+    if (st.push) {
+      // Push mode: the run's own dynamic bodies where they are now.
+      const world::MoverPoint d = st.push->nearest(p, m.mover >= 0 ? m.distance : n.distance);
+      if (d.mover >= 0 && (m.mover < 0 || d.distance < m.distance || (d.distance == m.distance && d.mover < m.mover))) m = d;
+    }
     if (m.mover >= 0) return {m.distance, m.point, true};
   }
   return {n.distance, n.point, n.found};

@@ -44,9 +44,12 @@ CollisionLog make_log(const std::string& name, const game::Trace& trace, const g
     log.agents.push_back({game::agent_label(trace, i), a.kinematics.position, a.kinematics.heading.alpha,
                           a.kinematics.heading.theta, a.path, a.active});
   }
+  for (const game::PushEvent& p : trace.pushes) {
+    log.pushes.push_back({p.step, p.time, game::agent_label(trace, p.agent), p.mover, p.point, p.normal});
+  }
   if (movers != nullptr) {
     for (int m = 0; m < movers->count(); ++m) {
-      const Pose p = movers->pose(m, st.time);
+      const Pose p = st.push && !movers->mover(m).kinematic() ? st.push->pose(m) : movers->pose(m, st.time);
       log.movers.push_back({m, to_string(movers->mover(m).shape.kind), p.position, p.orientation});
     }
   }
@@ -79,6 +82,11 @@ std::string format_log(const CollisionLog& log) {
     const LoggedCapture& c = log.captures[i];
     out += fmt::format("capture {} step={} time={:.6f} pursuer={} evader={} distance={:.6f}\n", i + 1, c.step, c.time,
                        c.pursuer, c.evader, c.distance);
+  }
+  for (std::size_t i = 0; i < log.pushes.size(); ++i) {
+    const LoggedPush& p = log.pushes[i];
+    out += fmt::format("push {} step={} time={:.6f} agent={} body=mover:{} point={} normal={}\n", i + 1, p.step, p.time,
+                       p.agent, p.mover, v3(p.point), v3(p.normal));
   }
   for (const LoggedAgent& a : log.agents) {
     out += fmt::format("agent {} position={} alpha={:.6f} theta={:.6f} path={:.6f} active={}\n", a.label, v3(a.position),
@@ -163,7 +171,7 @@ CollisionLog parse_log(std::string_view text, const std::filesystem::path& file)
     Record r;
     words >> r.type;
     const Reader reader(file, number);
-    const bool labelled = r.type == "event" || r.type == "capture" || r.type == "agent" || r.type == "mover" ||
+    const bool labelled = r.type == "event" || r.type == "capture" || r.type == "push" || r.type == "agent" || r.type == "mover" ||
                           r.type == "case" || r.type == "outcome" || r.type == "trajectory";
     if (!labelled) reader.fail("", "unknown record '" + r.type + "'");
     words >> r.label;
@@ -197,6 +205,17 @@ CollisionLog parse_log(std::string_view text, const std::filesystem::path& file)
     } else if (r.type == "capture") {
       log.captures.push_back({reader.integer(reader.need(r, "step"), "capture.step"), reader.number(r, "time"),
                               reader.need(r, "pursuer"), reader.need(r, "evader"), reader.number(r, "distance")});
+    } else if (r.type == "push") {
+      LoggedPush p;
+      p.step = reader.integer(reader.need(r, "step"), "push.step");
+      p.time = reader.number(r, "time");
+      p.agent = reader.need(r, "agent");
+      const std::string& body = reader.need(r, "body");
+      if (body.rfind("mover:", 0) != 0) reader.fail("push.body", "'" + body + "' is not mover:<index>");
+      p.mover = reader.integer(body.substr(6), "push.body");
+      p.point = reader.vec(r, "point");
+      p.normal = reader.vec(r, "normal");
+      log.pushes.push_back(p);
     } else if (r.type == "agent") {
       const std::string& active = reader.need(r, "active");
       if (active != "yes" && active != "no") reader.fail("agent.active", "must be yes or no");
@@ -284,6 +303,26 @@ void compare_captures(const CollisionLog& e, const CollisionLog& a, const Tolera
   }
 }
 
+void compare_pushes(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
+  if (e.pushes.size() != a.pushes.size()) d.push_back(fmt::format("pushes {} -> {}", e.pushes.size(), a.pushes.size()));
+  for (std::size_t i = 0; i < std::min(e.pushes.size(), a.pushes.size()); ++i) {
+    const LoggedPush& x = e.pushes[i];
+    const LoggedPush& y = a.pushes[i];
+    const std::string where = fmt::format("push {}", i + 1);
+    if (x.agent != y.agent || x.mover != y.mover) {
+      d.push_back(fmt::format("{}: {} pushed mover {} -> {} pushed mover {}", where, x.agent, x.mover, y.agent, y.mover));
+    }
+    if (x.step != y.step) d.push_back(fmt::format("{}: step {} -> {}", where, x.step, y.step));
+    if (differs(x.time, y.time, tol.time)) d.push_back(fmt::format("{}: time {} -> {}", where, seconds(x.time), seconds(y.time)));
+    if ((x.point - y.point).norm() > tol.length) {
+      d.push_back(fmt::format("{}: point {} -> {}", where, v3_text(x.point), v3_text(y.point)));
+    }
+    if ((x.normal - y.normal).norm() > tol.unit) {
+      d.push_back(fmt::format("{}: normal {} -> {}", where, v3_text(x.normal), v3_text(y.normal)));
+    }
+  }
+}
+
 void compare_agents(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
   if (e.agents.size() != a.agents.size()) d.push_back(fmt::format("agents {} -> {}", e.agents.size(), a.agents.size()));
   for (std::size_t i = 0; i < std::min(e.agents.size(), a.agents.size()); ++i) {
@@ -331,6 +370,7 @@ std::vector<std::string> compare_logs(const CollisionLog& e, const CollisionLog&
   if (differs(e.time, a.time, tol.time)) d.push_back(fmt::format("end time {} -> {}", seconds(e.time), seconds(a.time)));
   compare_events(e, a, tol, d);
   compare_captures(e, a, tol, d);
+  compare_pushes(e, a, tol, d);
   compare_agents(e, a, tol, d);
   compare_movers(e, a, tol, d);
   if (e.trajectory_hash != a.trajectory_hash) {

@@ -33,6 +33,16 @@ struct LoggedCapture {
   double distance = 0.0;        ///< m
 };
 
+/// An agent touching a pushable body (push mode): not a collision.
+struct LoggedPush {
+  int step = 0;
+  double time = 0.0;  ///< s
+  std::string agent;  ///< label
+  int mover = -1;     ///< the body, by index in the map's movers
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+
 struct LoggedAgent {
   std::string label;
   Vec3 position = Vec3::Zero();
@@ -55,6 +65,7 @@ struct CollisionLog {
   double time = 0.0;    ///< s at the end
   std::vector<LoggedEvent> events;
   std::vector<LoggedCapture> captures;
+  std::vector<LoggedPush> pushes;  ///< push mode: every push, in order
   std::vector<LoggedAgent> agents;
   std::vector<LoggedMover> movers;
   std::uint64_t trajectory_hash = 0;  ///< every agent's position and heading at every step, bit for bit
@@ -70,8 +81,9 @@ struct Tolerances {
   double angle = 1e-5;   ///< rad, headings
 };
 
-/// The log of a played episode: its trace (every instant, collisions, captures), the final state, and the
-/// movers' poses at the end (null when the map has none).
+/// The log of a played episode: its trace (every instant, collisions, captures, pushes), the final state, and
+/// the movers' poses at the end (null when the map has none; in push mode the dynamic bodies' come from the
+/// state's own world, so the pushed bodies' final poses are logged).
 CollisionLog make_log(const std::string& name, const game::Trace& trace, const game::SimState& final_state,
                       const world::MoverTimeline* movers);
 

@@ -15,6 +15,7 @@
 #include "world/map_rules.hpp"
 #include "world/mover_timeline.hpp"
 #include "world/obstacle_geometry.hpp"
+#include "world/body_physics.hpp"
 #include "world/terrain_shapes.hpp"
 #include "world/voxel_grid.hpp"
 
@@ -275,13 +276,16 @@ std::shared_ptr<const Arena> Arena::build(const MapSpec& spec_in, const BuildOpt
   return arena;
 }
 
-std::shared_ptr<const MoverTimeline> Arena::movers_until(double seconds) const {
+std::shared_ptr<const MoverTimeline> Arena::movers_until(double seconds, bool with_dynamic) const {
   if (spec_.movers.empty()) return nullptr;
   const std::lock_guard lock(movers_mutex_);
   // Simulating further from the same start reproduces the shorter run's substeps exactly, so a longer timeline
   // serves every shorter request.
-  if (!movers_ || movers_->duration() < seconds) movers_ = std::make_shared<const MoverTimeline>(spec_, meshes_, seconds);
-  return movers_;
+  auto& cached = with_dynamic ? movers_ : scripted_movers_;
+  if (!cached || cached->duration() < seconds) {
+    cached = std::make_shared<const MoverTimeline>(spec_, meshes_, seconds, MoverTimeline::kMaxBytes, with_dynamic);
+  }
+  return cached;
 }
 
 void Arena::save_octree(const std::filesystem::path& bt_file, double t) const {
@@ -298,6 +302,12 @@ std::shared_ptr<const TerrainShapes> Arena::terrain_shapes() const {
   const std::lock_guard lock(terrain_mutex_);
   if (!terrain_) terrain_ = std::make_shared<const TerrainShapes>(meshes_);
   return terrain_;
+}
+
+std::shared_ptr<const StaticPhysicsShapes> Arena::physics_shapes() const {
+  const std::lock_guard lock(terrain_mutex_);
+  if (!physics_shapes_) physics_shapes_ = make_static_physics_shapes(spec_, meshes_);
+  return physics_shapes_;
 }
 
 bool Arena::below_solid_terrain(const Vec3& p) const {

@@ -22,6 +22,7 @@
 namespace peg3d::world {
 
 struct TerrainShapes;
+struct StaticPhysicsShapes;
 
 class MoverTimeline;
 
@@ -94,12 +95,17 @@ class Arena {
 
   /// Where the map's moving obstacles are from t = 0 to at least `seconds`: scripted movers exactly, dynamic
   /// bodies as Bullet simulates them (world/mover_timeline.hpp). Simulated on the first request of a duration
-  /// and kept: later requests, from any thread, share it read-only. Null for a map without movers.
-  std::shared_ptr<const MoverTimeline> movers_until(double seconds) const;
+  /// and kept: later requests, from any thread, share it read-only. Null for a map without movers. Without
+  /// `with_dynamic`, a timeline of the scripted movers alone (push mode: every run moves the dynamic bodies in
+  /// a world of its own, world/push_world.hpp).
+  std::shared_ptr<const MoverTimeline> movers_until(double seconds, bool with_dynamic = true) const;
 
   /// Bullet's hierarchies of the terrain meshes (world/terrain_shapes.hpp), built on the first request and
   /// shared read-only by every later one, from any thread.
   std::shared_ptr<const TerrainShapes> terrain_shapes() const;
+  /// The static geometry's shapes for dynamics worlds (world/body_physics.hpp), built on the first request and
+  /// shared read-only by every push-mode run, from any thread.
+  std::shared_ptr<const StaticPhysicsShapes> physics_shapes() const;
 
   /// True when p lies under a terrain mesh marked solid_below (exact: a vertical ray through its triangles).
   /// Bullet sees only a terrain's surface, so this is how a start buried under a height field is caught.
@@ -129,8 +135,10 @@ class Arena {
   std::vector<VerticalRayIndex> solid_index_;              // per mesh; empty for meshes not solid below
   mutable std::mutex terrain_mutex_;                       // guards terrain_
   mutable std::shared_ptr<const TerrainShapes> terrain_;  // built on the first request
+  mutable std::shared_ptr<const StaticPhysicsShapes> physics_shapes_;  // likewise, under terrain_mutex_
   mutable std::mutex movers_mutex_;                        // guards movers_
   mutable std::shared_ptr<const MoverTimeline> movers_;   // the longest timeline simulated so far
+  mutable std::shared_ptr<const MoverTimeline> scripted_movers_;  // the same without the dynamic bodies (push mode)
 };
 
 /// The default cache folder: $PEG3D_CACHE_DIR, else $XDG_CACHE_HOME/peg3d, else ~/.cache/peg3d.

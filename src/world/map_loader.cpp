@@ -279,7 +279,7 @@ void Loader::read_mover(const Node& n, const std::string& field, MapSpec& spec) 
   } else {
     m.motion = MoverSpec::Motion::kDynamic;
     const Fields df(*this, *motions[2], f.field("dynamic"));
-    df.allow({"position", "mass", "velocity", "angular_velocity", "friction", "rolling_friction", "restitution"});
+    df.allow({"position", "mass", "velocity", "angular_velocity", "friction", "rolling_friction", "restitution", "touch"});
     m.start = vec3(df.need("position"), df.field("position"));
     m.dynamic.mass = number(df.need("mass"), df.field("mass"));
     if (const Node* v = df.find("velocity")) m.dynamic.velocity = vec3(*v, df.field("velocity"));
@@ -287,6 +287,11 @@ void Loader::read_mover(const Node& n, const std::string& field, MapSpec& spec) 
     if (const Node* v = df.find("friction")) m.dynamic.friction = number(*v, df.field("friction"));
     if (const Node* v = df.find("rolling_friction")) m.dynamic.rolling_friction = number(*v, df.field("rolling_friction"));
     if (const Node* v = df.find("restitution")) m.dynamic.restitution = number(*v, df.field("restitution"));
+    if (const Node* v = df.find("touch")) {
+      const std::string touch = text(*v, df.field("touch"));
+      if (touch != "solid" && touch != "pushable") fail(*v, df.field("touch"), fmt::format("'{}' is not solid or pushable", shown(touch)));
+      m.dynamic.touch = touch == "solid" ? DynamicMotion::Touch::kSolid : DynamicMotion::Touch::kPushable;
+    }
   }
   if (const Problem p = check_mover(m, spec.bounds)) fail(node_of(f, p.field), field + "." + p.field, p.message);
   spec.movers.push_back(std::move(m));

@@ -73,6 +73,11 @@ struct DynamicMotion {
   double friction = 0.5;                  ///< Coulomb friction coefficient, >= 0
   double rolling_friction = 0.0;          ///< >= 0 (0: rolls without losing energy)
   double restitution = 0.0;               ///< bounce, in [0, 1]
+  /// What an agent's touch means (push mode, game::MoverDynamics::kPush; docs/maps.md): solid, a collision of the
+  /// agent, which it does not move; pushable, an event of the log that is no collision, and the agent pushes
+  /// the body as Bullet resolves the contact. In the shared mode every body is solid.
+  enum class Touch { kSolid, kPushable };
+  Touch touch = Touch::kSolid;
 };
 
 /// A moving obstacle: a sphere, upright cylinder or box that follows a path or an orbit exactly (kinematic:

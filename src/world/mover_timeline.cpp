@@ -9,185 +9,11 @@
 
 #include <fmt/format.h>
 
-#include <btBulletDynamicsCommon.h>
-#include <BulletCollision/CollisionDispatch/btInternalEdgeUtility.h>
-
+#include "world/body_physics.hpp"
 #include "world/movers.hpp"
 
 namespace peg3d::world {
 namespace {
-
-btVector3 bt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-Vec3 vec(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
-btTransform bt(const Pose& p) {
-  return btTransform(btQuaternion(p.orientation.x(), p.orientation.y(), p.orientation.z(), p.orientation.w()),
-                     bt(p.position));
-}
-Pose pose_of(const btTransform& t) {
-  const btQuaternion q = t.getRotation();
-  return {vec(t.getOrigin()), Quat(q.w(), q.x(), q.y(), q.z())};
-}
-
-std::unique_ptr<btCollisionShape> shape_of(const Shape& s) {
-  switch (s.kind) {
-    case Shape::Kind::kSphere: return std::make_unique<btSphereShape>(s.radius);
-    case Shape::Kind::kCylinder: {
-      auto c = std::make_unique<btCylinderShapeZ>(btVector3(s.radius, s.radius, 0.5 * s.height));
-      c->setMargin(std::min(0.01, 0.25 * std::min(s.radius, 0.5 * s.height)));
-      return c;
-    }
-    case Shape::Kind::kBox: {
-      auto b = std::make_unique<btBoxShape>(bt(0.5 * s.size));
-      b->setMargin(std::min(0.01, 0.25 * s.size.minCoeff()));
-      return b;
-    }
-  }
-  return nullptr;
-}
-
-// Triangle meshes get smooth contacts across their internal edges (a rolling ball would hop at every edge).
-bool adjust_internal_edges(btManifoldPoint& cp, const btCollisionObjectWrapper* w0, int part0, int index0,
-                           const btCollisionObjectWrapper* w1, int part1, int index1) {
-  if (w1->getCollisionShape()->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE) {
-    btAdjustInternalEdgeContacts(cp, w1, w0, part1, index1);
-  } else if (w0->getCollisionShape()->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE) {
-    btAdjustInternalEdgeContacts(cp, w0, w1, part0, index0);
-  }
-  return false;
-}
-
-// One Bullet dynamics world holding a map's static geometry and its movers, stepped at the map's rate.
-class Physics {
- public:
-  /// The map's static geometry from `spec` and `meshes` (kept by reference: Bullet reads their arrays in place)
-  /// and the movers of `movers` (kept by reference).
-  Physics(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, const std::vector<MoverSpec>& movers) {
-    world_.setGravity(bt(spec.physics.gravity));
-    // Static bodies: friction and restitution 1, so that a contact's combined values (Bullet multiplies the
-    // two bodies') are the mover's own.
-    for (const SphereObstacle& s : spec.spheres) add_static(std::make_unique<btSphereShape>(s.radius), s.center);
-    for (const CylinderObstacle& c : spec.cylinders) {
-      auto shape = std::make_unique<btCylinderShapeZ>(btVector3(c.radius, c.radius, 0.5 * c.height));
-      shape->setMargin(std::min(0.005, 0.25 * std::min(c.radius, 0.5 * c.height)));
-      add_static(std::move(shape), c.base + Vec3(0, 0, 0.5 * c.height));
-    }
-    for (const TriangleMesh& m : meshes) {
-      if (m.faces.empty()) continue;
-      auto array = std::make_unique<btTriangleIndexVertexArray>(
-          int(m.faces.size()), const_cast<int*>(m.faces.front().data()), int(sizeof(m.faces[0])),
-          int(m.vertices.size()), const_cast<btScalar*>(m.vertices.front().data()), int(sizeof(Vec3)));
-      auto shape = std::make_unique<btBvhTriangleMeshShape>(array.get(), true);
-      auto info = std::make_unique<btTriangleInfoMap>();
-      btGenerateInternalEdgeInfo(shape.get(), info.get());
-      btRigidBody* body = add_static(std::move(shape), Vec3::Zero());
-      body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
-      arrays_.push_back(std::move(array));
-      infos_.push_back(std::move(info));
-      gContactAddedCallback = adjust_internal_edges;
-    }
-    if (spec.physics.faces_are_physical) {
-      const Box& b = spec.bounds;
-      for (int axis = 0; axis < 3; ++axis) {
-        Vec3 n = Vec3::Zero();
-        n[axis] = 1.0;  // inward at the low face: n . x = lo
-        add_static(std::make_unique<btStaticPlaneShape>(bt(n), b.lo[axis]), Vec3::Zero());
-        add_static(std::make_unique<btStaticPlaneShape>(bt(Vec3(-n)), -b.hi[axis]), Vec3::Zero());
-      }
-    }
-    for (const MoverSpec& m : movers) add_mover(m);
-  }
-
-  ~Physics() {
-    for (auto& b : bodies_) world_.removeRigidBody(b.get());
-  }
-
-  // Moves the scripted movers to their poses at `t_next` and steps the world by h. Once every dynamic body
-  // sleeps in a world without scripted movers nothing can wake one: the world holds still, to the bit, and is
-  // no longer stepped.
-  void step(double t_next, double h) {
-    if (still_) return;
-    bool kinematic = false, awake = false;
-    for (Mover& m : movers_) {
-      if (m.spec->kinematic()) {
-        m.state->setWorldTransform(bt(m.motion.pose(t_next)));
-        kinematic = true;
-      } else {
-        awake = awake || m.body->getActivationState() != ISLAND_SLEEPING;
-      }
-    }
-    if (!kinematic && !awake) {
-      still_ = true;
-      return;
-    }
-    world_.stepSimulation(h, 1, h);
-  }
-
-  Pose pose(std::size_t mover) const { return pose_of(movers_[mover].body->getWorldTransform()); }
-
- private:
-  struct Mover {
-    const MoverSpec* spec;
-    btRigidBody* body;
-    btDefaultMotionState* state;
-    ScriptedMotion motion;  ///< a path's or orbit's; unused for a dynamic body
-  };
-
-  btRigidBody* add_static(std::unique_ptr<btCollisionShape> shape, const Vec3& at) {
-    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, shape.get());
-    info.m_startWorldTransform = btTransform(btQuaternion::getIdentity(), bt(at));
-    info.m_friction = 1.0;
-    info.m_restitution = 1.0;
-    auto body = std::make_unique<btRigidBody>(info);
-    world_.addRigidBody(body.get());
-    btRigidBody* raw = body.get();
-    shapes_.push_back(std::move(shape));
-    bodies_.push_back(std::move(body));
-    return raw;
-  }
-
-  void add_mover(const MoverSpec& m) {
-    auto shape = shape_of(m.shape);
-    const Pose start = m.kinematic() ? scripted_pose(m, 0.0) : Pose{m.start, orientation_deg(m.rotation_deg)};
-    auto state = std::make_unique<btDefaultMotionState>(bt(start));
-    const double mass = m.kinematic() ? 0.0 : m.dynamic.mass;
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0.0) shape->calculateLocalInertia(mass, inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(mass, state.get(), shape.get(), inertia);
-    info.m_friction = m.kinematic() ? 1.0 : m.dynamic.friction;
-    info.m_rollingFriction = m.kinematic() ? 0.0 : m.dynamic.rolling_friction;
-    info.m_restitution = m.kinematic() ? 1.0 : m.dynamic.restitution;
-    auto body = std::make_unique<btRigidBody>(info);
-    if (m.kinematic()) {
-      body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-      body->setActivationState(DISABLE_DEACTIVATION);
-    } else {
-      body->setLinearVelocity(bt(m.dynamic.velocity));
-      body->setAngularVelocity(bt(m.dynamic.angular_velocity));
-      // Continuous collision for fast bodies: a sweep whenever a substep moves them more than a tenth of their size.
-      const double size = m.shape.kind == Shape::Kind::kBox ? 0.5 * m.shape.size.minCoeff() : m.shape.radius;
-      body->setCcdMotionThreshold(0.1 * size);
-      body->setCcdSweptSphereRadius(0.9 * size);
-    }
-    world_.addRigidBody(body.get());
-    movers_.push_back({&m, body.get(), state.get(), ScriptedMotion(m)});
-    shapes_.push_back(std::move(shape));
-    states_.push_back(std::move(state));
-    bodies_.push_back(std::move(body));
-  }
-
-  btDefaultCollisionConfiguration configuration_;
-  btCollisionDispatcher dispatcher_{&configuration_};
-  btDbvtBroadphase broadphase_;
-  btSequentialImpulseConstraintSolver solver_;
-  btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &configuration_};
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> arrays_;
-  std::vector<std::unique_ptr<btTriangleInfoMap>> infos_;
-  std::vector<std::unique_ptr<btDefaultMotionState>> states_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
-  std::vector<Mover> movers_;
-  bool still_ = false;  ///< every body sleeps and nothing moves: no step changes anything any more
-};
 
 // The rotation angle between two orientations, rad.
 double angle_between(const Quat& a, const Quat& b) { return a.angularDistance(b); }
@@ -247,7 +73,7 @@ class MoverTimeline::Simulation {
  public:
   Simulation(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, const std::vector<MoverSpec>& movers,
              const std::vector<int>& dynamic_index, int dynamic)
-      : physics_(spec, meshes, movers), dynamic_index_(dynamic_index), h_(1.0 / spec.physics.rate_hz), tracks_(std::size_t(dynamic)) {
+      : physics_(spec, make_static_physics_shapes(spec, meshes), movers), dynamic_index_(dynamic_index), h_(1.0 / spec.physics.rate_hz), tracks_(std::size_t(dynamic)) {
     record();
   }
 
@@ -273,7 +99,7 @@ class MoverTimeline::Simulation {
     }
   }
 
-  Physics physics_;
+  BodyPhysics physics_;
   const std::vector<int>& dynamic_index_;
   double h_;
   long substep_ = 0;
@@ -291,8 +117,8 @@ std::size_t MoverTimeline::worst_case_bytes(const MapSpec& spec, double duration
 }
 
 MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
-                             std::size_t max_bytes)
-    : movers_(spec.movers), rate_hz_(spec.physics.rate_hz) {
+                             std::size_t max_bytes, bool with_dynamic)
+    : movers_(spec.movers), with_dynamic_(with_dynamic), rate_hz_(spec.physics.rate_hz) {
   const Layout l = layout_of(spec.physics, duration);
   stride_ = l.stride;
   keyframes_per_s_ = static_cast<double>(rate_hz_) / stride_;
@@ -303,7 +129,21 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
   scripted_.reserve(movers_.size());
   for (std::size_t i = 0; i < movers_.size(); ++i) {
     scripted_.emplace_back(movers_[i]);
-    if (!movers_[i].kinematic()) dynamic_index_[i] = dynamic_++;
+    if (!movers_[i].kinematic()) {
+      dynamic_index_[i] = dynamic_++;
+      start_poses_.push_back({movers_[i].start, orientation_deg(movers_[i].rotation_deg)});
+    }
+    if (with_dynamic_ || movers_[i].kinematic()) queried_.push_back(static_cast<int>(i));
+  }
+  if (!with_dynamic_) {
+    // Only the scripted movers' bounds are kept; nothing is simulated.
+    MapSpec scripted = spec;
+    scripted.movers.clear();
+    for (const MoverSpec& m : spec.movers)
+      if (m.kinematic()) scripted.movers.push_back(m);
+    worst_case_bytes_ = worst_case_bytes(scripted, duration);
+    blocks_.resize(layout_of(spec.physics, duration).blocks);
+    return;
   }
   worst_case_bytes_ = worst_case_bytes(spec, duration);
   if (worst_case_bytes_ > max_bytes) {
@@ -343,8 +183,8 @@ void MoverTimeline::simulate_through(std::size_t b) const {
     block->last = std::min(keyframes_, block->first + block_keyframes_);
     const long n = block->last - block->first + 1;
     // The dynamic bodies' keyframes, each body's stored once when it did not move over the whole block.
-    block->start.resize(std::size_t(dynamic_));
-    block->resting.resize(std::size_t(dynamic_));
+    block->start.resize(std::size_t(with_dynamic_ ? dynamic_ : 0));
+    block->resting.resize(std::size_t(with_dynamic_ ? dynamic_ : 0));
     if (simulation_) {
       simulation_->advance(block->first, block->last, stride_);
       std::size_t total = 0;
@@ -366,11 +206,12 @@ void MoverTimeline::simulate_through(std::size_t b) const {
         }
       }
     }
-    // Every mover's bounds over the block's time span.
-    std::vector<Box> bounds(movers_.size());
+    // The queried movers' bounds over the block's time span.
+    std::vector<Box> bounds(queried_.size());
     const double t_first = static_cast<double>(block->first * stride_) / rate_hz_;
     const double t_last = static_cast<double>(block->last * stride_) / rate_hz_;
-    for (std::size_t m = 0; m < movers_.size(); ++m) {
+    for (std::size_t leaf = 0; leaf < queried_.size(); ++leaf) {
+      const std::size_t m = std::size_t(queried_[leaf]);
       const MoverSpec& spec = movers_[m];
       Box box{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
       double widen = spec.shape.bounding_radius() + kBoundsMargin;
@@ -392,7 +233,7 @@ void MoverTimeline::simulate_through(std::size_t b) const {
       }
       box.lo.array() -= widen;
       box.hi.array() += widen;
-      bounds[m] = box;
+      bounds[leaf] = box;
     }
     block->index = BoxTree(bounds);
     bytes_.fetch_add(block->bytes(), std::memory_order_relaxed);
@@ -412,6 +253,7 @@ Pose MoverTimeline::pose(int m, double t) const {
   const MoverSpec& spec = movers_[std::size_t(m)];
   if (spec.kinematic()) return scripted_[std::size_t(m)].pose(t);
   const int row = dynamic_index_[std::size_t(m)];
+  if (!with_dynamic_) return start_poses_[std::size_t(row)];
   if (keyframes_ == 0) return keyframe(row, 0);
   const double u = std::clamp(t * rate_hz_ / stride_, 0.0, static_cast<double>(keyframes_));
   const long k = std::min(static_cast<long>(u), keyframes_ - 1);
@@ -428,6 +270,7 @@ Pose MoverTimeline::pose(int m, double t) const {
 double MoverTimeline::travel_bound(int m, double t0, double t1) const {
   const MoverSpec& spec = movers_[std::size_t(m)];
   if (spec.kinematic()) return scripted_speed(spec) * (t1 - t0);  // orientation is fixed
+  if (!with_dynamic_) return 0.0;
   const int row = dynamic_index_[std::size_t(m)];
   const double r = spec.shape.bounding_radius();
   const long k0 = std::clamp(static_cast<long>(std::floor(t0 * rate_hz_ / stride_)), 0L, keyframes_);
@@ -459,8 +302,8 @@ MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
   if (!indexed(t, t)) return nearest_scan(p, t, cap);
   MoverPoint best;
   best.distance = cap;
-  block(block_at(t)).index.nearest(p, cap, [&](int m) {
-    nearer(m, p, t, best);
+  block(block_at(t)).index.nearest(p, cap, [&](int leaf) {
+    nearer(queried_[std::size_t(leaf)], p, t, best);
     return best.distance;
   });
   return best;
@@ -469,13 +312,22 @@ MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
 MoverPoint MoverTimeline::nearest_scan(const Vec3& p, double t, double cap) const {
   MoverPoint best;
   best.distance = cap;
-  for (int m = 0; m < count(); ++m) {
+  for (const int m : queried_) {
     const MoverSpec& spec = movers_[std::size_t(m)];
     const Pose at = pose(m, t);
     // Cheap rejection on the bounding ball before the exact distance.
     if ((p - at.position).norm() - spec.shape.bounding_radius() >= best.distance) continue;
     const ShapePoint s = nearest_on_shape(spec.shape, at, p);
     if (s.distance < best.distance) best = {m, s.distance, s.point};
+  }
+  return best;
+}
+
+MoverPoint MoverTimeline::nearest_at_start(const Vec3& p, double cap) const {
+  MoverPoint best = nearest(p, 0.0, cap);
+  if (with_dynamic_) return best;
+  for (int m = 0; m < count(); ++m) {
+    if (!movers_[std::size_t(m)].kinematic()) nearer(m, p, 0.0, best);
   }
   return best;
 }
@@ -487,9 +339,9 @@ int MoverTimeline::candidates(const Box& box, double reach, double t0, double t1
   std::size_t n = 0;
   bool overflow = false;
   for (std::size_t b = block_at(t0), last = block_at(t1); b <= last; ++b) {
-    block(b).index.overlapping(query, [&](int m) {
+    block(b).index.overlapping(query, [&](int leaf) {
       if (n < out.size()) {
-        out[n++] = m;
+        out[n++] = queried_[std::size_t(leaf)];
       } else {
         overflow = true;
       }
@@ -552,7 +404,7 @@ std::optional<MoverContact> MoverTimeline::first_contact(const Vec3& from, const
 std::optional<MoverContact> MoverTimeline::first_contact_scan(const Vec3& from, const Vec3& to, double radius,
                                                               double t0, double dt) const {
   std::optional<MoverContact> best;
-  for (int m = 0; m < count(); ++m) contact_with(m, from, to, radius, t0, dt, best);
+  for (const int m : queried_) contact_with(m, from, to, radius, t0, dt, best);
   return best;
 }
 

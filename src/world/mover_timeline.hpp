@@ -79,8 +79,10 @@ class MoverTimeline {
   /// The map's movers from 0 to at least `duration` s. `meshes` are the map's placed terrain meshes, in
   /// spec.meshes' order, kept by reference until every block is simulated (the Arena owns them). Throws MapError
   /// (naming physics.keyframe_hz and the estimate) when the worst case exceeds `max_bytes`. Simulates nothing.
+  /// Without `with_dynamic` the dynamic bodies are left out: never simulated, in no query (pose() gives their
+  /// start), for push mode, where each run moves them in a world of its own.
   MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
-                std::size_t max_bytes = kMaxBytes);
+                std::size_t max_bytes = kMaxBytes, bool with_dynamic = true);
   ~MoverTimeline();
   MoverTimeline(const MoverTimeline&) = delete;
   MoverTimeline& operator=(const MoverTimeline&) = delete;
@@ -112,6 +114,12 @@ class MoverTimeline {
   /// (more than out.size() when they did not fit; then out holds none), or -1 when [t0, t1] lies outside the
   /// timeline (every mover may be near). No allocation.
   int candidates(const Box& box, double reach, double t0, double t1, std::span<int> out) const;
+
+  /// Whether the dynamic bodies are in the queries (false: a timeline of the scripted movers, push mode).
+  bool with_dynamic() const { return with_dynamic_; }
+  /// The movers' point nearest to p at t = 0, within `cap`, dynamic bodies at their start included even when
+  /// they are left out of the queries (for start checks).
+  MoverPoint nearest_at_start(const Vec3& p, double cap) const;
 
   /// nearest() and first_contact() by a visit of every mover: the reference the indexed queries must equal.
   MoverPoint nearest_scan(const Vec3& p, double t, double cap) const;
@@ -151,6 +159,9 @@ class MoverTimeline {
   std::vector<ScriptedMotion> scripted_;  ///< per mover: its path or orbit, prepared (unused for dynamic bodies)
   std::vector<int> dynamic_index_;  ///< per mover: its row among the dynamic bodies, or -1 for scripted ones
   int dynamic_ = 0;
+  bool with_dynamic_ = true;
+  std::vector<int> queried_;         ///< the movers the queries look at, ascending: leaf i of a block's index is queried_[i]
+  std::vector<Pose> start_poses_;    ///< per dynamic body, where it starts (its pose when left out)
   double duration_ = 0.0;
   int rate_hz_ = 240;
   int stride_ = 1;            ///< substeps per keyframe

@@ -25,7 +25,7 @@ nlohmann::json changed(const std::string& key, const nlohmann::json& old) {
            {"facl", "random"}, {"per-step", "per-second"}, {"azimuth", "azimuth-elevation"},
            {"toward-pursuer", "away-from-pursuer"}, {"joint", "per-angle"}, {"potential-field", "distance-only"},
            {"negate", "mirror"}, {"terminate", "penalize"}, {"chase", "facing"}, {"nearest", "assigned"},
-           {"none", "all"}, {"individual", "team"}, {"exact", "octree"}, {"co-learning", "opponent-pool"},
+           {"none", "all"}, {"individual", "team"}, {"exact", "octree"}, {"shared", "push"}, {"co-learning", "opponent-pool"},
            {"heading-change", "target-line-offset"}}) {
     for (std::size_t i = 0; i < candidates.size(); ++i)
       if (candidates[i] == text) return candidates[1 - i];
@@ -56,7 +56,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 36 + 22);  // 36 per agent, 6 game fields, 4 team fields and 12 training fields
+  EXPECT_EQ(leaves, 2 * 36 + 23);  // 36 per agent, 7 game fields, 4 team fields and 12 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {

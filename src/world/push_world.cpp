@@ -1,0 +1,115 @@
+#include "world/push_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cassert>
+#include <limits>
+
+#include "world/arena.hpp"
+
+namespace peg3d::world {
+
+PushWorld::PushWorld(const Arena& arena, int substeps)
+    : spec_(arena.map()),
+      physics_(std::make_unique<BodyPhysics>(arena.map(), arena.physics_shapes(), arena.map().movers, true)),
+      substeps_(substeps),
+      h_(1.0 / arena.map().physics.rate_hz) {
+  // The sensor can overlap at most every dynamic body: sized once, no step allocates.
+  std::size_t dynamic = 0;
+  for (const MoverSpec& m : spec_.movers) dynamic += !m.kinematic();
+  near_.resize(std::max<std::size_t>(1, dynamic));
+  candidates_.reserve(dynamic);
+}
+
+void PushWorld::add_agent(double radius, const Vec3& at) {
+  physics_->add_agent(radius, at, kSensorReach);
+  radius_.push_back(radius);
+  in_world_.push_back(true);
+  stopped_.push_back(false);
+  pushed_.reserve(in_world_.size() * near_.size());
+}
+
+void PushWorld::remove_agent(int i) {
+  if (!in_world_[std::size_t(i)]) return;
+  physics_->remove_agent(i);
+  in_world_[std::size_t(i)] = false;
+}
+
+void PushWorld::advance(std::span<const Vec3> from, std::span<Vec3> to, std::vector<BodyTouch>& touches) {
+  const int n = static_cast<int>(radius_.size());
+  assert(static_cast<int>(from.size()) == n && static_cast<int>(to.size()) == n);
+  const std::size_t first_touch = touches.size();
+  pushed_.clear();
+  for (int i = 0; i < n; ++i) stopped_[std::size_t(i)] = false;
+  const int movers = static_cast<int>(spec_.movers.size());
+  for (int j = 1; j <= substeps_; ++j) {
+    const double s = static_cast<double>(j) / substeps_;
+    for (int i = 0; i < n; ++i) {
+      if (!in_world_[std::size_t(i)] || stopped_[std::size_t(i)]) continue;
+      physics_->move_agent(i, from[std::size_t(i)] + s * (to[std::size_t(i)] - from[std::size_t(i)]));
+    }
+    ++substep_;
+    physics_->step(static_cast<double>(substep_) * h_, h_);
+    for (int i = 0; i < n; ++i) {
+      if (!in_world_[std::size_t(i)] || stopped_[std::size_t(i)]) continue;
+      const int count = physics_->bodies_near_agent(i, near_);
+      assert(count <= static_cast<int>(near_.size()));
+      const Vec3 c = from[std::size_t(i)] + s * (to[std::size_t(i)] - from[std::size_t(i)]);
+      // Bullet's contacts act a substep ahead (the solver lets a gap close by no more than it is): a body within
+      // the agent's travel of a substep is touched.
+      const double reach = kTouchTolerance + (to[std::size_t(i)] - from[std::size_t(i)]).norm() / substeps_;
+      for (int q = 0; q < count; ++q) {
+        const int m = near_[std::size_t(q)];
+        const MoverSpec& spec = spec_.movers[std::size_t(m)];
+        const Pose at = physics_->pose(std::size_t(m));
+        const double gap = signed_distance(spec.shape, at, c) - radius_[std::size_t(i)];
+        if (gap > reach) continue;
+        const bool solid = spec.dynamic.touch == DynamicMotion::Touch::kSolid;
+        if (!solid) {
+          const int key = i * movers + m;
+          if (std::find(pushed_.begin(), pushed_.end(), key) != pushed_.end()) continue;
+          pushed_.push_back(key);
+        }
+        const ShapePoint sp = nearest_on_shape(spec.shape, at, c);
+        Vec3 normal = c - sp.point;
+        if (normal.norm() == 0.0) normal = c - at.position;
+        normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
+        touches.push_back({i, m, solid, s, sp.distance > 0.0 ? sp.point : Vec3(c - radius_[std::size_t(i)] * normal),
+                           normal, std::max(0.0, -gap)});
+        if (solid) {
+          // It stops where it stood a substep earlier, apart from the body, and stays there for the step.
+          const double back = static_cast<double>(j - 1) / substeps_;
+          to[std::size_t(i)] = from[std::size_t(i)] + back * (to[std::size_t(i)] - from[std::size_t(i)]);
+          physics_->move_agent(i, to[std::size_t(i)]);
+          stopped_[std::size_t(i)] = true;
+          break;
+        }
+      }
+    }
+  }
+  // Agents in index order, each in time order (found substep by substep, agent by agent).
+  std::stable_sort(touches.begin() + std::ptrdiff_t(first_touch), touches.end(),
+                   [](const BodyTouch& a, const BodyTouch& b) { return a.agent < b.agent; });
+}
+
+MoverPoint PushWorld::nearest(const Vec3& p, double cap) const {
+  MoverPoint best;
+  best.distance = cap;
+  candidates_.clear();
+  const Box box = std::isfinite(cap) ? Box{p.array() - cap, p.array() + cap} : spec_.bounds;
+  physics_->bodies_in(box, candidates_);
+  for (const int m : candidates_) {
+    const MoverSpec& spec = spec_.movers[std::size_t(m)];
+    const Pose at = physics_->pose(std::size_t(m));
+    if ((p - at.position).norm() - spec.shape.bounding_radius() > best.distance) continue;
+    const ShapePoint s = nearest_on_shape(spec.shape, at, p);
+    if (s.distance < best.distance || (best.mover >= 0 && s.distance == best.distance && m < best.mover)) {
+      best = {m, s.distance, s.point};
+    }
+  }
+  return best;
+}
+
+Pose PushWorld::pose(int m) const { return physics_->pose(std::size_t(m)); }
+
+}  // namespace peg3d::world
