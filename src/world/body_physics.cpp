@@ -192,11 +192,11 @@ struct BodyPhysics::Impl {
 
   void step(double t_next, double h) {
     if (still) return;
-    bool kinematic = !agents.empty(), awake = false;
+    bool kinematic = !agents.empty(), scripted = false, awake = false;
     for (Mover& m : movers_) {
       if (m.spec->kinematic()) {
         m.state->setWorldTransform(bt(m.motion.pose(t_next)));
-        kinematic = true;
+        kinematic = scripted = true;
       } else {
         awake = awake || m.body->getActivationState() != ISLAND_SLEEPING;
       }
@@ -205,7 +205,42 @@ struct BodyPhysics::Impl {
       still = true;
       return;
     }
+    if (!scripted && !awake && !agents.empty() && !agent_near_body()) {
+      // Every body sleeps and no agent comes near one: a step would change nothing but the agents' places.
+      for (Agent& a : agents) {
+        if (!a.in_world) continue;
+        btTransform t;
+        a.state->getWorldTransform(t);
+        a.body->setWorldTransform(t);
+        a.body->setInterpolationWorldTransform(t);  // the next step's velocity is that substep's move alone
+        a.sensor->setWorldTransform(t);
+      }
+      return;
+    }
     world.stepSimulation(h, 1, h);
+  }
+
+  // Whether any agent's sensor, where it is about to be, overlaps a dynamic body's bounds.
+  bool agent_near_body() {
+    struct Any : btBroadphaseAabbCallback {
+      bool found = false;
+      bool process(const btBroadphaseProxy* proxy) override {
+        const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+        if (object->getUserIndex() >= 0 && !object->isStaticOrKinematicObject()) found = true;
+        return !found;
+      }
+    };
+    for (const Agent& a : agents) {
+      if (!a.in_world) continue;
+      btTransform t;
+      a.state->getWorldTransform(t);
+      btVector3 lo, hi;
+      a.sensor_shape->getAabb(t, lo, hi);
+      Any any;
+      broadphase.aabbTest(lo, hi, any);
+      if (any.found) return true;
+    }
+    return false;
   }
 
   std::shared_ptr<const StaticPhysicsShapes> statics;
