@@ -572,24 +572,71 @@
 
     // --- moving obstacles
     var moverMat = new THREE.MeshPhongMaterial({ color: 0xa77bd6, shininess: 25 });
+    // Every mover's vertices in one buffer, placed on the CPU each frame: one draw call however many movers
+    // there are (software WebGL spends tens of microseconds per draw or instance; a JavaScript loop over the
+    // vertices costs less).
+    var moverTemplates = {
+      sphere: new THREE.SphereBufferGeometry(1, 16, 10),
+      cylinder: unitCylinder,
+      box: new THREE.BoxBufferGeometry(1, 1, 1)
+    };
+    var moverVertices = 0, moverIndices = 0;
     var movers = R.movers.map(function (m) {
-      var geom, scale = new THREE.Vector3(1, 1, 1);
-      if (m.shape === 'box') {
-        geom = new THREE.BoxBufferGeometry(Math.max(m.size[0], TINY), Math.max(m.size[1], TINY), Math.max(m.size[2], TINY));
-      } else if (m.shape === 'cylinder') {
-        geom = unitCylinder;
+      var kind = m.shape === 'box' || m.shape === 'cylinder' ? m.shape : 'sphere';
+      var scale = new THREE.Vector3(1, 1, 1);
+      if (kind === 'box') {
+        scale.set(Math.max(m.size[0], TINY), Math.max(m.size[1], TINY), Math.max(m.size[2], TINY));
+      } else if (kind === 'cylinder') {
         scale.set(clampScale(m.radius), clampScale(m.radius), clampScale(m.height));
       } else {
-        geom = unitSphere;
         scale.setScalar(clampScale(m.radius));
       }
-      var obj = new THREE.Mesh(geom, moverMat);
-      obj.scale.copy(scale);
-      var count = (m.poses.length / 7) | 0;
-      obj.visible = count > 0;
-      layerGroups.movers.add(obj);
-      return { obj: obj, poses: m.poses, count: count };
+      var t = moverTemplates[kind];
+      var entry = { template: t, first: moverVertices, scale: scale, poses: m.poses, count: (m.poses.length / 7) | 0 };
+      moverVertices += t.attributes.position.count;
+      moverIndices += t.index.count;
+      return entry;
     });
+    var moverPos = new Float32Array(3 * moverVertices), moverNrm = new Float32Array(3 * moverVertices);
+    var moverIdx = moverVertices > 65535 ? new Uint32Array(moverIndices) : new Uint16Array(moverIndices);
+    (function () {
+      var k = 0;
+      movers.forEach(function (m) {
+        var idx = m.template.index.array;
+        for (var i = 0; i < idx.length; ++i) moverIdx[k++] = idx[i] + m.first;
+      });
+    })();
+    var moverGeom = new THREE.BufferGeometry();
+    moverGeom.setAttribute('position', new THREE.BufferAttribute(moverPos, 3).setUsage(THREE.DynamicDrawUsage));
+    moverGeom.setAttribute('normal', new THREE.BufferAttribute(moverNrm, 3).setUsage(THREE.DynamicDrawUsage));
+    moverGeom.setIndex(new THREE.BufferAttribute(moverIdx, 1));
+    var moverMesh = new THREE.Mesh(moverGeom, moverMat);
+    moverMesh.frustumCulled = false;  // the movers spread over the arena and move
+    layerGroups.movers.add(moverMesh);
+    var moverMatrix = new THREE.Matrix4(), hiddenScale = new THREE.Vector3(TINY, TINY, TINY);
+    // Writes mover m's vertices at its pose (normals rotated only: the shapes' scalings keep their face
+    // directions); a mover without a finite pose shrinks out of sight.
+    function placeMover(m, position, quaternion, visible) {
+      moverMatrix.compose(position, quaternion, visible ? m.scale : hiddenScale);
+      var e = moverMatrix.elements;
+      var tp = m.template.attributes.position.array, tn = m.template.attributes.normal.array;
+      var qx = quaternion.x, qy = quaternion.y, qz = quaternion.z, qw = quaternion.w;
+      for (var i = 0, o = 3 * m.first; i < tp.length; i += 3, o += 3) {
+        var x = tp[i], y = tp[i + 1], z = tp[i + 2];
+        moverPos[o] = e[0] * x + e[4] * y + e[8] * z + e[12];
+        moverPos[o + 1] = e[1] * x + e[5] * y + e[9] * z + e[13];
+        moverPos[o + 2] = e[2] * x + e[6] * y + e[10] * z + e[14];
+        // n' = q n q*, expanded
+        var nx = tn[i], ny = tn[i + 1], nz = tn[i + 2];
+        var ix = qw * nx + qy * nz - qz * ny, iy = qw * ny + qz * nx - qx * nz;
+        var iz = qw * nz + qx * ny - qy * nx, iw = -qx * nx - qy * ny - qz * nz;
+        moverNrm[o] = ix * qw + iw * -qx + iy * -qz - iz * -qy;
+        moverNrm[o + 1] = iy * qw + iw * -qy + iz * -qx - ix * -qz;
+        moverNrm[o + 2] = iz * qw + iw * -qz + ix * -qy - iy * -qx;
+      }
+    }
+    var origin = new THREE.Vector3(), identity = new THREE.Quaternion();
+    movers.forEach(function (m) { placeMover(m, origin, identity, false); });
 
     // --- agents: body, screen-size dot, heading arrow, trail, capture sphere, obstacle vector
     var maxRadius = agents.reduce(function (r, a) { return Math.max(r, a.radius); }, 0);
@@ -865,10 +912,10 @@
           readQuat(p, smp.s2, qb);
           qa.slerp(qb, smp.u);
         }
-        m.obj.visible = finite3(tmpA);
-        m.obj.position.copy(tmpA);
-        m.obj.quaternion.copy(qa);
+        placeMover(m, tmpA, qa, finite3(tmpA));
       });
+      moverGeom.attributes.position.needsUpdate = true;
+      moverGeom.attributes.normal.needsUpdate = true;
 
       // Pair geometry: the sample in force (no interpolation, so it matches the recorded value).
       apoSphere.visible = false;
