@@ -87,9 +87,11 @@ void PushWorld::advance(std::span<const Vec3> from, std::span<Vec3> to, std::vec
       }
     }
   }
-  // Agents in index order, each in time order (found substep by substep, agent by agent).
-  std::stable_sort(touches.begin() + std::ptrdiff_t(first_touch), touches.end(),
-                   [](const BodyTouch& a, const BodyTouch& b) { return a.agent < b.agent; });
+  // Agents in index order, each in time order (found substep by substep, agent by agent): a stable insertion
+  // sort, as std::stable_sort may allocate its buffer and a step allocates nothing.
+  for (std::size_t k = first_touch + 1; k < touches.size(); ++k) {
+    for (std::size_t j = k; j > first_touch && touches[j - 1].agent > touches[j].agent; --j) std::swap(touches[j - 1], touches[j]);
+  }
 }
 
 MoverPoint PushWorld::nearest(const Vec3& p, double cap) const {

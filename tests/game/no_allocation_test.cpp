@@ -5,6 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <LinearMath/btAlignedAllocator.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+
 #include "../support/counting_new.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
@@ -62,6 +68,59 @@ TEST(GameNoAllocation, MovingObstacleMapsTrainingAndEvaluation) {
 TEST(GameNoAllocation, TeamsTrainingAndEvaluation) {
   expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kNone);
   expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kAll);
+}
+
+}  // namespace
+}  // namespace peg3d::game
+
+namespace peg3d::game {
+namespace {
+
+std::atomic<long> g_bullet_allocations{0};
+void* counting_bullet_alloc(std::size_t n) {
+  ++g_bullet_allocations;
+  return std::malloc(n);
+}
+void bullet_free(void* p) { std::free(p); }
+
+// Push mode: reset() builds the run's Bullet world (allocating); once warm, every step() after it makes no
+// allocation of its own (events, touches and scratch are sized by reset). Bullet's allocator is counted apart: its pair cache
+// and contact pools grow as new pairs appear in a fresh world, so it may allocate during the first contacts.
+TEST(GameNoAllocation, PushModeSteps) {
+  const auto arena =
+      world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/tests/collision/maps/push.yaml"));
+  GameConfig c = preset("peg3d");
+  c.mover_dynamics = MoverDynamics::kPush;
+  c.collision = CollisionMode::kPenalize;
+  c.time_limit = 10.0;
+  c.evader.speed = 0.0;
+  c.pursuer.guard.enabled = c.evader.guard.enabled = false;  // drive straight into the bodies
+  c.pursuer.motion_space = false;
+  const Sim sim(arena, c);
+  SimState st(sim);
+  btAlignedAllocSetCustom(counting_bullet_alloc, bullet_free);
+  long steps = 0, pushes = 0, collisions = 0, bullet = 0;
+  const std::array<Steering, 2> straight{};
+  // Warm-up: the shared timeline's blocks (here the scripted movers', none) are built on the first queries.
+  reset(sim, st, *arena->map().find_scenario("ball-lane"), 7);
+  while (!st.done) step(sim, st, straight);
+  for (const char* scenario : {"ball-lane", "crate-lane", "solid-lane", "ball-lane"}) {
+    reset(sim, st, *arena->map().find_scenario(scenario), 7);
+    const long before = testing::g_allocations.load(), bullet_before = g_bullet_allocations.load();
+    while (!st.done) {
+      const StepEvents& e = step(sim, st, straight);
+      pushes += static_cast<long>(e.pushes.size());
+      collisions += static_cast<long>(e.collisions.size());
+      ++steps;
+    }
+    bullet += g_bullet_allocations.load() - bullet_before;
+    EXPECT_EQ(testing::g_allocations.load() - before, 0) << scenario << ": operator new in step()";
+  }
+  btAlignedAllocSetCustom(std::malloc, std::free);
+  EXPECT_GT(pushes, 0);
+  EXPECT_GT(collisions, 0);
+  std::printf("push mode: %ld steps, %ld pushes, %ld collisions; Bullet allocated %ld times during them\n", steps, pushes,
+              collisions, bullet);
 }
 
 }  // namespace
