@@ -87,6 +87,8 @@ void Trace::clear() {
   collisions.clear();
   captures.clear();
   pushes.clear();
+  body_poses.clear();
+  movers = 0;
 }
 
 void Trace::record(const SimState& st, bool after_step) {
@@ -110,6 +112,10 @@ void Trace::record(const SimState& st, bool after_step) {
       f.active = e.acted;  // a captured evader is shown at its capture
     }
     frames.push_back(f);
+  }
+  if (st.push) {
+    movers = st.push->movers();
+    for (int m = 0; m < movers; ++m) body_poses.push_back(st.push->pose(m));
   }
   if (after_step) {
     collisions.insert(collisions.end(), st.events.collisions.begin(), st.events.collisions.end());

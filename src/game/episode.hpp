@@ -89,6 +89,10 @@ struct Trace {
   std::vector<CollisionEvent> collisions;  ///< every collision, in order
   std::vector<CaptureEvent> captures;      ///< every capture, in order
   std::vector<PushEvent> pushes;           ///< push mode: every push, in order
+  /// Push mode: every mover's pose at every frame, frame-major (body_poses[k * movers + m]); empty otherwise
+  /// (the shared timeline has them).
+  std::vector<Pose> body_poses;
+  int movers = 0;                          ///< movers per frame of body_poses
 
   void reserve(int max_steps, int agent_count);
   void clear();

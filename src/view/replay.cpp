@@ -181,7 +181,9 @@ void mover_poses(nlohmann::json& j, const world::MoverTimeline& movers, const ga
     std::vector<float> poses;
     poses.reserve(samples.size() * 7);
     for (std::uint32_t k : samples) {
-      const Pose p = movers.pose(m, trace.times[k]);
+      // A push-mode run moved the bodies itself: the trace has their poses.
+      const Pose p = trace.movers > 0 ? trace.body_poses[std::size_t(k) * std::size_t(trace.movers) + std::size_t(m)]
+                                      : movers.pose(m, trace.times[k]);
       push(poses, p.position);
       for (double q : {p.orientation.x(), p.orientation.y(), p.orientation.z(), p.orientation.w()}) {
         poses.push_back(float(q));

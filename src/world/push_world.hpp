@@ -64,6 +64,7 @@ class PushWorld {
   /// Where mover m is now (dynamic bodies as simulated; scripted ones at the current time).
   Pose pose(int m) const;
   int substeps_done() const { return static_cast<int>(substep_); }
+  int movers() const { return static_cast<int>(spec_.movers.size()); }
 
  private:
   const MapSpec& spec_;

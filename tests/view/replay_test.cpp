@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "game/episode.hpp"
+#include "world/map_loader.hpp"
 #include "geometry/angles.hpp"
 #include "test_arena.hpp"
 #include "world_test_support.hpp"
@@ -224,6 +225,43 @@ TEST(ViewReplayScene, HoldsTheMapsObstaclesAndItsTerrainInWorldCoordinates) {
   ASSERT_EQ(positions.size(), arena->meshes()[0].vertices.size() * 3);
   EXPECT_EQ(positions[0], float(arena->meshes()[0].vertices[0].x()));
   EXPECT_EQ(scene.drawn_triangles(), arena->meshes()[0].triangle_count());
+}
+
+}  // namespace
+}  // namespace peg3d::view
+
+namespace peg3d::view {
+namespace {
+
+// Push mode: the run moved the bodies itself, so the replay draws them from the trace (the crate pushed along
+// +x by the pursuer), not from the shared timeline (where it would stand at its start).
+TEST(ViewReplay, PushModeBodiesMoveAsTheRunPushedThem) {
+  const auto arena = world::Arena::build(
+      world::load_map(std::string(PEG3D_SOURCE_DIR) + "/tests/collision/maps/push.yaml"));
+  game::GameConfig c = game::preset("peg3d");
+  c.mover_dynamics = game::MoverDynamics::kPush;
+  c.collision = game::CollisionMode::kPenalize;
+  c.pursuer.guard.enabled = c.evader.guard.enabled = false;
+  c.pursuer.motion_space = false;
+  c.evader.speed = 0.0;
+  c.time_limit = 8.0;
+  const game::Sim sim(arena, c);
+  game::SimState st(sim);
+  game::reset(sim, st, *arena->map().find_scenario("crate-lane"), 1);
+  game::Trace trace;
+  trace.record(st, false);
+  const std::array<Steering, 2> straight{};
+  while (!st.done) {
+    game::step(sim, st, straight);
+    trace.record(st, true);
+  }
+  ASSERT_EQ(trace.movers, 3);
+  const nlohmann::json j = replay_json(ReplayScene(*arena), sim, trace, {});
+  const auto poses = series<float>(j.at("movers")[1].at("poses_f32"));
+  ASSERT_GE(poses.size(), 14u);
+  EXPECT_NEAR(poses[0], 8.0, 0.05);                  // the crate starts at x = 8
+  EXPECT_GT(poses[poses.size() - 7], 11.0);         // and ends pushed ahead of the pursuer
+  EXPECT_NEAR(series<float>(j.at("movers")[2].at("poses_f32")).back(), 1.0, 0.05);  // the solid crate's w stays ~1
 }
 
 }  // namespace
