@@ -46,17 +46,20 @@ void check_start(const world::Arena& arena, const GameConfig& g, const world::Mo
       int n = movers->candidates({p, p}, radius, 0.0, 0.0, near);
       const bool all = n < 0 || n > static_cast<int>(near.size());
       if (all) n = movers->count();
-      // Push mode leaves the dynamic bodies out of the timeline's queries: they are checked at their starts.
-      const int left_out = movers->with_dynamic() ? 0 : movers->count();
-      for (int k = 0; k < n + left_out; ++k) {
-        const int m = k >= n ? k - n : all ? k : near[std::size_t(k)];
-        if (k >= n && movers->mover(m).kinematic()) continue;
+      const auto check = [&](int m) {
         const double gap = signed_distance(movers->mover(m).shape, movers->pose(m, 0.0), p) - radius;
         if (gap < 0.0) {
           throw StartError(file, a.line, a.field.empty() ? "scenario " + s.name : a.field,
                            fmt::format("scenario '{}': the {} (radius {} m) starts overlapping {} (penetration {:.3f} m)",
                                        s.name, to_string(role), radius,
                                        world::describe_mover(movers->mover(m), m), -gap));
+        }
+      };
+      for (int k = 0; k < n; ++k) check(all ? k : near[std::size_t(k)]);
+      // Push mode leaves the dynamic bodies out of the timeline's queries: they are checked at their starts.
+      if (!movers->with_dynamic()) {
+        for (int m = 0; m < movers->count(); ++m) {
+          if (!movers->mover(m).kinematic()) check(m);
         }
       }
     }

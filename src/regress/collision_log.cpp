@@ -248,6 +248,19 @@ bool differs(double x, double y, double t) { return std::abs(x - y) > t; }
 
 using Differences = std::vector<std::string>;
 
+// What a collision event and a push have alike: the step, the time, the point and the normal.
+template <class Touch>
+void compare_touch(const std::string& where, const Touch& x, const Touch& y, const Tolerances& tol, Differences& d) {
+  if (x.step != y.step) d.push_back(fmt::format("{}: step {} -> {}", where, x.step, y.step));
+  if (differs(x.time, y.time, tol.time)) d.push_back(fmt::format("{}: time {} -> {}", where, seconds(x.time), seconds(y.time)));
+  if ((x.point - y.point).norm() > tol.length) {
+    d.push_back(fmt::format("{}: point {} -> {}", where, v3_text(x.point), v3_text(y.point)));
+  }
+  if ((x.normal - y.normal).norm() > tol.unit) {
+    d.push_back(fmt::format("{}: normal {} -> {}", where, v3_text(x.normal), v3_text(y.normal)));
+  }
+}
+
 void compare_events(const CollisionLog& e, const CollisionLog& a, const Tolerances& tol, Differences& d) {
   const std::size_t events = std::max(e.events.size(), a.events.size());
   for (std::size_t i = 0; i < events; ++i) {
@@ -265,14 +278,7 @@ void compare_events(const CollisionLog& e, const CollisionLog& a, const Toleranc
     if (x.agent != y.agent) d.push_back(fmt::format("{}: agent {} -> {}", where, x.agent, y.agent));
     if (x.hit != y.hit) d.push_back(fmt::format("{}: hit {} -> {}", where, x.hit, y.hit));
     if (x.triangle != y.triangle) d.push_back(fmt::format("{}: triangle {} -> {}", where, x.triangle, y.triangle));
-    if (x.step != y.step) d.push_back(fmt::format("{}: step {} -> {}", where, x.step, y.step));
-    if (differs(x.time, y.time, tol.time)) d.push_back(fmt::format("{}: time {} -> {}", where, seconds(x.time), seconds(y.time)));
-    if ((x.point - y.point).norm() > tol.length) {
-      d.push_back(fmt::format("{}: point {} -> {}", where, v3_text(x.point), v3_text(y.point)));
-    }
-    if ((x.normal - y.normal).norm() > tol.unit) {
-      d.push_back(fmt::format("{}: normal {} -> {}", where, v3_text(x.normal), v3_text(y.normal)));
-    }
+    compare_touch(where, x, y, tol, d);
     if (differs(x.penetration, y.penetration, tol.length)) {
       d.push_back(fmt::format("{}: penetration {} -> {}", where, metres(x.penetration), metres(y.penetration)));
     }
@@ -312,14 +318,7 @@ void compare_pushes(const CollisionLog& e, const CollisionLog& a, const Toleranc
     if (x.agent != y.agent || x.mover != y.mover) {
       d.push_back(fmt::format("{}: {} pushed mover {} -> {} pushed mover {}", where, x.agent, x.mover, y.agent, y.mover));
     }
-    if (x.step != y.step) d.push_back(fmt::format("{}: step {} -> {}", where, x.step, y.step));
-    if (differs(x.time, y.time, tol.time)) d.push_back(fmt::format("{}: time {} -> {}", where, seconds(x.time), seconds(y.time)));
-    if ((x.point - y.point).norm() > tol.length) {
-      d.push_back(fmt::format("{}: point {} -> {}", where, v3_text(x.point), v3_text(y.point)));
-    }
-    if ((x.normal - y.normal).norm() > tol.unit) {
-      d.push_back(fmt::format("{}: normal {} -> {}", where, v3_text(x.normal), v3_text(y.normal)));
-    }
+    compare_touch(where, x, y, tol, d);
   }
 }
 

@@ -106,14 +106,19 @@ class MoverTimeline::Simulation {
   std::vector<std::vector<Pose>> tracks_;  ///< per dynamic body: the keyframes of the block being built
 };
 
+std::size_t MoverTimeline::estimate(long keyframes, std::size_t blocks, std::size_t dynamic, std::size_t indexed) {
+  const std::size_t poses = dynamic * (std::size_t(keyframes) + blocks) * sizeof(Pose);
+  // Per block: the pose offsets and rest flags, the bounds of every indexed mover with its share of the tree's
+  // nodes.
+  const std::size_t per_block = sizeof(Block) + dynamic * (sizeof(std::uint32_t) + 1) + indexed * (sizeof(Box) + 24);
+  return poses + blocks * per_block;
+}
+
 std::size_t MoverTimeline::worst_case_bytes(const MapSpec& spec, double duration) {
   const Layout l = layout_of(spec.physics, duration);
   std::size_t dynamic = 0;
   for (const MoverSpec& m : spec.movers) dynamic += !m.kinematic();
-  const std::size_t poses = dynamic * (std::size_t(l.keyframes) + l.blocks) * sizeof(Pose);
-  // Per block: the pose offsets and rest flags, the bounds of every mover with its share of the tree's nodes.
-  const std::size_t per_block = sizeof(Block) + dynamic * (sizeof(std::uint32_t) + 1) + spec.movers.size() * (sizeof(Box) + 24);
-  return poses + l.blocks * per_block;
+  return estimate(l.keyframes, l.blocks, dynamic, spec.movers.size());
 }
 
 MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
@@ -137,15 +142,11 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
   }
   if (!with_dynamic_) {
     // Only the scripted movers' bounds are kept; nothing is simulated.
-    MapSpec scripted = spec;
-    scripted.movers.clear();
-    for (const MoverSpec& m : spec.movers)
-      if (m.kinematic()) scripted.movers.push_back(m);
-    worst_case_bytes_ = worst_case_bytes(scripted, duration);
-    blocks_.resize(layout_of(spec.physics, duration).blocks);
+    worst_case_bytes_ = estimate(l.keyframes, l.blocks, 0, queried_.size());
+    blocks_.resize(l.blocks);
     return;
   }
-  worst_case_bytes_ = worst_case_bytes(spec, duration);
+  worst_case_bytes_ = estimate(l.keyframes, l.blocks, std::size_t(dynamic_), movers_.size());
   if (worst_case_bytes_ > max_bytes) {
     const double per_keyframe_hz = static_cast<double>(worst_case_bytes_) / keyframes_per_s_;
     const int fits = static_cast<int>(std::floor(static_cast<double>(max_bytes) / per_keyframe_hz));
@@ -286,16 +287,26 @@ double MoverTimeline::travel_bound(int m, double t0, double t1) const {
   return bound;
 }
 
-void MoverTimeline::nearer(int m, const Vec3& p, double t, MoverPoint& best) const {
-  const MoverSpec& spec = movers_[std::size_t(m)];
-  const Pose at = pose(m, t);
+void offer_nearer(int m, const Shape& shape, const Pose& at, const Vec3& p, MoverPoint& best) {
   // Cheap rejection on the bounding ball before the exact distance. Not ">=": an equally near mover of a lower
   // index than the best one found wins the tie, as in a visit in index order.
-  if ((p - at.position).norm() - spec.shape.bounding_radius() > best.distance) return;
-  const ShapePoint s = nearest_on_shape(spec.shape, at, p);
+  if ((p - at.position).norm() - shape.bounding_radius() > best.distance) return;
+  const ShapePoint s = nearest_on_shape(shape, at, p);
   if (s.distance < best.distance || (best.mover >= 0 && s.distance == best.distance && m < best.mover)) {
     best = {m, s.distance, s.point};
   }
+}
+
+TouchPoint touch_point(const Shape& shape, const Pose& at, const Vec3& c, double radius) {
+  const ShapePoint sp = nearest_on_shape(shape, at, c);
+  Vec3 normal = c - sp.point;
+  if (normal.norm() == 0.0) normal = c - at.position;  // centre inside the shape: away from its centre
+  normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
+  return {sp.distance > 0.0 ? sp.point : Vec3(c - radius * normal), normal};
+}
+
+void MoverTimeline::nearer(int m, const Vec3& p, double t, MoverPoint& best) const {
+  offer_nearer(m, movers_[std::size_t(m)].shape, pose(m, t), p, best);
 }
 
 MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
@@ -370,15 +381,12 @@ void MoverTimeline::contact_with(int m, const Vec3& from, const Vec3& to, double
     const double signed_gap = signed_distance(spec.shape, at, c) - radius;
     if (signed_gap <= kContactTolerance) {
       if (best && best->fraction <= s) return;
-      const ShapePoint sp = nearest_on_shape(spec.shape, at, c);
-      Vec3 normal = c - sp.point;
-      if (normal.norm() == 0.0) normal = c - at.position;  // centre inside the shape: away from its centre
-      normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
+      const TouchPoint tp = touch_point(spec.shape, at, c, radius);
       MoverContact contact;
       contact.mover = m;
       contact.fraction = s;
-      contact.point = sp.distance > 0.0 ? sp.point : Vec3(c - radius * normal);
-      contact.normal = normal;
+      contact.point = tp.point;
+      contact.normal = tp.normal;
       contact.penetration = s == 0.0 ? std::max(0.0, -signed_gap) : 0.0;
       best = contact;
       return;

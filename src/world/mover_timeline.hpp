@@ -45,6 +45,19 @@ struct MoverPoint {
   Vec3 point = Vec3::Zero();  ///< the mover's point nearest to the query
 };
 
+/// Makes mover m (of `shape`, posed at `at`) the `best` answer of a nearest-mover query at p when it is nearer
+/// (the lower index among equally near ones); a bounding-ball test first spares the exact distance of the far.
+void offer_nearer(int m, const Shape& shape, const Pose& at, const Vec3& p, MoverPoint& best);
+
+/// Where a sphere of `radius` centred at c touches a posed shape: the shape's point nearest c (or, with c on or
+/// inside the shape, the sphere's point along the normal) and the unit normal from the shape towards c (away
+/// from the shape's centre when c lies on or inside it; +z when they coincide).
+struct TouchPoint {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+};
+TouchPoint touch_point(const Shape& shape, const Pose& at, const Vec3& c, double radius);
+
 /// The first touch of an agent's sphere with a mover during one step.
 struct MoverContact {
   int mover = -1;
@@ -140,6 +153,10 @@ class MoverTimeline {
  private:
   struct Block;
   class Simulation;
+
+  /// The worst-case bytes of `keyframes` keyframes in `blocks` blocks of `dynamic` bodies, with `indexed` movers
+  /// in each block's index.
+  static std::size_t estimate(long keyframes, std::size_t blocks, std::size_t dynamic, std::size_t indexed);
 
   /// Block b, simulated first when it is not yet.
   const Block& block(std::size_t b) const;

@@ -70,12 +70,8 @@ void PushWorld::advance(std::span<const Vec3> from, std::span<Vec3> to, std::vec
           if (std::find(pushed_.begin(), pushed_.end(), key) != pushed_.end()) continue;
           pushed_.push_back(key);
         }
-        const ShapePoint sp = nearest_on_shape(spec.shape, at, c);
-        Vec3 normal = c - sp.point;
-        if (normal.norm() == 0.0) normal = c - at.position;
-        normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
-        touches.push_back({i, m, solid, s, sp.distance > 0.0 ? sp.point : Vec3(c - radius_[std::size_t(i)] * normal),
-                           normal, std::max(0.0, -gap)});
+        const TouchPoint tp = touch_point(spec.shape, at, c, radius_[std::size_t(i)]);
+        touches.push_back({i, m, solid, s, tp.point, tp.normal, std::max(0.0, -gap)});
         if (solid) {
           // It stops where it stood a substep earlier, apart from the body, and stays there for the step.
           const double back = static_cast<double>(j - 1) / substeps_;
@@ -100,15 +96,7 @@ MoverPoint PushWorld::nearest(const Vec3& p, double cap) const {
   candidates_.clear();
   const Box box = std::isfinite(cap) ? Box{p.array() - cap, p.array() + cap} : spec_.bounds;
   physics_->bodies_in(box, candidates_);
-  for (const int m : candidates_) {
-    const MoverSpec& spec = spec_.movers[std::size_t(m)];
-    const Pose at = physics_->pose(std::size_t(m));
-    if ((p - at.position).norm() - spec.shape.bounding_radius() > best.distance) continue;
-    const ShapePoint s = nearest_on_shape(spec.shape, at, p);
-    if (s.distance < best.distance || (best.mover >= 0 && s.distance == best.distance && m < best.mover)) {
-      best = {m, s.distance, s.point};
-    }
-  }
+  for (const int m : candidates_) offer_nearer(m, spec_.movers[std::size_t(m)].shape, physics_->pose(std::size_t(m)), p, best);
   return best;
 }
 
