@@ -47,13 +47,35 @@ inline Heading heading_of(const Vec3& d) {
   return {horizontal > 0.0 ? std::atan2(d.y(), d.x()) : 0.0, std::atan2(horizontal, d.z())};
 }
 
+/// cos(x) for x in [0, pi] to within 1e-11, by a polynomial: for decisions taken with a margin far wider than
+/// that (cosine tests that fall back to the exact angle near the boundary), never as a value.
+inline double rough_cos(double x) {
+  // cos(x) = -sin(u) with u = x - pi/2 in [-pi/2, pi/2]: Taylor to u^15, whose remainder is below
+  // (pi/2)^17 / 17! = 6.2e-12.
+  const double u = x - 0.5 * kPi, v = u * u;
+  double p = -1.0 / 1307674368000.0;
+  for (const double c : {1.0 / 6227020800.0, -1.0 / 39916800.0, 1.0 / 362880.0, -1.0 / 5040.0, 1.0 / 120.0,
+                         -1.0 / 6.0, 1.0}) {
+    p = p * v + c;
+  }
+  return -u * p;
+}
+
 /// Whether a polar angle keeps the climb limit: theta within [polar_margin, pi - polar_margin]
 /// (SteeringConfig::polar_margin).
 inline bool within_climb_limit(double theta, double polar_margin) {
   return theta >= polar_margin && theta <= kPi - polar_margin;
 }
-/// Whether a non-zero direction keeps the climb limit.
+/// Whether a non-zero direction keeps the climb limit: within_climb_limit(heading_of(d).theta), the same answer.
 inline bool within_climb_limit(const Vec3& d, double polar_margin) {
+  // |cos theta| = |z| / |d| against cos(polar_margin) decides all but the directions within about 1e-9 rad of
+  // the limit (theta moves at least as much as its cosine); those take the exact polar angle.
+  const double n2 = d.squaredNorm();
+  if (n2 > 0.0 && std::isfinite(n2) && polar_margin >= 0.0 && polar_margin < 0.5 * kPi) {
+    const double c = std::abs(d.z()) / std::sqrt(n2), limit = rough_cos(polar_margin);
+    if (c < limit - 1e-9) return true;
+    if (c > limit + 1e-9) return false;
+  }
   return within_climb_limit(heading_of(d).theta, polar_margin);
 }
 

@@ -9,7 +9,20 @@
 
 namespace peg3d {
 
-bool Cone::contains(const Vec3& d, double tolerance) const { return angle_between(d, axis) <= half_angle + tolerance; }
+bool Cone::contains(const Vec3& d, double tolerance) const {
+  // cos(angle) = d . axis / (|d| |axis|) against cos(half_angle + tolerance) decides all but the directions
+  // within about 1e-9 rad of the surface, far beyond the rounding of either side; those take the exact angle
+  // (angle_between's atan2), so the answer is always angle_between(d, axis) <= half_angle + tolerance.
+  const double limit = half_angle + tolerance;
+  const double n2 = d.squaredNorm() * axis.squaredNorm();
+  const double x = d.dot(axis);
+  if (n2 > 0.0 && std::isfinite(n2) && limit > 0.0 && limit < kPi) {
+    const double c = x / std::sqrt(n2), cl = rough_cos(limit);
+    if (c > cl + 1e-9) return true;
+    if (c < cl - 1e-9) return false;
+  }
+  return std::atan2(d.cross(axis).norm(), x) <= limit;
+}
 
 ConeMembership::ConeMembership(const Cone& cone, double tolerance)
     : cone_(cone), tolerance_(tolerance), cos_limit_(std::cos(cone.half_angle + tolerance)) {}
@@ -31,7 +44,7 @@ Vec3 Cone::project(const Vec3& d) const { return project(d, Vec3::Zero(), 0.0); 
 
 Vec3 Cone::project(const Vec3& d, const Vec3& hint, double commit_angle) const {
   const Vec3 u = d.normalized();
-  if (angle_between(u, axis) <= half_angle) return u;
+  if (contains(u, 0.0)) return u;
   const auto perpendicular = [&](const Vec3& v) { return Vec3(v - v.dot(axis) * axis); };
   Vec3 w = perpendicular(u);
   if (commit_angle > 0.0 && angle_between(u, -axis) < commit_angle && perpendicular(hint).norm() > 1e-6) {
@@ -80,6 +93,11 @@ double search_crossing(const ConeMembership& inside, const Point& point, std::op
   double lo = 0.0, hi = 1.0;
   int halvings = 40;
   if (guess && inside(point(1.0))) {
+    // The guess is usually right to the last grid step: the two points of the 2^-40 grid around it settle
+    // the whole search (the same hi as the halvings, which end on that grid).
+    constexpr double kFine = 0x1p40;
+    const double fl = std::floor(*guess * kFine) / kFine, fh = fl + 1.0 / kFine;
+    if (fl >= 0.0 && fh <= 1.0 && !inside(point(fl)) && inside(point(fh))) return fh;
     constexpr double kCoarse = 0x1p30;
     const double l = std::floor(*guess * kCoarse) / kCoarse, h = l + 1.0 / kCoarse;
     if (l >= 0.0 && h <= 1.0 && !inside(point(l)) && inside(point(h))) lo = l, hi = h, halvings = 10;
@@ -96,8 +114,8 @@ double search_crossing(const ConeMembership& inside, const Point& point, std::op
 Vec3 project_within_band(const Cone& cone, const Vec3& d, double polar_margin, const Vec3& hint,
                          double commit_angle) {
   const Vec3 c = cone.project(d, hint, commit_angle);
+  if (within_climb_limit(c, polar_margin)) return c;
   const Heading hc = heading_of(c);
-  if (within_climb_limit(hc.theta, polar_margin)) return c;
   // Search the band's edge circle between c's azimuth and the axis's azimuth (the edge point nearest to
   // the axis) for the first direction inside the cone.
   const double edge = hc.theta < polar_margin ? polar_margin : kPi - polar_margin;

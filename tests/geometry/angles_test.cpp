@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -50,6 +51,35 @@ TEST(WrapAngle, StaysInTheHalfOpenInterval) {
   EXPECT_EQ(wrap_angle(3.0 * kPi / 2.0), -kPi / 2.0);
   EXPECT_TRUE(std::isnan(wrap_angle(std::numeric_limits<double>::infinity())));
   EXPECT_TRUE(std::isnan(wrap_angle(std::numeric_limits<double>::quiet_NaN())));
+}
+
+TEST(RoughCos, StaysWithinItsBoundOverTheHalfTurn) {
+  double worst = 0.0;
+  for (int i = 0; i <= 1000000; ++i) {
+    const double x = kPi * i / 1000000.0;
+    worst = std::max(worst, std::abs(rough_cos(x) - std::cos(x)));
+  }
+  EXPECT_LT(worst, 1e-11);
+}
+
+TEST(ClimbLimit, AVectorsAnswerIsItsPolarAnglesEverywhere) {
+  // The cosine shortcut of within_climb_limit(Vec3) against the polar angle, at random and at the limit.
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> margin(0.0, 1.5), offset_exp(-17.0, -1.0), azimuth(-kPi, kPi);
+  int near_limit = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const double m = i % 50 == 0 ? 0.0 : margin(rng);
+    Vec3 d(gauss(rng), gauss(rng), gauss(rng));
+    if (i % 2 == 0) {
+      const double pole = i % 4 == 0 ? m : kPi - m;
+      const double theta = pole + (i % 8 < 4 ? 1.0 : -1.0) * std::pow(10.0, offset_exp(rng));
+      d = direction(Heading{azimuth(rng), theta}) * std::exp(gauss(rng));
+      ++near_limit;
+    }
+    ASSERT_EQ(within_climb_limit(d, m), within_climb_limit(heading_of(d).theta, m)) << d.transpose() << ", " << m;
+  }
+  EXPECT_GT(near_limit, 100000);
 }
 
 }  // namespace
