@@ -31,6 +31,7 @@ LAYERS = {
     "regress": {"core", "geometry", "fuzzy", "world", "game", "results"},
     "experiment": {"core", "geometry", "fuzzy", "world", "game", "sweep", "results"},
     "view": {"core", "geometry", "fuzzy", "world", "game"},
+    "env": {"core", "geometry", "fuzzy", "world", "game"},
 }
 SOURCE_EXTENSIONS = (".cpp", ".hpp", ".hpp.in")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.MULTILINE)

@@ -3,6 +3,9 @@
 // playing the map's scenarios in turn as a trial does, with learning, collisions and distance queries on.
 // Prints one JSON object on stdout.
 //   peg-throughput [--map MAP] [--steps N] [--threads T] [--config C] [--set k=v]... [--no-breakdown]
+//   peg-throughput --actions random [--games N] ...: the env-only work of the Python vector env (env/batch.hpp):
+//     N games stepped together on T threads with uniform random steering within the bound, no learning, no
+//     breakdown; the figure to hold python/bench_vector_env.py against (docs/performance.md).
 // Two passes: the headline pass runs without the breakdown; a second pass of the same length records the
 // time of each part (StepProfile, a few nanoseconds per part) and reports it per step, with what that
 // recording cost.
@@ -21,6 +24,7 @@
 #include "cli_common.hpp"
 #include "core/random.hpp"
 #include "core/step_profile.hpp"
+#include "env/batch.hpp"
 #include "game/config_file.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
@@ -72,6 +76,34 @@ Pass run_pass(const game::Sim& sim, long long steps, int threads, bool profiled)
   return total;
 }
 
+// The batch of `games` games stepped with uniform random steering until `steps` env steps are made; returns the
+// seconds of the stepping (the actions' drawing included, as the Python benchmark draws its own).
+Pass run_random_batch(std::shared_ptr<const game::Sim> sim, long long steps, int games, int threads) {
+  env::BatchSettings settings;
+  settings.games = games;
+  settings.threads = threads;
+  settings.seed = 1;
+  env::Batch batch(std::move(sim), settings);
+  const double bound = batch.action_bound(game::Role::kPursuer);
+  const double evader_bound = batch.action_bound(game::Role::kEvader);
+  std::vector<double> actions(std::size_t(games) * std::size_t(batch.agents()) * 2);
+  Rng rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Pass pass;
+  const auto start = std::chrono::steady_clock::now();
+  while (pass.steps < steps) {
+    for (std::size_t k = 0; k < actions.size(); ++k) {
+      const bool pursuer = int(k / 2 % std::size_t(batch.agents())) < batch.pursuers();
+      actions[k] = unit(rng) * (pursuer ? bound : evader_bound);
+    }
+    batch.step(actions.data());
+    pass.steps += games;
+    pass.agent_steps += static_cast<long long>(games) * batch.agents();
+  }
+  pass.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return pass;
+}
+
 // Nanoseconds per time-stamp-counter tick, against the steady clock over a short sleep.
 double ns_per_tick() {
   const auto c0 = std::chrono::steady_clock::now();
@@ -92,6 +124,8 @@ int main(int argc, char** argv) {
   std::string config_source = "peg3d";
   std::vector<std::string> sets;
   bool breakdown = true, no_cache = false;
+  std::string actions = "policies";
+  int games = 256;
   app.add_option("--map", map, "the map")->capture_default_str();
   app.add_option("--steps", steps, "training steps per pass, over all threads")->capture_default_str()->check(CLI::Range(1LL, 1'000'000'000'000LL));
   app.add_option("--threads", threads, "threads, each with its own learners")->capture_default_str()->check(CLI::Range(1, 256));
@@ -99,6 +133,9 @@ int main(int argc, char** argv) {
   app.add_option("--set", sets, "configuration overrides, key=value (repeatable)");
   app.add_flag("!--no-breakdown", breakdown, "skip the second pass that times each part of a step");
   app.add_flag("--no-cache", no_cache, "rebuild the world instead of using the on-disk cache");
+  app.add_option("--actions", actions, "policies: the configuration's learners train; random: the vector env's env-only work")
+      ->capture_default_str()->check(CLI::IsMember({"policies", "random"}));
+  app.add_option("--games", games, "with --actions random: games stepped together")->capture_default_str()->check(CLI::Range(1, 65536));
 
   return cli::guarded_main(app, argc, argv, [&] {
     const game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), sets);
@@ -112,6 +149,15 @@ int main(int argc, char** argv) {
     const world::MapSpec& m = arena->map();
     const world::ArenaStats& stats = arena->stats();
 
+    if (actions == "random") {
+      const Pass p = run_random_batch(std::make_shared<const game::Sim>(sim), steps, games, threads);
+      nlohmann::ordered_json out{{"map", cli::resolve_input(map).string()}, {"actions", "random"}, {"games", games},
+                                 {"threads", threads}, {"config", config_source}, {"steps", p.steps},
+                                 {"seconds", p.seconds}, {"env_steps_per_s", double(p.steps) / p.seconds},
+                                 {"agent_steps_per_s", double(p.agent_steps) / p.seconds}};
+      std::puts(out.dump(2).c_str());
+      return 0;
+    }
     const Pass headline = run_pass(sim, steps, threads, false);
     nlohmann::ordered_json out{
         {"map", cli::resolve_input(map).string()},

@@ -1,0 +1,183 @@
+// peg3d._core: the C++ batch of games (env/batch.hpp) for the Python package around it (python/peg3d).
+// Thin: it loads the map and configuration as the programs do, translates peg3d::InputError into
+// peg3d.InputError (a ValueError), and shows the batch's buffers to numpy in place. Every argument the Python
+// side passes is checked here too, so that no call sequence can reach the library with a bad value.
+
+#include <Python.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "core/error.hpp"
+#include "core/hash.hpp"
+#include "env/batch.hpp"
+#include "game/config_file.hpp"
+#include "world/arena.hpp"
+#include "world/map_loader.hpp"
+
+namespace py = pybind11;
+using namespace peg3d;
+
+namespace {
+
+std::shared_ptr<const game::Sim> make_sim(const std::string& map, const std::string& config,
+                                          const std::vector<std::string>& sets, bool cache) {
+  game::GameConfig c = game::apply_game_overrides(game::load_game_config(config), sets);
+  const world::MapSpec spec = world::load_map(map);
+  world::BuildOptions options;
+  if (cache) options.cache_dir = world::default_cache_dir();
+  return std::make_shared<const game::Sim>(world::Arena::build(spec, options), std::move(c));
+}
+
+// A numpy view of `count` elements at `data`, shaped, kept alive by `owner` (the Batch's Python object).
+template <class T>
+py::array view(py::handle owner, T* data, std::vector<py::ssize_t> shape, const char* dtype = nullptr) {
+  std::vector<py::ssize_t> strides(shape.size());
+  py::ssize_t s = sizeof(T);
+  for (std::size_t k = shape.size(); k-- > 0;) strides[k] = s, s *= shape[k];
+  py::array a = dtype ? py::array(py::dtype(dtype), shape, strides, data, owner) : py::array(py::dtype::of<T>(), shape, strides, data, owner);
+  a.attr("flags").attr("writeable") = false;
+  return a;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "peg3d's C++ batch of games; use the peg3d package (parallel_env, vector_env) instead";
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(e.what());
+    }
+  });
+
+  py::class_<env::Batch>(m, "Batch")
+      .def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
+                       const std::string& scenario, int games, int threads, std::uint64_t seed, int neighbours,
+                       const std::vector<std::pair<std::string, std::string>>& controllers, bool cache) {
+             env::BatchSettings s;
+             s.games = games, s.threads = threads, s.seed = seed, s.neighbours = neighbours;
+             s.scenario = scenario;
+             s.controllers = controllers;
+             py::gil_scoped_release unlocked;  // building a world can take seconds
+             return std::make_unique<env::Batch>(make_sim(map, config, sets, cache), std::move(s));
+           }),
+           py::arg("map"), py::arg("config"), py::arg("sets"), py::arg("scenario"), py::arg("games"),
+           py::arg("threads"), py::arg("seed"), py::arg("neighbours"), py::arg("controllers"), py::arg("cache") = true)
+      .def_property_readonly("games", &env::Batch::games)
+      .def_property_readonly("agents", &env::Batch::agents)
+      .def_property_readonly("pursuers", &env::Batch::pursuers)
+      .def_property_readonly("observation_size", &env::Batch::observation_size)
+      .def_property_readonly("agent_names", &env::Batch::agent_names)
+      .def_property_readonly("global_state_size", &env::Batch::global_state_size)
+      .def_property_readonly("dt", [](const env::Batch& b) { return b.sim().config().dt; })
+      .def_property_readonly("max_steps", [](const env::Batch& b) { return b.sim().max_steps(); })
+      .def_property_readonly("map_name", [](const env::Batch& b) { return b.sim().arena().map().name; })
+      .def("controlled", [](const env::Batch& b, int i) {
+        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
+        return b.controlled(i);
+      })
+      .def("observation_bounds", [](const env::Batch& b, bool pursuer) {
+        const env::ObservationBounds o = b.observation_bounds(pursuer ? game::Role::kPursuer : game::Role::kEvader);
+        return py::make_tuple(py::array_t<float>(py::ssize_t(o.low.size()), o.low.data()),
+                              py::array_t<float>(py::ssize_t(o.high.size()), o.high.data()));
+      })
+      .def("action_bound", [](const env::Batch& b, bool pursuer) {
+        return b.action_bound(pursuer ? game::Role::kPursuer : game::Role::kEvader);
+      })
+      .def("reset", [](env::Batch& b, std::optional<std::uint64_t> seed) {
+        py::gil_scoped_release unlocked;
+        b.reset(seed);
+      }, py::arg("seed") = py::none())
+      .def("check_actions", [](const env::Batch& b, py::array_t<double, py::array::c_style | py::array::forcecast> a) {
+        if (a.ndim() != 3 || a.shape(0) != b.games() || a.shape(1) != b.agents() || a.shape(2) != 2) {
+          throw py::value_error("actions must have the shape (games, agents, 2)");
+        }
+        return b.check_actions(a.data());
+      })
+      .def("step", [](env::Batch& b, py::array_t<double, py::array::c_style | py::array::forcecast> a) {
+        if (a.ndim() != 3 || a.shape(0) != b.games() || a.shape(1) != b.agents() || a.shape(2) != 2) {
+          throw py::value_error("actions must have the shape (games, agents, 2)");
+        }
+        if (const auto bad = b.check_actions(a.data())) {
+          throw py::value_error("game " + std::to_string(bad->first) + ", " + b.agent_names()[std::size_t(bad->second)] +
+                                ": the action is not finite");
+        }
+        {
+          py::gil_scoped_release unlocked;
+          b.step(a.data());
+        }
+        // Ctrl-C during the step: the signal handler ran while the GIL was released; raise it now.
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      })
+      .def_property_readonly("observations", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.observations(), {b.games(), b.agents(), b.observation_size()});
+      })
+      .def_property_readonly("rewards", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.rewards(), {b.games(), b.agents()});
+      })
+      .def_property_readonly("reward_terms", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.reward_terms(), {b.games(), b.agents(), 3});
+      })
+      .def_property_readonly("terminated", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.terminated(), {b.games(), b.agents()}, "bool");
+      })
+      .def_property_readonly("truncated", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.truncated(), {b.games(), b.agents()}, "bool");
+      })
+      .def_property_readonly("acted", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.acted(), {b.games(), b.agents()}, "bool");
+      })
+      .def_property_readonly("active", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.active(), {b.games(), b.agents()}, "bool");
+      })
+      .def_property_readonly("collided", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.collided(), {b.games(), b.agents()}, "bool");
+      })
+      .def_property_readonly("captured", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.captured(), {b.games(), b.agents()}, "bool");
+      })
+      .def_property_readonly("reset_flags", [](py::object self) {
+        env::Batch& b = self.cast<env::Batch&>();
+        return view(self, b.reset_flags(), {b.games()}, "bool");
+      })
+      .def("global_state", [](const env::Batch& b, int g) {
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        const std::vector<float> s = b.global_state(g);
+        return py::array_t<float>(py::ssize_t(s.size()), s.data());
+      })
+      .def("episode", [](const env::Batch& b, int g) {
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        return b.episode(g);
+      })
+      .def("game_info", [](const env::Batch& b, int g) {
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        const game::SimState& st = b.state(g);
+        py::dict d;
+        d["step"] = st.step;
+        d["time"] = st.time;
+        d["done"] = st.done;
+        d["outcome"] = st.done ? std::string(game::to_string(st.outcome)) : std::string();
+        d["collisions"] = st.collisions;
+        d["free_evaders"] = st.free_evaders;
+        return d;
+      });
+}

@@ -1,0 +1,120 @@
+"""peg3d.parallel_env: one game with PettingZoo's ParallelEnv API."""
+
+import numpy as np
+
+from . import _loading
+
+REWARD_TERMS = ("obstacle", "target", "success")
+
+try:  # pragma: no cover - used only when pettingzoo can be imported
+    from pettingzoo import ParallelEnv as _Base  # type: ignore
+except ImportError:
+    _Base = object
+
+
+class ParallelEnv(_Base):
+    """One peg3d game. Agents are pursuer_0.., evader_0.. (those not left to `opponents`); each step() takes an
+    action per agent still in the game and returns dicts keyed by the agents that acted."""
+
+    metadata = {"name": "peg3d_v0", "render_modes": [], "is_parallelizable": True}
+
+    def __init__(self, map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None,
+                 render_mode=None, neighbours=2, cache=True):
+        if render_mode is not None:
+            raise ValueError("render_mode: only None (the HTML replay of render() is not built yet)")
+        self.render_mode = None
+        self._batch = _loading.make_batch(map, config, scenario, set, opponents, 1, 1, 0, neighbours, cache)
+        b = self._batch
+        names = b.agent_names
+        self._index = {n: i for i, n in enumerate(names) if not b.controlled(i)}
+        self.possible_agents = list(self._index)
+        if not self.possible_agents:
+            raise ValueError("opponents: every agent is left to the C++ side; none is left to act")
+        spaces = {True: _loading.role_spaces(b, True), False: _loading.role_spaces(b, False)}
+        self._observation_spaces = {n: spaces[i < b.pursuers][0] for n, i in self._index.items()}
+        self._action_spaces = {n: spaces[i < b.pursuers][1] for n, i in self._index.items()}
+        self.agents = []
+        self._started = False
+        self._closed = False
+
+    def observation_space(self, agent):
+        return self._observation_spaces[agent]
+
+    def action_space(self, agent):
+        return self._action_spaces[agent]
+
+    @property
+    def num_agents(self):
+        return len(self.agents)
+
+    @property
+    def max_num_agents(self):
+        return len(self.possible_agents)
+
+    def _check_open(self):
+        if self._closed:
+            raise RuntimeError("peg3d: the environment is closed")
+
+    def reset(self, seed=None, options=None):
+        self._check_open()
+        seed = _loading.check_seed(seed)
+        self._batch.reset(seed)
+        self._started = True
+        active = self._batch.active[0]
+        self.agents = [n for n in self.possible_agents if active[self._index[n]]]
+        obs = self._batch.observations[0]
+        observations = {n: obs[self._index[n]].copy() for n in self.agents}
+        infos = {n: {} for n in self.agents}
+        return observations, infos
+
+    def step(self, actions):
+        self._check_open()
+        if not self._started:
+            raise RuntimeError("peg3d: step() before reset()")
+        if not self.agents:
+            raise RuntimeError("peg3d: step() after the episode ended; call reset()")
+        if not isinstance(actions, dict):
+            raise ValueError("actions: a dict of agent names to actions")
+        for n in actions:
+            if n not in self._index:
+                raise ValueError(f"{n}: not an agent of this environment")
+            if n not in self.agents:
+                raise ValueError(f"{n}: has left the game and takes no action")
+        b = self._batch
+        full = np.zeros((1, b.agents, 2))
+        for n in self.agents:
+            if n not in actions:
+                raise ValueError(f"{n}: no action given")
+            full[0, self._index[n]] = _loading.check_action(n, actions[n], (2,))
+        b.step(full)
+        acted = self.agents
+        obs, rew, term, trunc = b.observations[0], b.rewards[0], b.terminated[0], b.truncated[0]
+        terms, collided, captured = b.reward_terms[0], b.collided[0], b.captured[0]
+        observations, rewards, terminations, truncations, infos = {}, {}, {}, {}, {}
+        game = b.game_info(0)
+        for n in acted:
+            i = self._index[n]
+            observations[n] = obs[i].copy()
+            rewards[n] = float(rew[i])
+            terminations[n] = bool(term[i])
+            truncations[n] = bool(trunc[i])
+            infos[n] = {"reward_terms": dict(zip(REWARD_TERMS, (float(x) for x in terms[i]))),
+                        "collided": bool(collided[i]), "captured": bool(captured[i])}
+            if game["done"]:
+                infos[n]["outcome"] = game["outcome"]
+        self.agents = [n for n in acted if not (terminations[n] or truncations[n])]
+        return observations, rewards, terminations, truncations, infos
+
+    def state(self):
+        self._check_open()
+        return self._batch.global_state(0)
+
+    def state_space_size(self):
+        return self._batch.global_state_size
+
+    def render(self):
+        return None
+
+    def close(self):
+        self._closed = True
+        self.agents = []

@@ -1,0 +1,109 @@
+"""peg3d.vector_env: N games stepped by one call on T C++ threads, after Gymnasium's VectorEnv."""
+
+import numpy as np
+
+from . import _loading
+from .parallel import REWARD_TERMS
+from .spaces import Box
+
+try:  # pragma: no cover - used only when gymnasium can be imported
+    from gymnasium.vector import AutoresetMode  # type: ignore
+
+    _NEXT_STEP = AutoresetMode.NEXT_STEP
+except ImportError:
+    _NEXT_STEP = "NextStep"
+
+ROLES = ("pursuer", "evader")
+
+
+class RoleSpaces(dict):
+    """A space per role ("pursuer", "evader"), like gymnasium.spaces.Dict: sample() and contains()."""
+
+    def sample(self):
+        return {k: s.sample() for k, s in self.items()}
+
+    def contains(self, x):
+        return isinstance(x, dict) and x.keys() == self.keys() and all(self[k].contains(x[k]) for k in self)
+
+    def seed(self, seed=None):
+        for k, s in self.items():
+            s.seed(None if seed is None else seed + ROLES.index(k))
+
+
+class VectorEnv:
+    """num_envs independent games of one map. Observations, rewards and flags come per role as arrays of shape
+    (num_envs, agents of the role, ...), read-only views of the C++ buffers that the next step overwrites
+    (copy what you keep). Agents left to `opponents` are played on the C++ side: their actions are ignored."""
+
+    metadata = {"autoreset_mode": _NEXT_STEP}
+
+    def __init__(self, map="maps/paper.yaml", num_envs=1, threads=1, config="peg3d", scenario=None, set=None,
+                 opponents=None, seed=0, neighbours=2, cache=True):
+        self._batch = b = _loading.make_batch(map, config, scenario, set, opponents, num_envs, threads, seed,
+                                              neighbours, cache)
+        self.num_envs = b.games
+        p = b.pursuers
+        self._slices = {"pursuer": slice(0, p), "evader": slice(p, b.agents)}
+        self.agent_counts = {"pursuer": p, "evader": b.agents - p}
+        self.controlled = {r: np.array([b.controlled(i) for i in range(b.agents)][s], dtype=bool)
+                           for r, s in self._slices.items()}
+        single_obs, single_act, batched_obs, batched_act = RoleSpaces(), RoleSpaces(), RoleSpaces(), RoleSpaces()
+        for r in ROLES:
+            obs, act = _loading.role_spaces(b, r == "pursuer")
+            n = self.agent_counts[r]
+            single_obs[r] = Box(np.tile(obs.low, (n, 1)), np.tile(obs.high, (n, 1)), dtype=np.float32)
+            single_act[r] = Box(np.tile(act.low, (n, 1)), np.tile(act.high, (n, 1)), dtype=np.float32)
+            batched_obs[r] = Box(np.tile(obs.low, (self.num_envs, n, 1)), np.tile(obs.high, (self.num_envs, n, 1)),
+                                 dtype=np.float32)
+            batched_act[r] = Box(np.tile(act.low, (self.num_envs, n, 1)), np.tile(act.high, (self.num_envs, n, 1)),
+                                 dtype=np.float32)
+        self.single_observation_space, self.single_action_space = single_obs, single_act
+        self.observation_space, self.action_space = batched_obs, batched_act
+        self._actions = np.zeros((self.num_envs, b.agents, 2))
+        # The C++ buffers never move: their per-role views are made once and returned by every call.
+        self._obs = self._split(b.observations)
+        self._rew, self._term, self._trunc = self._split(b.rewards), self._split(b.terminated), self._split(b.truncated)
+        terms = self._split(b.reward_terms)
+        self._info = {"reset": b.reset_flags, "acted": self._split(b.acted), "active": self._split(b.active),
+                      "collided": self._split(b.collided), "captured": self._split(b.captured),
+                      "reward_terms": {r: dict(zip(REWARD_TERMS, np.moveaxis(t, -1, 0))) for r, t in terms.items()}}
+        self._closed = False
+
+    def _split(self, a):
+        return {r: a[:, s] for r, s in self._slices.items()}
+
+    def _check_open(self):
+        if self._closed:
+            raise RuntimeError("peg3d: the environment is closed")
+
+    def _infos(self):
+        return self._info
+
+    def reset(self, seed=None, options=None):
+        self._check_open()
+        self._batch.reset(_loading.check_seed(seed))
+        return self._obs, self._info
+
+    def step(self, actions):
+        self._check_open()
+        if not isinstance(actions, dict):
+            raise ValueError("actions: a dict of role ('pursuer', 'evader') to an array (num_envs, agents, 2)")
+        for r in actions:
+            if r not in self._slices:
+                raise ValueError(f"{r}: not a role (pursuer, evader)")
+        for r, s in self._slices.items():
+            n = self.agent_counts[r]
+            if r not in actions:
+                if not self.controlled[r].all():
+                    raise ValueError(f"{r}: no actions given")
+                continue
+            self._actions[:, s] = _loading.check_action(r, actions[r], (self.num_envs, n, 2))
+        self._batch.step(self._actions)
+        return self._obs, self._rew, self._term, self._trunc, self._info
+
+    def state(self, env):
+        self._check_open()
+        return self._batch.global_state(env)
+
+    def close(self):
+        self._closed = True

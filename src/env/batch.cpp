@@ -1,0 +1,381 @@
+#include "env/batch.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <functional>
+
+#include <fmt/format.h>
+
+#include "core/random.hpp"
+#include "core/validation.hpp"
+#include "game/facl_policy.hpp"
+#include "game/policy_factory.hpp"
+#include "game/policy_io.hpp"
+
+namespace peg3d::env {
+
+namespace {
+constexpr std::uint64_t kPolicyStream = 0x706f6c6963790000ULL;  // "policy": the C++ policies' seeds below the root
+
+std::string agent_name(game::Role role, int rank) {
+  return fmt::format("{}_{}", role == game::Role::kPursuer ? "pursuer" : "evader", rank);
+}
+}  // namespace
+
+struct Batch::Pool {
+  std::vector<std::thread> workers;
+  std::mutex m;
+  std::condition_variable start, done;
+  std::uint64_t generation = 0;
+  int pending = 0;
+  bool stop = false;
+  std::function<void(int)> job;
+  std::exception_ptr error;
+
+  explicit Pool(int threads) {
+    for (int t = 1; t < threads; ++t) {
+      workers.emplace_back([this, t] {
+        std::uint64_t seen = 0;
+        for (;;) {
+          std::function<void(int)> mine;
+          {
+            std::unique_lock lock(m);
+            start.wait(lock, [&] { return stop || generation != seen; });
+            if (stop) return;
+            seen = generation;
+            mine = job;
+          }
+          std::exception_ptr e;
+          try {
+            mine(t);
+          } catch (...) {
+            e = std::current_exception();
+          }
+          std::lock_guard lock(m);
+          if (e && !error) error = e;
+          if (--pending == 0) done.notify_one();
+        }
+      });
+    }
+  }
+  ~Pool() {
+    {
+      std::lock_guard lock(m);
+      stop = true;
+    }
+    start.notify_all();
+    for (auto& w : workers) w.join();
+  }
+  // Runs job(0) here and job(1..) on the workers; returns when all are done.
+  void run(std::function<void(int)> f) {
+    {
+      std::lock_guard lock(m);
+      job = std::move(f);
+      pending = int(workers.size());
+      error = nullptr;
+      ++generation;
+    }
+    start.notify_all();
+    std::exception_ptr mine;
+    try {
+      job(0);
+    } catch (...) {
+      mine = std::current_exception();
+    }
+    std::unique_lock lock(m);
+    done.wait(lock, [&] { return pending == 0; });
+    if (mine) std::rethrow_exception(mine);
+    if (error) std::rethrow_exception(error);
+  }
+};
+
+Batch::Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings)
+    : sim_(std::move(sim)), settings_(std::move(settings)) {
+  require_in_range("games", settings_.games, 1, 65536);
+  require_in_range("threads", settings_.threads, 1, 256);
+  require_in_range("neighbours", settings_.neighbours, 0, 16);
+  settings_.threads = std::min(settings_.threads, settings_.games);
+  layout_.neighbours = settings_.neighbours;
+  const auto& all = sim_->arena().map().scenarios;
+  if (all.empty()) throw InvalidParameter("scenario", "(none)", "the map has no scenario");
+  if (!settings_.scenario.empty()) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const world::Scenario& s) { return s.name == settings_.scenario; });
+    if (it == all.end()) {
+      std::string names;
+      for (const auto& s : all) names += (names.empty() ? "" : ", ") + s.name;
+      throw InvalidParameter("scenario", settings_.scenario, "is not a scenario of the map (" + names + ")");
+    }
+    scenarios_.push_back(int(it - all.begin()));
+  } else {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (all[i].pursuers.size() != all[0].pursuers.size() || all[i].evaders.size() != all[0].evaders.size()) {
+        throw InvalidParameter("scenario", "(every scenario)",
+                               fmt::format("the map's scenarios {} and {} have different teams: choose one", all[0].name, all[i].name));
+      }
+      scenarios_.push_back(int(i));
+    }
+  }
+  const world::Scenario& first = all[std::size_t(scenarios_.front())];
+  pursuers_ = int(first.pursuers.size());
+  agents_ = first.agents();
+  for (int i = 0; i < agents_; ++i) {
+    names_.push_back(i < pursuers_ ? agent_name(game::Role::kPursuer, i) : agent_name(game::Role::kEvader, i - pursuers_));
+  }
+  controller_of_.assign(std::size_t(agents_), "");
+  for (const auto& [key, policy] : settings_.controllers) {
+    bool matched = false;
+    for (int i = 0; i < agents_; ++i) {
+      const bool pursuer = i < pursuers_;
+      if (key == names_[std::size_t(i)] || key == (pursuer ? "pursuer" : "evader")) {
+        controller_of_[std::size_t(i)] = policy;
+        matched = true;
+      }
+    }
+    if (!matched) {
+      throw InvalidParameter("opponents." + key, policy, "names no agent of the game (pursuer_0.., evader_0.., pursuer, evader)");
+    }
+  }
+  for (int i = 0; i < agents_; ++i) controlled_.push_back(!controller_of_[std::size_t(i)].empty());
+  games_.reserve(std::size_t(settings_.games));
+  for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
+  for (int g = 0; g < settings_.games; ++g) build_policies(g);  // checks every controller before any run
+  const std::size_t n = std::size_t(settings_.games) * std::size_t(agents_);
+  observations_.assign(n * std::size_t(layout_.size()), 0.0f);
+  rewards_.assign(n, 0.0f);
+  terms_.assign(n * 3, 0.0f);
+  terminated_.assign(n, 0);
+  truncated_.assign(n, 0);
+  acted_.assign(n, 0);
+  active_.assign(n, 0);
+  collided_.assign(n, 0);
+  captured_.assign(n, 0);
+  reset_flags_.assign(std::size_t(settings_.games), 0);
+  pool_ = std::make_unique<Pool>(settings_.threads);
+  reset(settings_.seed);
+}
+
+Batch::~Batch() = default;
+
+void Batch::build_policies(int g) {
+  Game& game = games_[std::size_t(g)];
+  game.policies.clear();
+  game.policies.resize(std::size_t(agents_));
+  game.commands.assign(std::size_t(agents_), Steering{});
+  for (int i = 0; i < agents_; ++i) {
+    const std::string& source = controller_of_[std::size_t(i)];
+    if (source.empty()) continue;
+    const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+    const int rank = i < pursuers_ ? i : i - pursuers_;
+    const std::uint64_t seed = derive_seed(settings_.seed, {std::uint64_t(g), kPolicyStream, std::uint64_t(i)});
+    std::error_code ec;
+    if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
+      game.policies[std::size_t(i)] = std::make_unique<game::FaclPolicy>(
+          std::shared_ptr<const game::FaclModel>(game::load_policy(source, role)));
+      continue;
+    }
+    const std::string field = "opponents." + names_[std::size_t(i)];
+    const game::PolicyKind kind = game::policy_named(source, role, field);
+    if (kind == game::PolicyKind::kFacl) {
+      throw InvalidParameter(field, source, "a FACL opponent plays a saved policy: give its file");
+    }
+    game::AgentConfig c = sim_->config().agent(role, rank);
+    c.policy = kind;
+    game.policies[std::size_t(i)] = game::make_policy(c, role, seed);
+  }
+}
+
+const world::Scenario& Batch::scenario_for(long long episode) const {
+  const auto& all = sim_->arena().map().scenarios;
+  return all[std::size_t(scenarios_[std::size_t(episode % (long long)scenarios_.size())])];
+}
+
+void Batch::start_episode(int g) {
+  Game& game = games_[std::size_t(g)];
+  game::reset(*sim_, game.state, scenario_for(game.episode),
+              derive_seed(settings_.seed, {std::uint64_t(g), std::uint64_t(game.episode)}));
+  for (int i = 0; i < agents_; ++i) {
+    if (game.policies[std::size_t(i)]) game.policies[std::size_t(i)]->begin_episode(game::observe(game.state, i), false);
+  }
+  const std::size_t base = std::size_t(g) * std::size_t(agents_);
+  for (int i = 0; i < agents_; ++i) {
+    const std::size_t k = base + std::size_t(i);
+    rewards_[k] = 0.0f;
+    terms_[3 * k] = terms_[3 * k + 1] = terms_[3 * k + 2] = 0.0f;
+    terminated_[k] = truncated_[k] = acted_[k] = collided_[k] = captured_[k] = 0;
+  }
+  reset_flags_[std::size_t(g)] = 1;
+  write_outputs(g);
+}
+
+void Batch::reset(std::optional<std::uint64_t> seed) {
+  if (seed) {
+    settings_.seed = *seed;
+    for (int g = 0; g < settings_.games; ++g) build_policies(g);
+  }
+  for (int g = 0; g < settings_.games; ++g) {
+    games_[std::size_t(g)].episode = seed ? 0 : games_[std::size_t(g)].episode + 1;
+    start_episode(g);
+  }
+}
+
+std::optional<std::pair<int, int>> Batch::check_actions(const double* actions) const {
+  for (int g = 0; g < settings_.games; ++g) {
+    const game::SimState& st = games_[std::size_t(g)].state;
+    if (st.done) continue;  // reset by the step: its actions are ignored
+    for (int i = 0; i < agents_; ++i) {
+      if (controlled_[std::size_t(i)] || !st.agents[std::size_t(i)].active) continue;
+      const double* a = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
+      if (!std::isfinite(a[0]) || !std::isfinite(a[1])) return std::pair{g, i};
+    }
+  }
+  return std::nullopt;
+}
+
+void Batch::step_game(int g, const double* actions) {
+  Game& game = games_[std::size_t(g)];
+  reset_flags_[std::size_t(g)] = 0;
+  if (game.state.done) {
+    ++game.episode;
+    start_episode(g);
+    return;
+  }
+  for (int i = 0; i < agents_; ++i) {
+    const game::AgentState& a = game.state.agents[std::size_t(i)];
+    Steering& u = game.commands[std::size_t(i)];
+    if (!a.active) {
+      u = {};
+    } else if (game::Policy* p = game.policies[std::size_t(i)].get()) {
+      u = p->act(a.view);
+    } else {
+      const double* x = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
+      u = {x[0], x[1]};
+    }
+  }
+  const game::StepEvents& ev = game::step(*sim_, game.state, game.commands);
+  const std::size_t base = std::size_t(g) * std::size_t(agents_);
+  for (int i = 0; i < agents_; ++i) {
+    const game::AgentEvents& e = ev.agents[std::size_t(i)];
+    const std::size_t k = base + std::size_t(i);
+    rewards_[k] = float(e.reward.total);
+    terms_[3 * k] = float(e.reward.obstacle);
+    terms_[3 * k + 1] = float(e.reward.target);
+    terms_[3 * k + 2] = float(e.reward.success);
+    acted_[k] = e.acted;
+    terminated_[k] = e.acted && (e.terminal || ev.terminal);
+    truncated_[k] = e.acted && !terminated_[k] && ev.truncated;
+    collided_[k] = e.collided;
+    captured_[k] = e.captured;
+  }
+  write_outputs(g);
+}
+
+void Batch::run_on_threads(void (Batch::*work)(int, const double*), const double* actions) {
+  const int threads = settings_.threads, n = settings_.games;
+  pool_->run([&](int t) {
+    const int lo = int((long long)n * t / threads), hi = int((long long)n * (t + 1) / threads);
+    for (int g = lo; g < hi; ++g) (this->*work)(g, actions);
+  });
+}
+
+void Batch::step(const double* actions) { run_on_threads(&Batch::step_game, actions); }
+
+void Batch::write_outputs(int g) {
+  const game::SimState& st = games_[std::size_t(g)].state;
+  const int size = layout_.size();
+  for (int i = 0; i < agents_; ++i) {
+    const game::AgentState& a = st.agents[std::size_t(i)];
+    const game::AgentView& v = a.view;
+    float* o = observations_.data() + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * std::size_t(size);
+    const game::Percept& p = v.percept;
+    const Vec3& self = v.self.position;
+    const Vec3 rel = v.other.position - self;
+    const Vec3 vel = v.other_speed * direction(v.other.heading);
+    const Vec3 obstacle = v.field.found ? Vec3(v.field.point - self) : Vec3::Zero();
+    const double base[ObservationLayout::kBase] = {
+        p.target_distance,  p.target.azimuth,      p.target.elevation, p.obstacle.distance, p.to_obstacle.azimuth,
+        p.to_obstacle.elevation, self.x(),         self.y(),           self.z(),            v.self.heading.alpha,
+        v.self.heading.theta, rel.x(),             rel.y(),            rel.z(),             vel.x(),
+        vel.y(),            vel.z(),               obstacle.x(),       obstacle.y(),        obstacle.z()};
+    for (int k = 0; k < ObservationLayout::kBase; ++k) o[k] = float(base[k]);
+    float* slot = o + ObservationLayout::kBase;
+    // The k nearest other opponents, then the k nearest teammates, still in the game.
+    for (const bool opponents : {true, false}) {
+      std::array<std::pair<double, int>, 2 * world::kMaxAgentsPerRole> near{};
+      int count = 0;
+      for (int j = 0; j < agents_; ++j) {
+        const game::AgentState& b = st.agents[std::size_t(j)];
+        if (j == i || !b.active || (b.role != a.role) != opponents || (opponents && j == a.opponent)) continue;
+        near[std::size_t(count++)] = {(b.kinematics.position - self).squaredNorm(), j};
+      }
+      std::sort(near.begin(), near.begin() + count);  // by distance, then index: deterministic
+      for (int k = 0; k < layout_.neighbours; ++k, slot += ObservationLayout::kPerNeighbour) {
+        if (k < count) {
+          const Vec3 d = st.agents[std::size_t(near[std::size_t(k)].second)].kinematics.position - self;
+          slot[0] = float(d.x()), slot[1] = float(d.y()), slot[2] = float(d.z()), slot[3] = 1.0f;
+        } else {
+          slot[0] = slot[1] = slot[2] = slot[3] = 0.0f;
+        }
+      }
+    }
+    active_[std::size_t(g) * std::size_t(agents_) + std::size_t(i)] = a.active && !st.done;
+  }
+}
+
+ObservationBounds Batch::observation_bounds(game::Role role) const {
+  (void)role;
+  const Box& box = sim_->arena().bounds();
+  const Vec3 extent = box.hi - box.lo;
+  const double reach = std::max(extent.norm(), sim_->arena().max_distance());
+  double speed = std::max(sim_->config().pursuer.speed, sim_->config().evader.speed);
+  for (const auto& c : sim_->config().pursuers) speed = std::max(speed, c.speed);
+  for (const auto& c : sim_->config().evaders) speed = std::max(speed, c.speed);
+  ObservationBounds b;
+  const auto add = [&](double lo, double hi) {
+    b.low.push_back(float(lo));
+    b.high.push_back(float(hi));
+  };
+  add(0, reach);
+  add(-kPi, kPi), add(-kPi, kPi);
+  add(0, reach);
+  add(-kPi, kPi), add(-kPi, kPi);
+  for (int a = 0; a < 3; ++a) add(box.lo[a], box.hi[a]);
+  add(-kPi, kPi), add(0, kPi);
+  for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
+  for (int a = 0; a < 3; ++a) add(-speed, speed);
+  for (int a = 0; a < 3; ++a) add(-reach, reach);
+  for (int k = 0; k < 2 * layout_.neighbours; ++k) {
+    for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
+    add(0, 1);
+  }
+  // float rounding of the bounds must not exclude a value rounded the other way
+  for (std::size_t k = 0; k < b.low.size(); ++k) {
+    b.low[k] = std::nextafter(b.low[k], -INFINITY);
+    b.high[k] = std::nextafter(b.high[k], INFINITY);
+  }
+  return b;
+}
+
+double Batch::action_bound(game::Role role) const {
+  double bound = sim_->config().agent(role, 0).steering.step_bound(sim_->config().dt);
+  return bound;
+}
+
+std::vector<float> Batch::global_state(int game) const {
+  const game::SimState& st = games_[std::size_t(game)].state;
+  std::vector<float> s;
+  s.reserve(std::size_t(global_state_size()));
+  for (const game::AgentState& a : st.agents) {
+    for (int k = 0; k < 3; ++k) s.push_back(float(a.kinematics.position[k]));
+    s.push_back(float(a.kinematics.heading.alpha));
+    s.push_back(float(a.kinematics.heading.theta));
+    s.push_back(a.active ? 1.0f : 0.0f);
+  }
+  s.push_back(float(st.time));
+  return s;
+}
+
+}  // namespace peg3d::env

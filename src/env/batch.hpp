@@ -1,0 +1,148 @@
+#pragma once
+// A batch of games stepped together, for learners outside the C++ side (the Python front, python/): N
+// independent runs of one Sim, each with its own SimState, stepped by one call on T threads. The batch owns
+// flat buffers (observations, rewards, flags) that a caller reads in place, without a copy; every step
+// overwrites them. Agents can be left to C++ policies (a classic strategy or a saved FACL policy), which act
+// inside the step with no call out per game.
+//
+// Results depend on the root seed only, never on the thread count: game g's episode e starts from
+// derive_seed(seed, {g, e}), its C++ policies are seeded from derive_seed(seed, {g, kPolicyStream, agent}),
+// and the threads take fixed slices of the games.
+//
+// Autoreset is next-step (Gymnasium's AutoresetMode.NEXT_STEP): the step after a game's episode ended resets
+// that game instead of stepping it; its actions are ignored, its rewards are 0 and its flags false.
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "game/lineup.hpp"
+#include "game/sim.hpp"
+
+namespace peg3d::env {
+
+/// The observation vector of one agent, float32, every entry with finite bounds (ObservationBounds):
+///   [0]      d to the opponent, m                      the percept: the paper's fuzzy inputs (eq. 19-20)
+///   [1, 2]   azimuth, elevation error to it, rad
+///   [3]      d to the nearest obstacle, m (arena faces merged as configured)
+///   [4, 5]   azimuth, elevation error to it, rad
+///   [6..8]   own position, m
+///   [9, 10]  own heading alpha, theta, rad
+///   [11..13] opponent position minus own, m
+///   [14..16] opponent velocity, m/s
+///   [17..19] nearest obstacle point minus own position (movers included), m; 0 when none is in range
+///   then `neighbours` nearest other opponents and `neighbours` nearest teammates still in the game, nearest
+///   first, each as (relative position m, mask 1) and zeros with mask 0 where there are fewer.
+struct ObservationLayout {
+  static constexpr int kBase = 20;
+  static constexpr int kPerNeighbour = 4;
+  int neighbours = 2;  ///< k, in [0, 16]
+  int size() const { return kBase + 2 * neighbours * kPerNeighbour; }
+};
+
+/// How a batch is built. Every field a user sets is validated by Batch (InvalidParameter naming it).
+struct BatchSettings {
+  int games = 1;                ///< N, in [1, 65536]
+  int threads = 1;              ///< T, in [1, 256]; capped at games
+  std::uint64_t seed = 0;       ///< root seed
+  int neighbours = 2;           ///< ObservationLayout::neighbours
+  /// The map's scenario every episode starts from; empty: episode e of a game plays scenario e mod count
+  /// (the map's scenarios must then all have the same numbers of pursuers and evaders).
+  std::string scenario;
+  /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> a policy name (flee, pure-pursuit, ...)
+  /// or a saved FACL policy file: those agents are played on the C++ side. The others take the caller's actions.
+  std::vector<std::pair<std::string, std::string>> controllers;
+};
+
+/// Lower and upper bounds of every observation entry on this Sim (the same for every agent of a role).
+struct ObservationBounds {
+  std::vector<float> low, high;
+};
+
+class Batch {
+ public:
+  Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings);
+  ~Batch();
+  Batch(const Batch&) = delete;
+  Batch& operator=(const Batch&) = delete;
+
+  int games() const { return settings_.games; }
+  int agents() const { return agents_; }
+  int pursuers() const { return pursuers_; }
+  int observation_size() const { return layout_.size(); }
+  const std::vector<std::string>& agent_names() const { return names_; }
+  /// Whether agent i is played on the C++ side (its actions are ignored).
+  bool controlled(int i) const { return controlled_[std::size_t(i)]; }
+  ObservationBounds observation_bounds(game::Role role) const;
+  /// rad: the steering bound per step, the action space's bound on both components.
+  double action_bound(game::Role role) const;
+  const game::Sim& sim() const { return *sim_; }
+  const game::SimState& state(int game) const { return games_[std::size_t(game)].state; }
+
+  /// Starts a new episode in every game; with a seed, first re-seeds the batch (episodes count from 0 again).
+  void reset(std::optional<std::uint64_t> seed = std::nullopt);
+  /// Steps every game once. `actions` holds games x agents x 2 doubles (d_alpha, d_theta), rad; entries of
+  /// C++-played agents and of agents out of the game are ignored. Non-finite values of the others must have
+  /// been refused by the caller (check_actions). Games whose episode ended are reset instead (autoreset).
+  void step(const double* actions);
+  /// The first (game, agent) whose action the step would use and that is not finite; nullopt when all are.
+  std::optional<std::pair<int, int>> check_actions(const double* actions) const;
+
+  // The buffers, games x agents (x observation_size), rewritten by reset() and step().
+  float* observations() { return observations_.data(); }
+  float* rewards() { return rewards_.data(); }
+  /// 1 where the agent's part in the game ended in the step: its capture, the last capture, a terminating
+  /// collision.
+  std::uint8_t* terminated() { return terminated_.data(); }
+  std::uint8_t* truncated() { return truncated_.data(); }  ///< 1 where the time limit ended the game
+  std::uint8_t* acted() { return acted_.data(); }          ///< 1 where the agent was in the game at the step's start
+  std::uint8_t* active() { return active_.data(); }        ///< 1 where the agent is in the game after the step
+  std::uint8_t* collided() { return collided_.data(); }    ///< 1 where it hit an obstacle or agent in the step
+  std::uint8_t* captured() { return captured_.data(); }    ///< 1 where it was captured in the step (evaders)
+  /// The step's reward terms per agent: obstacle, target, success (unweighted; RewardTerms).
+  float* reward_terms() { return terms_.data(); }
+  /// 1 where the game was reset by the step (autoreset) or by reset().
+  std::uint8_t* reset_flags() { return reset_flags_.data(); }
+  /// The state vector of game g for centralised critics: per agent position (3), alpha, theta, active; then time.
+  std::vector<float> global_state(int game) const;
+  int global_state_size() const { return agents_ * 6 + 1; }
+  long long episode(int game) const { return games_[std::size_t(game)].episode; }
+
+ private:
+  struct Game {
+    explicit Game(const game::Sim& sim) : state(sim) {}
+    game::SimState state;
+    std::vector<std::unique_ptr<game::Policy>> policies;  // null for the caller's agents
+    std::vector<Steering> commands;
+    long long episode = 0;
+  };
+  const world::Scenario& scenario_for(long long episode) const;
+  void start_episode(int g);
+  void step_game(int g, const double* actions);
+  void write_outputs(int g);
+  void build_policies(int g);
+  void run_on_threads(void (Batch::*work)(int, const double*), const double* actions);
+
+  std::shared_ptr<const game::Sim> sim_;
+  BatchSettings settings_;
+  ObservationLayout layout_;
+  std::vector<int> scenarios_;  // indices into the map's scenarios
+  int agents_ = 0, pursuers_ = 0;
+  std::vector<std::string> names_;
+  std::vector<std::string> controller_of_;  // per agent: "" or its policy name / file
+  std::vector<bool> controlled_;
+  std::vector<Game> games_;
+  std::vector<float> observations_, rewards_, terms_;
+  std::vector<std::uint8_t> terminated_, truncated_, acted_, active_, collided_, captured_, reset_flags_;
+
+  // A fixed pool of threads - 1 workers; the caller's thread takes slice 0.
+  struct Pool;
+  std::unique_ptr<Pool> pool_;
+};
+
+}  // namespace peg3d::env
