@@ -1,0 +1,81 @@
+"""Bad input raises peg3d.InputError (a ValueError) with the C++ message; bad actions raise ValueError naming
+the agent and step nothing."""
+
+import numpy as np
+import pytest
+
+import peg3d
+from conftest import SHORT
+
+
+def test_input_errors_carry_the_message_with_file_and_field(tmp_path):
+    with pytest.raises(peg3d.InputError, match="nowhere.yaml"):
+        peg3d.parallel_env(map="nowhere.yaml")
+    broken = tmp_path / "broken.yaml"
+    broken.write_text("name: x\nbounds: [0, 0, 0, 35, 35]\n")
+    with pytest.raises(peg3d.InputError, match="broken.yaml") as e:
+        peg3d.parallel_env(map=str(broken))
+    assert isinstance(e.value, ValueError)
+    with pytest.raises(peg3d.InputError, match="pursuer.speed"):
+        peg3d.parallel_env(set={"pursuer.speed": -1})
+    with pytest.raises(peg3d.InputError, match="no_such_field"):
+        peg3d.parallel_env(set={"no_such_field": 1})
+    with pytest.raises(peg3d.InputError, match="opponents.evader_0"):
+        peg3d.parallel_env(opponents={"evader_0": "no-such-policy"})
+    with pytest.raises(peg3d.InputError, match="opponents.evader_7"):
+        peg3d.parallel_env(opponents={"evader_7": "flee"})
+    with pytest.raises(peg3d.InputError, match="scenario"):
+        peg3d.parallel_env(scenario="no-such-scenario")
+    with pytest.raises(peg3d.InputError, match="games"):
+        peg3d.vector_env(num_envs=0)
+    with pytest.raises(peg3d.InputError):
+        peg3d.parallel_env(config="no-such-preset")
+
+
+@pytest.mark.parametrize("bad, message", [
+    (np.zeros(3), "shape"),
+    (np.zeros((1, 2)), "shape"),
+    (np.zeros(2, dtype=np.int64), "dtype"),
+    (np.array([np.nan, 0.0]), "not finite"),
+    (np.array([0.0, np.inf]), "not finite"),
+    ("left", "dtype"),
+])
+def test_a_bad_action_names_the_agent_and_steps_nothing(env, bad, message):
+    env.reset(seed=0)
+    before = env._batch.game_info(0)["step"]
+    with pytest.raises(ValueError, match="pursuer_0") as e:
+        env.step({"pursuer_0": bad})
+    assert message in str(e.value)
+    assert env._batch.game_info(0)["step"] == before
+
+
+def test_unknown_and_missing_agents_are_refused(env):
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match="evader_0"):  # played on the C++ side
+        env.step({"pursuer_0": np.zeros(2), "evader_0": np.zeros(2)})
+    with pytest.raises(ValueError, match="pursuer_0: no action"):
+        env.step({})
+    with pytest.raises(ValueError):
+        env.step([0.0, 0.0])
+
+
+def test_order_errors_are_clear():
+    env = peg3d.parallel_env(opponents={"evader": "flee"}, set=SHORT)
+    with pytest.raises(RuntimeError, match="before reset"):
+        env.step({"pursuer_0": np.zeros(2)})
+    env.close()
+    with pytest.raises(RuntimeError, match="closed"):
+        env.reset()
+
+
+def test_vector_actions_are_checked_per_role():
+    v = peg3d.vector_env(num_envs=3, threads=2, opponents={"evader": "flee"}, set=SHORT)
+    v.reset(seed=0)
+    with pytest.raises(ValueError, match="pursuer"):
+        v.step({"pursuer": np.zeros((2, 1, 2))})
+    bad = np.zeros((3, 1, 2))
+    bad[1, 0, 0] = np.nan
+    with pytest.raises(ValueError, match="pursuer"):
+        v.step({"pursuer": bad})
+    with pytest.raises(ValueError, match="referee"):
+        v.step({"referee": np.zeros((3, 1, 2))})
