@@ -164,6 +164,19 @@ PYBIND11_MODULE(_core, m) {
         const std::vector<float> s = b.global_state(g);
         return py::array_t<float>(py::ssize_t(s.size()), s.data());
       })
+      .def("agent_states", [](const env::Batch& b, int g) {
+        // Every agent's x, y, z, alpha, theta in double precision (what trajectory hashes cover), a copy.
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        const game::SimState& st = b.state(g);
+        py::array_t<double> out({py::ssize_t(st.agent_count()), py::ssize_t(5)});
+        auto o = out.mutable_unchecked<2>();
+        for (int i = 0; i < st.agent_count(); ++i) {
+          const KinematicState& k = st.agents[std::size_t(i)].kinematics;
+          o(i, 0) = k.position.x(), o(i, 1) = k.position.y(), o(i, 2) = k.position.z();
+          o(i, 3) = k.heading.alpha, o(i, 4) = k.heading.theta;
+        }
+        return out;
+      })
       .def("episode", [](const env::Batch& b, int g) {
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");
         return b.episode(g);
