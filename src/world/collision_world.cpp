@@ -130,7 +130,16 @@ struct CollisionWorld::Impl {
 
   std::shared_ptr<const Arena> arena;
   CollisionOptions options;
-  btDefaultCollisionConfiguration configuration;
+  // Bullet's default pools hold 4096 manifolds and 4096 collision algorithms, about 7 MB per world: a batch of
+  // thousands of runs (env/batch.hpp) would hold gigabytes. The queries here need a few of each at a time
+  // (a pool only bounds allocation, never an answer).
+  static btDefaultCollisionConstructionInfo small_pools() {
+    btDefaultCollisionConstructionInfo info;
+    info.m_defaultMaxPersistentManifoldPoolSize = 64;
+    info.m_defaultMaxCollisionAlgorithmPoolSize = 64;
+    return info;
+  }
+  btDefaultCollisionConfiguration configuration{small_pools()};
   btCollisionDispatcher dispatcher{&configuration};
   btDbvtBroadphase broadphase;
   btCollisionWorld world{&dispatcher, &broadphase, &configuration};
