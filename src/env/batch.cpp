@@ -13,6 +13,8 @@
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/facl_policy.hpp"
+#include "game/mlp_policy.hpp"
+#include "game/observation_vector.hpp"
 #include "game/policy_factory.hpp"
 #include "game/policy_io.hpp"
 
@@ -173,8 +175,12 @@ void Batch::build_policies(int g) {
     const std::uint64_t seed = derive_seed(settings_.seed, {std::uint64_t(g), kPolicyStream, std::uint64_t(i)});
     std::error_code ec;
     if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
-      game.policies[std::size_t(i)] = std::make_unique<game::FaclPolicy>(
-          std::shared_ptr<const game::FaclModel>(game::load_policy(source, role)));
+      if (game::is_mlp_policy_file(source)) {
+        game.policies[std::size_t(i)] = std::make_unique<game::MlpPolicy>(game::load_mlp_policy(source, role));
+      } else {
+        game.policies[std::size_t(i)] = std::make_unique<game::FaclPolicy>(
+            std::shared_ptr<const game::FaclModel>(game::load_policy(source, role)));
+      }
       continue;
     }
     const std::string field = "opponents." + names_[std::size_t(i)];
@@ -290,17 +296,8 @@ void Batch::write_outputs(int g) {
     const game::AgentState& a = st.agents[std::size_t(i)];
     const game::AgentView& v = a.view;
     float* o = observations_.data() + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * std::size_t(size);
-    const game::Percept& p = v.percept;
+    game::observation_base(v, o);
     const Vec3& self = v.self.position;
-    const Vec3 rel = v.other.position - self;
-    const Vec3 vel = v.other_speed * direction(v.other.heading);
-    const Vec3 obstacle = v.field.found ? Vec3(v.field.point - self) : Vec3::Zero();
-    const double base[ObservationLayout::kBase] = {
-        p.target_distance,  p.target.azimuth,      p.target.elevation, p.obstacle.distance, p.to_obstacle.azimuth,
-        p.to_obstacle.elevation, self.x(),         self.y(),           self.z(),            v.self.heading.alpha,
-        v.self.heading.theta, rel.x(),             rel.y(),            rel.z(),             vel.x(),
-        vel.y(),            vel.z(),               obstacle.x(),       obstacle.y(),        obstacle.z()};
-    for (int k = 0; k < ObservationLayout::kBase; ++k) o[k] = float(base[k]);
     float* slot = o + ObservationLayout::kBase;
     // The k nearest other opponents, then the k nearest teammates, still in the game.
     for (const bool opponents : {true, false}) {

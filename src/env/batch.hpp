@@ -22,24 +22,17 @@
 #include <vector>
 
 #include "game/lineup.hpp"
+#include "game/observation_vector.hpp"
 #include "game/sim.hpp"
 
 namespace peg3d::env {
 
-/// The observation vector of one agent, float32, every entry with finite bounds (ObservationBounds):
-///   [0]      d to the opponent, m                      the percept: the paper's fuzzy inputs (eq. 19-20)
-///   [1, 2]   azimuth, elevation error to it, rad
-///   [3]      d to the nearest obstacle, m (arena faces merged as configured)
-///   [4, 5]   azimuth, elevation error to it, rad
-///   [6..8]   own position, m
-///   [9, 10]  own heading alpha, theta, rad
-///   [11..13] opponent position minus own, m
-///   [14..16] opponent velocity, m/s
-///   [17..19] nearest obstacle point minus own position (movers included), m; 0 when none is in range
-///   then `neighbours` nearest other opponents and `neighbours` nearest teammates still in the game, nearest
-///   first, each as (relative position m, mask 1) and zeros with mask 0 where there are fewer.
+/// The observation vector of one agent, float32, every entry with finite bounds (ObservationBounds): the 20
+/// entries of game::observation_base (game/observation_vector.hpp), then `neighbours` nearest other opponents
+/// and `neighbours` nearest teammates still in the game, nearest first, each as (relative position m, mask 1)
+/// and zeros with mask 0 where there are fewer.
 struct ObservationLayout {
-  static constexpr int kBase = 20;
+  static constexpr int kBase = game::kObservationBase;
   static constexpr int kPerNeighbour = 4;
   int neighbours = 2;  ///< k, in [0, 16]
   int size() const { return kBase + 2 * neighbours * kPerNeighbour; }

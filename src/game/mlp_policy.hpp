@@ -1,0 +1,53 @@
+#pragma once
+// A policy trained outside the C++ side (examples/ppo_pursuer.py): a multilayer perceptron over the Python
+// front's observation vector (game/observation_vector.hpp), evaluated here with Eigen and no torch, so that it
+// plays wherever a policy plays. The file (docs/python.md, "Policy files"), JSON:
+//   {"format": "peg3d-mlp", "version": 1, "role": "pursuer" | "evader",
+//    "inputs": 20 + 8 k (k neighbours, seen empty on the C++ side), "action_bound": rad,
+//    "input_mean": [inputs], "input_std": [inputs] (> 0),
+//    "layers": [{"weights": [[in] x out], "bias": [out]}, ...]}
+// act(): x = (obs - mean) / std; tanh after every layer but the last; the action is action_bound * tanh(out),
+// out = (d_alpha, d_theta). Every sum runs in double over the inputs in order (weights[j][0] x[0] first), so a
+// reference in another language that sums in the same order gets the same bits.
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "game/policy.hpp"
+
+namespace peg3d::game {
+
+inline constexpr const char* kMlpFormat = "peg3d-mlp";
+inline constexpr int kMlpVersion = 1;
+
+struct MlpModel {
+  Role role = Role::kPursuer;
+  int inputs = 0;
+  double action_bound = 0.0;  ///< rad, > 0
+  Eigen::VectorXd mean, inv_std;
+  std::vector<Eigen::MatrixXd> weights;  ///< out x in
+  std::vector<Eigen::VectorXd> biases;
+};
+
+/// Loads an MLP policy file for `role`; a file that cannot be read or does not fit is a PolicyFormatError
+/// (an InputError) naming the file and the field.
+std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, Role role);
+
+/// Whether a JSON policy file is an MLP one (its "format"); false for anything else, FACL files included.
+bool is_mlp_policy_file(const std::filesystem::path& file);
+
+class MlpPolicy final : public Policy {
+ public:
+  explicit MlpPolicy(std::shared_ptr<const MlpModel> model);
+  Steering act(const AgentView& view) override;
+
+ private:
+  std::shared_ptr<const MlpModel> model_;
+  std::vector<float> obs_;
+  Eigen::VectorXd a_, b_;
+};
+
+}  // namespace peg3d::game

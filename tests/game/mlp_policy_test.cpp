@@ -1,0 +1,105 @@
+// MlpPolicy (game/mlp_policy.hpp): the documented forward pass, and files that do not fit refused with the field.
+#include "game/mlp_policy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "game/observation_vector.hpp"
+#include "game/policy_io.hpp"
+
+namespace peg3d::game {
+namespace {
+
+// A one-layer network 20 -> 2 that reads the target's azimuth and elevation errors (entries 1 and 2).
+nlohmann::json steer_at_target(double gain) {
+  nlohmann::json w = nlohmann::json::array();
+  for (int j = 0; j < 2; ++j) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int i = 0; i < kObservationBase; ++i) row.push_back(i == j + 1 ? gain : 0.0);
+    w.push_back(row);
+  }
+  return {{"format", "peg3d-mlp"}, {"version", 1}, {"role", "pursuer"}, {"inputs", 20}, {"action_bound", 0.5},
+          {"input_mean", std::vector<double>(20, 0.0)}, {"input_std", std::vector<double>(20, 1.0)},
+          {"layers", {{{"weights", w}, {"bias", {0.0, 0.0}}}}}};
+}
+
+std::filesystem::path write(const nlohmann::json& doc, const std::string& name) {
+  const auto file = std::filesystem::path(::testing::TempDir()) / name;
+  std::ofstream(file) << doc.dump(1);
+  return file;
+}
+
+TEST(MlpPolicy, ActsAsTheDocumentedForwardPass) {
+  const auto file = write(steer_at_target(2.0), "steer.json");
+  ASSERT_TRUE(is_mlp_policy_file(file));
+  MlpPolicy policy(load_mlp_policy(file, Role::kPursuer));
+  AgentView v;
+  v.percept.target.azimuth = 0.3;
+  v.percept.target.elevation = -0.1;
+  const Steering u = policy.act(v);
+  // bound * tanh(gain * x) of the float32 entries, with the library's tanh at run time (a constant expression
+  // would be folded by the compiler, correctly rounded, where glibc's tanh may differ in the last bit)
+  volatile double azimuth = double(0.3f), elevation = double(-0.1f);
+  EXPECT_EQ(u.d_alpha, 0.5 * std::tanh(2.0 * azimuth));
+  EXPECT_EQ(u.d_theta, 0.5 * std::tanh(2.0 * elevation));
+}
+
+TEST(MlpPolicy, HiddenLayersTakeTanhAndInputsAreNormalized) {
+  nlohmann::json doc = steer_at_target(1.0);
+  doc["input_mean"][1] = 0.1;
+  doc["input_std"][1] = 0.5;
+  doc["layers"].push_back({{"weights", {{3.0, 0.0}, {0.0, -1.0}}}, {"bias", {0.25, 0.0}}});
+  MlpPolicy policy(load_mlp_policy(write(doc, "two.json"), Role::kPursuer));
+  AgentView v;
+  v.percept.target.azimuth = 0.6;
+  const Steering u = policy.act(v);
+  volatile double azimuth = double(0.6f), zero = 0.0;
+  const double h = std::tanh((azimuth - 0.1) * (1.0 / 0.5));
+  EXPECT_EQ(u.d_alpha, 0.5 * std::tanh(0.25 + 3.0 * h));
+  EXPECT_EQ(u.d_theta, 0.5 * std::tanh(-std::tanh(zero)));
+}
+
+TEST(MlpPolicy, FilesThatDoNotFitNameTheField) {
+  const auto refuses = [](nlohmann::json doc, Role role, const std::string& field) {
+    const auto file = write(doc, "bad.json");
+    try {
+      load_mlp_policy(file, role);
+      ADD_FAILURE() << "accepted, expected an error at " << field;
+    } catch (const PolicyFormatError& e) {
+      EXPECT_EQ(e.field(), field) << e.what();
+      EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos);
+    }
+  };
+  refuses(steer_at_target(1.0), Role::kEvader, "role");
+  nlohmann::json d = steer_at_target(1.0);
+  d["format"] = "peg3d-policy";
+  refuses(d, Role::kPursuer, "format");
+  d = steer_at_target(1.0);
+  d["inputs"] = 21;
+  refuses(d, Role::kPursuer, "inputs");
+  d = steer_at_target(1.0);
+  d["input_std"][4] = 0.0;
+  refuses(d, Role::kPursuer, "input_std[4]");
+  d = steer_at_target(1.0);
+  d["layers"][0]["weights"][1].erase(3);
+  refuses(d, Role::kPursuer, "layers[0].weights[1]");
+  d = steer_at_target(1.0);
+  d["layers"][0]["bias"][0] = "x";
+  refuses(d, Role::kPursuer, "layers[0].bias[0]");
+  d = steer_at_target(1.0);
+  d["layers"][0]["weights"].erase(1);
+  d["layers"][0]["bias"].erase(1);
+  refuses(d, Role::kPursuer, "layers[0].weights");  // one output, not two
+  d = steer_at_target(1.0);
+  d["action_bound"] = -1;
+  refuses(d, Role::kPursuer, "action_bound");
+}
+
+}  // namespace
+}  // namespace peg3d::game
