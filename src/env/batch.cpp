@@ -12,8 +12,6 @@
 
 #include "core/random.hpp"
 #include "core/validation.hpp"
-#include "game/facl_policy.hpp"
-#include "game/mlp_policy.hpp"
 #include "game/observation_vector.hpp"
 #include "game/policy_factory.hpp"
 #include "game/policy_io.hpp"
@@ -127,13 +125,13 @@ Batch::Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings)
   for (int i = 0; i < agents_; ++i) {
     names_.push_back(i < pursuers_ ? agent_name(game::Role::kPursuer, i) : agent_name(game::Role::kEvader, i - pursuers_));
   }
-  controller_of_.assign(std::size_t(agents_), "");
+  std::vector<std::string> source(static_cast<std::size_t>(agents_));  // per agent: "" or its policy name or file
   for (const auto& [key, policy] : settings_.controllers) {
     bool matched = false;
     for (int i = 0; i < agents_; ++i) {
       const bool pursuer = i < pursuers_;
       if (key == names_[std::size_t(i)] || key == (pursuer ? "pursuer" : "evader")) {
-        controller_of_[std::size_t(i)] = policy;
+        source[std::size_t(i)] = policy;
         matched = true;
       }
     }
@@ -141,10 +139,12 @@ Batch::Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings)
       throw InvalidParameter("opponents." + key, policy, "names no agent of the game (pursuer_0.., evader_0.., pursuer, evader)");
     }
   }
-  for (int i = 0; i < agents_; ++i) controlled_.push_back(!controller_of_[std::size_t(i)].empty());
+  controllers_.resize(std::size_t(agents_));
+  for (int i = 0; i < agents_; ++i) {
+    if (!source[std::size_t(i)].empty()) controllers_[std::size_t(i)] = resolve_controller(i, source[std::size_t(i)]);
+  }
   games_.reserve(std::size_t(settings_.games));
   for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
-  for (int g = 0; g < settings_.games; ++g) build_policies(g);  // checks every controller before any run
   const std::size_t n = std::size_t(settings_.games) * std::size_t(agents_);
   observations_.assign(n * std::size_t(layout_.size()), 0.0f);
   rewards_.assign(n, 0.0f);
@@ -162,35 +162,46 @@ Batch::Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings)
 
 Batch::~Batch() = default;
 
+Batch::Controller Batch::resolve_controller(int i, const std::string& source) const {
+  const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+  Controller c;
+  std::error_code ec;
+  if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
+    const game::PolicyDocument d = game::read_policy_document(source);
+    if (game::is_mlp_document(d.doc)) {
+      c.mlp = game::mlp_from_json(d.doc, source, role, d.text);
+    } else {
+      c.facl = game::policy_from_json(d.doc, source, role, d.text);
+    }
+    return c;
+  }
+  const std::string field = "opponents." + names_[std::size_t(i)];
+  c.kind = game::policy_named(source, role, field);
+  if (c.kind == game::PolicyKind::kFacl) {
+    throw InvalidParameter(field, source, "a FACL opponent plays a saved policy: give its file");
+  }
+  return c;
+}
+
 void Batch::build_policies(int g) {
   Game& game = games_[std::size_t(g)];
   game.policies.clear();
   game.policies.resize(std::size_t(agents_));
   game.commands.assign(std::size_t(agents_), Steering{});
   for (int i = 0; i < agents_; ++i) {
-    const std::string& source = controller_of_[std::size_t(i)];
-    if (source.empty()) continue;
-    const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
-    const int rank = i < pursuers_ ? i : i - pursuers_;
-    const std::uint64_t seed = derive_seed(settings_.seed, {std::uint64_t(g), kPolicyStream, std::uint64_t(i)});
-    std::error_code ec;
-    if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
-      if (game::is_mlp_policy_file(source)) {
-        game.policies[std::size_t(i)] = std::make_unique<game::MlpPolicy>(game::load_mlp_policy(source, role));
-      } else {
-        game.policies[std::size_t(i)] = std::make_unique<game::FaclPolicy>(
-            std::shared_ptr<const game::FaclModel>(game::load_policy(source, role)));
-      }
-      continue;
+    const std::optional<Controller>& c = controllers_[std::size_t(i)];
+    std::unique_ptr<game::Policy>& p = game.policies[std::size_t(i)];
+    if (!c) continue;
+    if (c->mlp) {
+      p = std::make_unique<game::MlpPolicy>(c->mlp);
+    } else if (c->facl) {
+      p = std::make_unique<game::FaclPolicy>(c->facl);
+    } else {
+      const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+      game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
+      a.policy = c->kind;
+      p = game::make_policy(a, role, derive_seed(settings_.seed, {std::uint64_t(g), kPolicyStream, std::uint64_t(i)}));
     }
-    const std::string field = "opponents." + names_[std::size_t(i)];
-    const game::PolicyKind kind = game::policy_named(source, role, field);
-    if (kind == game::PolicyKind::kFacl) {
-      throw InvalidParameter(field, source, "a FACL opponent plays a saved policy: give its file");
-    }
-    game::AgentConfig c = sim_->config().agent(role, rank);
-    c.policy = kind;
-    game.policies[std::size_t(i)] = game::make_policy(c, role, seed);
   }
 }
 
@@ -233,7 +244,7 @@ std::optional<std::pair<int, int>> Batch::check_actions(const double* actions) c
     const game::SimState& st = games_[std::size_t(g)].state;
     if (st.done) continue;  // reset by the step: its actions are ignored
     for (int i = 0; i < agents_; ++i) {
-      if (controlled_[std::size_t(i)] || !st.agents[std::size_t(i)].active) continue;
+      if (controlled(i) || !st.agents[std::size_t(i)].active) continue;
       const double* a = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
       if (!std::isfinite(a[0]) || !std::isfinite(a[1])) return std::pair{g, i};
     }

@@ -21,7 +21,9 @@
 #include <thread>
 #include <vector>
 
+#include "game/facl_policy.hpp"
 #include "game/lineup.hpp"
+#include "game/mlp_policy.hpp"
 #include "game/observation_vector.hpp"
 #include "game/sim.hpp"
 
@@ -70,7 +72,7 @@ class Batch {
   int observation_size() const { return layout_.size(); }
   const std::vector<std::string>& agent_names() const { return names_; }
   /// Whether agent i is played on the C++ side (its actions are ignored).
-  bool controlled(int i) const { return controlled_[std::size_t(i)]; }
+  bool controlled(int i) const { return controllers_[std::size_t(i)].has_value(); }
   ObservationBounds observation_bounds(game::Role role) const;
   /// rad: the steering bound per step, the action space's bound on both components.
   double action_bound(game::Role role) const;
@@ -127,8 +129,15 @@ class Batch {
   std::vector<int> scenarios_;  // indices into the map's scenarios
   int agents_ = 0, pursuers_ = 0;
   std::vector<std::string> names_;
-  std::vector<std::string> controller_of_;  // per agent: "" or its policy name / file
-  std::vector<bool> controlled_;
+  // How a C++-played agent plays: a classic strategy, or a model read once from its file and shared, read-only,
+  // by every game's policy (nullopt: the caller's agent).
+  struct Controller {
+    game::PolicyKind kind = game::PolicyKind::kFacl;
+    std::shared_ptr<const game::FaclModel> facl;
+    std::shared_ptr<const game::MlpModel> mlp;
+  };
+  Controller resolve_controller(int agent, const std::string& source) const;
+  std::vector<std::optional<Controller>> controllers_;
   std::vector<Game> games_;
   std::vector<float> observations_, rewards_, terms_;
   std::vector<std::uint8_t> terminated_, truncated_, acted_, active_, collided_, captured_, reset_flags_;

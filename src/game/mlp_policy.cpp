@@ -3,9 +3,8 @@
 #include <cmath>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
-#include "core/input_files.hpp"
+#include "core/input_files.hpp"  // json_line_of
 #include "game/observation_vector.hpp"
 #include "game/policy_io.hpp"
 
@@ -43,27 +42,19 @@ struct Reader {
 
 }  // namespace
 
-bool is_mlp_policy_file(const std::filesystem::path& file) {
-  try {
-    const std::string text = read_input_file(file, "policy file");
-    const nlohmann::json doc = parse_json_text(text, file);
-    return doc.is_object() && doc.contains("format") && doc["format"] == kMlpFormat;
-  } catch (const InputError&) {
-    return false;
-  }
+bool is_mlp_document(const nlohmann::json& doc) {
+  return doc.is_object() && doc.contains("format") && doc["format"] == kMlpFormat;
 }
 
 std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, Role role) {
-  std::string text;
-  nlohmann::json doc;
-  try {
-    text = read_input_file(file, "policy file");
-    doc = parse_json_text(text, file);
-  } catch (const InputError& e) {
-    throw PolicyFormatError(file, e.line(), e.field(), e.message());
-  }
+  const PolicyDocument d = read_policy_document(file);
+  return mlp_from_json(d.doc, file, role, d.text);
+}
+
+std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const std::filesystem::path& file, Role role,
+                                              std::string_view text) {
   const Reader r{file, text};
-  if (!doc.is_object() || !doc.contains("format") || doc["format"] != kMlpFormat) {
+  if (!is_mlp_document(doc)) {
     r.fail("format", fmt::format("expects \"{}\"", kMlpFormat));
   }
   if (r.at(doc, "version", "version") != kMlpVersion) r.fail("version", fmt::format("expects {}", kMlpVersion));

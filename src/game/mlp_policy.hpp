@@ -12,9 +12,11 @@
 
 #include <filesystem>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Dense>
+#include <nlohmann/json.hpp>
 
 #include "game/policy.hpp"
 
@@ -32,12 +34,15 @@ struct MlpModel {
   std::vector<Eigen::VectorXd> biases;
 };
 
-/// Loads an MLP policy file for `role`; a file that cannot be read or does not fit is a PolicyFormatError
-/// (an InputError) naming the file and the field.
+/// The MLP model of a policy document (read_policy_document) for `role`; one that does not fit is a
+/// PolicyFormatError (an InputError) naming `file`, the field and, from `text`, its line.
+std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const std::filesystem::path& file, Role role,
+                                              std::string_view text);
+/// Loads an MLP policy file for `role`: read_policy_document, then mlp_from_json.
 std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, Role role);
 
-/// Whether a JSON policy file is an MLP one (its "format"); false for anything else, FACL files included.
-bool is_mlp_policy_file(const std::filesystem::path& file);
+/// Whether a policy document is an MLP one (its "format"); false for anything else, FACL documents included.
+bool is_mlp_document(const nlohmann::json& doc);
 
 class MlpPolicy final : public Policy {
  public:

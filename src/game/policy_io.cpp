@@ -151,16 +151,20 @@ void save_policy(const std::filesystem::path& file, const FaclModel& model) {
   write_file_atomically(file, policy_to_json(model).dump(2) + "\n");
 }
 
-std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role) {
-  std::string text;
-  nlohmann::json doc;
+PolicyDocument read_policy_document(const std::filesystem::path& file) {
+  PolicyDocument d;
   try {
-    text = read_input_file(file, "policy file");
-    doc = parse_json_text(text, file);
+    d.text = read_input_file(file, "policy file");
+    d.doc = parse_json_text(d.text, file);
   } catch (const InputError& e) {
     throw PolicyFormatError(file, e.line(), e.field(), e.message());
   }
-  return policy_from_json(doc, file, role, text);
+  return d;
+}
+
+std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role) {
+  const PolicyDocument d = read_policy_document(file);
+  return policy_from_json(d.doc, file, role, d.text);
 }
 
 }  // namespace peg3d::game

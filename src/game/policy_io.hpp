@@ -47,6 +47,14 @@ std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& document, cons
 /// Saves a trained FACL model as its document, pretty-printed, atomically (complete or absent).
 void save_policy(const std::filesystem::path& file, const FaclModel& model);
 
+/// A policy file's text and its JSON, read once (FACL and MLP policy files alike).
+struct PolicyDocument {
+  std::string text;
+  nlohmann::json doc;
+};
+/// Reads and parses a policy file; one that cannot be read or is not JSON is a PolicyFormatError naming it.
+PolicyDocument read_policy_document(const std::filesystem::path& file);
+
 /// Loads a policy document for an agent of `role`. Throws PolicyFormatError (an InputError) naming the file
 /// when it cannot be read, is not JSON, does not fit, or was saved for the other role.
 std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role);

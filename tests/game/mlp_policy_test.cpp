@@ -37,7 +37,7 @@ std::filesystem::path write(const nlohmann::json& doc, const std::string& name) 
 
 TEST(MlpPolicy, ActsAsTheDocumentedForwardPass) {
   const auto file = write(steer_at_target(2.0), "steer.json");
-  ASSERT_TRUE(is_mlp_policy_file(file));
+  ASSERT_TRUE(is_mlp_document(read_policy_document(file).doc));
   MlpPolicy policy(load_mlp_policy(file, Role::kPursuer));
   AgentView v;
   v.percept.target.azimuth = 0.3;
