@@ -9,35 +9,39 @@
 
 namespace peg3d {
 
-bool Cone::contains(const Vec3& d, double tolerance) const {
-  // cos(angle) = d . axis / (|d| |axis|) against cos(half_angle + tolerance) decides all but the directions
-  // within about 1e-9 rad of the surface, far beyond the rounding of either side; those take the exact angle
-  // (angle_between's atan2), so the answer is always angle_between(d, axis) <= half_angle + tolerance.
-  const double limit = half_angle + tolerance;
+namespace {
+
+// Whether d lies within `limit` rad of `axis`, decided by cos(angle) = d . axis / (|d| |axis|) against
+// `cos_limit` (cos(limit) to within 1e-11): nullopt within about 1e-9 rad of the surface, far beyond the
+// rounding of either side (and the angle moves at least as much as its cosine), where only the exact angle
+// may decide.
+std::optional<bool> inside_by_cosine(const Vec3& d, const Vec3& axis, double limit, double cos_limit) {
   const double n2 = d.squaredNorm() * axis.squaredNorm();
-  const double x = d.dot(axis);
-  if (n2 > 0.0 && std::isfinite(n2) && limit > 0.0 && limit < kPi) {
-    const double c = x / std::sqrt(n2), cl = rough_cos(limit);
-    if (c > cl + 1e-9) return true;
-    if (c < cl - 1e-9) return false;
-  }
-  return std::atan2(d.cross(axis).norm(), x) <= limit;
+  if (!(n2 > 0.0 && std::isfinite(n2) && limit > 0.0 && limit < kPi)) return std::nullopt;
+  const double c = d.dot(axis) / std::sqrt(n2);
+  if (c > cos_limit + 1e-9) return true;
+  if (c < cos_limit - 1e-9) return false;
+  return std::nullopt;
+}
+
+}  // namespace
+
+bool Cone::contains(const Vec3& d, double tolerance) const {
+  // The answer is always angle_between(d, axis) <= half_angle + tolerance; the cosine spares its atan2 but
+  // at the surface.
+  const double limit = half_angle + tolerance;
+  if (const auto inside = inside_by_cosine(d, axis, limit, rough_cos(limit))) return *inside;
+  return angle_between(d, axis) <= limit;
 }
 
 ConeMembership::ConeMembership(const Cone& cone, double tolerance)
     : cone_(cone), tolerance_(tolerance), cos_limit_(std::cos(cone.half_angle + tolerance)) {}
 
 bool ConeMembership::operator()(const Vec3& d) const {
-  // cos(angle) from the dot product is off by a few ulps, far less than the margin, and the angle moves at
-  // least as much as its cosine: outside the margin the answer is contains()'s. Inside it, contains() decides.
-  constexpr double kMargin = 1e-9;
-  const double norms = d.norm() * cone_.axis.norm();
-  if (norms > 0.0) {
-    const double c = d.dot(cone_.axis) / norms;
-    if (c > cos_limit_ + kMargin) return true;
-    if (c < cos_limit_ - kMargin) return false;
-  }
-  return cone_.contains(d, tolerance_);
+  // Cone::contains with the limit's cosine taken once for all the directions tested.
+  const double limit = cone_.half_angle + tolerance_;
+  if (const auto inside = inside_by_cosine(d, cone_.axis, limit, cos_limit_)) return *inside;
+  return angle_between(d, cone_.axis) <= limit;
 }
 
 Vec3 Cone::project(const Vec3& d) const { return project(d, Vec3::Zero(), 0.0); }
