@@ -60,8 +60,8 @@ PYBIND11_MODULE(_core, m) {
     }
   });
 
-  py::class_<env::Batch>(m, "Batch")
-      .def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
+  py::class_<env::Batch> batch(m, "Batch");
+  batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
                        const std::string& scenario, int games, int threads, std::uint64_t seed, int neighbours,
                        const std::vector<std::pair<std::string, std::string>>& controllers, bool cache) {
              env::BatchSettings s;
@@ -131,30 +131,6 @@ PYBIND11_MODULE(_core, m) {
         env::Batch& b = self.cast<env::Batch&>();
         return view(self, b.reward_terms(), {b.games(), b.agents(), 3});
       })
-      .def_property_readonly("terminated", [](py::object self) {
-        env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.terminated(), {b.games(), b.agents()}, "bool");
-      })
-      .def_property_readonly("truncated", [](py::object self) {
-        env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.truncated(), {b.games(), b.agents()}, "bool");
-      })
-      .def_property_readonly("acted", [](py::object self) {
-        env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.acted(), {b.games(), b.agents()}, "bool");
-      })
-      .def_property_readonly("active", [](py::object self) {
-        env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.active(), {b.games(), b.agents()}, "bool");
-      })
-      .def_property_readonly("collided", [](py::object self) {
-        env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.collided(), {b.games(), b.agents()}, "bool");
-      })
-      .def_property_readonly("captured", [](py::object self) {
-        env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.captured(), {b.games(), b.agents()}, "bool");
-      })
       .def_property_readonly("reset_flags", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
         return view(self, b.reset_flags(), {b.games()}, "bool");
@@ -193,4 +169,15 @@ PYBIND11_MODULE(_core, m) {
         d["free_evaders"] = st.free_evaders;
         return d;
       });
+  // The per-agent flags, games x agents, as bool views.
+  using Flags = std::uint8_t* (env::Batch::*)();
+  for (const auto& [name, flags] : {std::pair<const char*, Flags>{"terminated", &env::Batch::terminated},
+                                    {"truncated", &env::Batch::truncated}, {"acted", &env::Batch::acted},
+                                    {"active", &env::Batch::active}, {"collided", &env::Batch::collided},
+                                    {"captured", &env::Batch::captured}}) {
+    batch.def_property_readonly(name, [flags = flags](py::object self) {
+      env::Batch& b = self.cast<env::Batch&>();
+      return view(self, (b.*flags)(), {b.games(), b.agents()}, "bool");
+    });
+  }
 }
