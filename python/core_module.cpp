@@ -86,8 +86,8 @@ PYBIND11_MODULE(_core, m) {
         if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
         return b.controlled(i);
       })
-      .def("observation_bounds", [](const env::Batch& b, bool pursuer) {
-        const env::ObservationBounds o = b.observation_bounds(pursuer ? game::Role::kPursuer : game::Role::kEvader);
+      .def("observation_bounds", [](const env::Batch& b) {
+        const env::ObservationBounds o = b.observation_bounds();
         return py::make_tuple(py::array_t<float>(py::ssize_t(o.low.size()), o.low.data()),
                               py::array_t<float>(py::ssize_t(o.high.size()), o.high.data()));
       })

@@ -83,7 +83,7 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
 
 
 def role_spaces(batch, pursuer):
-    low, high = batch.observation_bounds(pursuer)
+    low, high = batch.observation_bounds()
     bound = batch.action_bound(pursuer)
     obs = Box(low, high, dtype=np.float32)
     act = Box(np.full(2, -bound), np.full(2, bound), dtype=np.float32)

@@ -333,8 +333,7 @@ void Batch::write_outputs(int g) {
   }
 }
 
-ObservationBounds Batch::observation_bounds(game::Role role) const {
-  (void)role;
+ObservationBounds Batch::observation_bounds() const {
   const Box& box = sim_->arena().bounds();
   const Vec3 extent = box.hi - box.lo;
   const double reach = std::max(extent.norm(), sim_->arena().max_distance());

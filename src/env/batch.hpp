@@ -54,7 +54,7 @@ struct BatchSettings {
   std::vector<std::pair<std::string, std::string>> controllers;
 };
 
-/// Lower and upper bounds of every observation entry on this Sim (the same for every agent of a role).
+/// Lower and upper bounds of every observation entry on this Sim.
 struct ObservationBounds {
   std::vector<float> low, high;
 };
@@ -73,7 +73,8 @@ class Batch {
   const std::vector<std::string>& agent_names() const { return names_; }
   /// Whether agent i is played on the C++ side (its actions are ignored).
   bool controlled(int i) const { return controllers_[std::size_t(i)].has_value(); }
-  ObservationBounds observation_bounds(game::Role role) const;
+  /// The same for every agent: both roles share the layout and the arena.
+  ObservationBounds observation_bounds() const;
   /// rad: the steering bound per step, the action space's bound on both components.
   double action_bound(game::Role role) const;
   const game::Sim& sim() const { return *sim_; }
