@@ -76,9 +76,6 @@ class VectorEnv:
         if self._closed:
             raise RuntimeError("peg3d: the environment is closed")
 
-    def _infos(self):
-        return self._info
-
     def reset(self, seed=None, options=None):
         self._check_open()
         self._batch.reset(_loading.check_seed(seed))
