@@ -56,6 +56,11 @@ int main(int argc, char** argv) {
   app.add_option("--evaders", evaders, "scripted evaders in the league: flee, flee-apollonius, random")
       ->delimiter(',')
       ->capture_default_str();
+  std::vector<std::string> pursuer_entrants, evader_entrants;
+  app.add_option("--pursuer-entrant", pursuer_entrants,
+                 "a saved pursuer (FACL or MLP policy file) entering the league: NAME=FILE, or FILE (named by its stem); "
+                 "repeatable");
+  app.add_option("--evader-entrant", evader_entrants, "a saved evader entering the league: NAME=FILE or FILE; repeatable");
   app.add_flag("!--no-plots", plots, "skip the heat-map figure");
   app.add_flag("--list-config", list_config, "print every configuration field of each algorithm and exit");
 
@@ -89,6 +94,18 @@ int main(int argc, char** argv) {
     } else {
       throw InvalidParameter("--train-heading", "\"" + train_heading + "\"", "must be random, chase, facing, plus-x or config");
     }
+    const auto saved = [](const std::vector<std::string>& specs, game::Role role) {
+      std::vector<experiment::SavedEntrant> out;
+      for (const std::string& spec : specs) {
+        const std::size_t eq = spec.find('=');
+        const std::filesystem::path file = eq == std::string::npos ? spec : spec.substr(eq + 1);
+        const std::string name = eq == std::string::npos ? file.stem().string() : spec.substr(0, eq);
+        out.push_back({name, game::load_saved_policy(cli::resolve_input(file), role)});
+      }
+      return out;
+    };
+    s.saved_pursuers = saved(pursuer_entrants, game::Role::kPursuer);
+    s.saved_evaders = saved(evader_entrants, game::Role::kEvader);
     s.sweep = o.sweep;
     const auto train = cli::load_arena(o.map, !o.no_cache);
     std::vector<std::shared_ptr<const world::Arena>> arenas;

@@ -9,7 +9,7 @@
 #include "core/config_json.hpp"
 #include "experiment/matchup_experiment.hpp"
 #include "game/config_file.hpp"
-#include "game/policy_io.hpp"
+#include "game/saved_policy.hpp"
 #include "results/result_files.hpp"
 #include "results/run_info.hpp"
 #include "sweep/progress_reporter.hpp"
@@ -39,8 +39,8 @@ int main(int argc, char** argv) {
   app.add_option("--evaders", evaders, "evader policies: facl, flee, flee-apollonius, random")
       ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--pursuer-policy", pursuer_policy, "use this saved FACL pursuer instead of training one");
-  app.add_option("--evader-policy", evader_policy, "use this saved FACL evader instead of training one");
+  app.add_option("--pursuer-policy", pursuer_policy, "use this saved pursuer (FACL or MLP) in the facl slot instead of training one");
+  app.add_option("--evader-policy", evader_policy, "use this saved evader (FACL or MLP) in the facl slot instead of training one");
   app.add_flag("--list-config", list_config, "print every configuration field and exit");
 
   return cli::sweep_main(app, argc, argv, [&] {
@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
     s.evaders.clear();
     for (const auto& p : pursuers) s.pursuers.push_back(game::policy_named(p, game::Role::kPursuer, "--pursuers"));
     for (const auto& e : evaders) s.evaders.push_back(game::policy_named(e, game::Role::kEvader, "--evaders"));
-    if (!pursuer_policy.empty()) s.pursuer_policy = game::load_policy(pursuer_policy, game::Role::kPursuer);
-    if (!evader_policy.empty()) s.evader_policy = game::load_policy(evader_policy, game::Role::kEvader);
+    if (!pursuer_policy.empty()) s.pursuer_policy = game::load_saved_policy(pursuer_policy, game::Role::kPursuer);
+    if (!evader_policy.empty()) s.evader_policy = game::load_saved_policy(evader_policy, game::Role::kEvader);
     s.sweep = o.sweep;
     if (!html.empty()) s.keep_trace = [&](const std::string& key) { return cli::chosen_for_html(html, key); };
     const auto arena = cli::load_arena(o.map, !o.no_cache);
@@ -83,8 +83,8 @@ int main(int argc, char** argv) {
       for (const auto& r : records) {
         if (!r.trace) continue;
         std::size_t p = 0, e = 0;  // the pairing's Sim: sims[1 + p * evaders + e]
-        while (game::to_string(s.pursuers[p]) != r.pursuer) ++p;
-        while (game::to_string(s.evaders[e]) != r.evader) ++e;
+        while (experiment::matchup_policy_name(s, game::Role::kPursuer, s.pursuers[p]) != r.pursuer) ++p;
+        while (experiment::matchup_policy_name(s, game::Role::kEvader, s.evaders[e]) != r.evader) ++e;
         const std::filesystem::path file = results::output_file(o.out, experiment::matchup_key(r), ".html");
         cli::write_viewer(file, scene, sims[1 + p * s.evaders.size() + e], *r.trace,
                           {fmt::format("{} {} repeat {}: {} vs {}", arena->map().name, r.scenario, r.repeat, r.pursuer, r.evader),

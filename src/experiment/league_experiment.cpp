@@ -43,6 +43,15 @@ std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, c
   for (const auto kind : role == game::Role::kPursuer ? s.classic_pursuers : s.classic_evaders) {
     out.push_back({game::to_string(kind), game::to_string(kind), role, kind, -1, -1});
   }
+  const auto& saved = role == game::Role::kPursuer ? s.saved_pursuers : s.saved_evaders;
+  for (std::size_t k = 0; k < saved.size(); ++k) {
+    const std::string field = role == game::Role::kPursuer ? "--pursuer-entrant" : "--evader-entrant";
+    if (saved[k].name.empty()) throw InvalidParameter(field, "(empty)", "needs a name: NAME=FILE");
+    for (const Entrant& e : out) {
+      if (e.name == saved[k].name) throw InvalidParameter(field, saved[k].name, "names another entrant of the league");
+    }
+    out.push_back({saved[k].name, saved[k].name, role, game::PolicyKind::kFacl, -1, -1, static_cast<int>(k)});
+  }
   return out;
 }
 
@@ -60,13 +69,15 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
     train_sims_.emplace_back(train_, training);
     pools_.emplace_back(train_, training);
   }
-  // Groups: the algorithms, then the classic policies of the role.
+  // Groups: the algorithms, then the classic policies of the role, then its saved policies.
   const int n_alg = static_cast<int>(algorithms_.size());
-  pursuer_groups_ = n_alg + static_cast<int>(settings_.classic_pursuers.size());
-  evader_groups_ = n_alg + static_cast<int>(settings_.classic_evaders.size());
+  pursuer_groups_ = n_alg + static_cast<int>(settings_.classic_pursuers.size() + settings_.saved_pursuers.size());
+  evader_groups_ = n_alg + static_cast<int>(settings_.classic_evaders.size() + settings_.saved_evaders.size());
   const game::GameConfig& rules = algorithms_.front().config;
   const auto side = [&](game::GameConfig& c, game::Role role, int group) {
     const auto& classic = role == game::Role::kPursuer ? settings_.classic_pursuers : settings_.classic_evaders;
+    const auto& saved = role == game::Role::kPursuer ? settings_.saved_pursuers : settings_.saved_evaders;
+    const int n_classic = static_cast<int>(classic.size());
     auto& all = role == game::Role::kPursuer ? c.pursuer : c.evader;
     auto& list = role == game::Role::kPursuer ? c.pursuers : c.evaders;
     if (group < n_alg) {
@@ -79,8 +90,11 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
       } else {
         c.team.evader_threat = g.team.evader_threat;
       }
-    } else {
+    } else if (group < n_alg + n_classic) {
       c = game::with_role_playing(std::move(c), role, classic[std::size_t(group - n_alg)]);
+    } else if (const game::AgentConfig* own = saved[std::size_t(group - n_alg - n_classic)].policy->config()) {
+      all = *own;
+      list.clear();
     }
   };
   for (const LeagueMap& m : maps_) {
@@ -128,6 +142,15 @@ nlohmann::json League::setup() const {
   setup["classic_pursuers"] = std::move(pursuers);
   setup["classic_evaders"] = std::move(evaders);
   setup["algorithms"] = algorithms_json(algorithms_);
+  // Only when there are any, so that the journals of leagues without them keep their header.
+  for (const auto& [key, list] : {std::pair{"saved_pursuers", &settings_.saved_pursuers}, std::pair{"saved_evaders", &settings_.saved_evaders}}) {
+    if (list->empty()) continue;
+    nlohmann::json entries = nlohmann::json::array();
+    for (const SavedEntrant& e : *list) {
+      entries.push_back({{"name", e.name}, {"kind", e.policy->kind_name()}, {"hash", e.policy->content_hash}});
+    }
+    setup[key] = std::move(entries);
+  }
   return setup;
 }
 
@@ -188,6 +211,7 @@ void League::train() const {
 int League::group_of(const Entrant& e) const {
   if (e.algorithm >= 0) return e.algorithm;
   const auto& classic = e.role == game::Role::kPursuer ? settings_.classic_pursuers : settings_.classic_evaders;
+  if (e.saved >= 0) return static_cast<int>(algorithms_.size() + classic.size()) + e.saved;
   return static_cast<int>(algorithms_.size()) +
          static_cast<int>(std::find(classic.begin(), classic.end(), e.policy) - classic.begin());
 }
@@ -205,12 +229,16 @@ void League::play_start(const Start& st, std::span<Game> games) const {
       const Entrant& E = evaders_[e];
       const game::Sim& sim = sim_of(st.map, group_of(P), group_of(E));
       game::Lineup lineup;
-      if (P.algorithm >= 0) {
+      if (P.saved >= 0) {
+        game::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, np);
+      } else if (P.algorithm >= 0) {
         game::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
       } else {
         game::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
       }
-      if (E.algorithm >= 0) {
+      if (E.saved >= 0) {
+        game::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, ne);
+      } else if (E.algorithm >= 0) {
         game::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
       } else {
         game::add_configured(lineup, sim.config(), game::Role::kEvader, ne, derive_seed(seed, {2}));

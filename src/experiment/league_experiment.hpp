@@ -27,11 +27,18 @@
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "game/lineup.hpp"
+#include "game/saved_policy.hpp"
 #include "game/sim.hpp"
 #include "results/result_files.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
+
+/// A saved policy entering the league: it plays every game of its role, greedily, and trains nothing.
+struct SavedEntrant {
+  std::string name;  ///< its name in the results; unique among the entrants
+  std::shared_ptr<const game::SavedPolicy> policy;
+};
 
 struct LeagueSettings {
   std::vector<game::PolicyKind> classic_pursuers{game::PolicyKind::kPurePursuit, game::PolicyKind::kProportionalNavigation,
@@ -49,6 +56,9 @@ struct LeagueSettings {
   /// Initial headings of the training episodes, replacing the algorithms' initial_heading; nullopt keeps
   /// theirs. Random by default: the training starts as the games do (docs/learning.md).
   std::optional<game::InitialHeading> train_heading = game::InitialHeading::kRandom;
+  /// Saved pursuers and evaders (FACL or MLP files) entering beside the trained and classic ones. A FACL file
+  /// plays with the agent configuration it was saved with, an MLP with the rules' (the first algorithm's).
+  std::vector<SavedEntrant> saved_pursuers, saved_evaders;
 };
 
 /// One player of the league.
@@ -59,9 +69,11 @@ struct Entrant {
   game::PolicyKind policy = game::PolicyKind::kFacl;
   int algorithm = -1;   ///< index of its algorithm (trained entrants), else -1
   int train_seed = -1;  ///< index of its training seed (trained entrants), else -1
+  int saved = -1;       ///< index of its saved policy in the settings' list (saved entrants), else -1
 };
 
-/// The trained entrants first (algorithm-major, then training seed), then the classic ones, per role. An
+/// The trained entrants first (algorithm-major, then training seed), then the classic ones, then the saved ones,
+/// per role. An
 /// algorithm whose role is not played by FACL has no trained entrant of that role.
 std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, const LeagueSettings& settings,
                                      game::Role role);
@@ -126,7 +138,8 @@ class League {
   };
 
   const game::Sim& sim_of(std::size_t map, int pursuer_group, int evader_group) const;
-  /// The group an entrant plays in: its algorithm, or after the algorithms its classic policy.
+  /// The group an entrant plays in: its algorithm, or after the algorithms its classic policy, or after those its
+  /// saved policy.
   int group_of(const Entrant& e) const;
   /// Every (algorithm, seed) run, journaled and spread over the ranks.
   void train() const;
@@ -140,7 +153,8 @@ class League {
   std::vector<Entrant> pursuers_, evaders_;
   std::vector<game::Sim> train_sims_;     ///< per algorithm
   std::vector<OpponentPool> pools_;       ///< per algorithm
-  /// Per evaluation map, pursuer group and evader group (groups: algorithms, then classic policies per role).
+  /// Per evaluation map, pursuer group and evader group (groups: algorithms, then classic policies, then saved
+  /// policies per role).
   std::vector<game::Sim> eval_sims_;
   int pursuer_groups_ = 0, evader_groups_ = 0;
   mutable std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run

@@ -7,11 +7,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/config_json.hpp"
-#include "core/hash.hpp"
 #include "core/random.hpp"
 #include "experiment/trial.hpp"
 #include "game/lineup.hpp"
-#include "game/policy_io.hpp"
 #include "results/codecs.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"
@@ -25,11 +23,11 @@ namespace peg3d::experiment {
 game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,
                                 const MatchupSettings& s) {
   game::GameConfig c = base;
-  const auto side = [&c](game::Role role, game::PolicyKind kind, const std::shared_ptr<game::FaclModel>& loaded) {
+  const auto side = [&c](game::Role role, game::PolicyKind kind, const std::shared_ptr<const game::SavedPolicy>& loaded) {
     if (kind != game::PolicyKind::kFacl) {
       c = game::with_role_playing(std::move(c), role, kind);
-    } else if (loaded) {
-      (role == game::Role::kPursuer ? c.pursuer : c.evader) = loaded->config();
+    } else if (loaded && loaded->config() != nullptr) {
+      (role == game::Role::kPursuer ? c.pursuer : c.evader) = *loaded->config();
       (role == game::Role::kPursuer ? c.pursuers : c.evaders).clear();
     }
   };
@@ -54,13 +52,10 @@ std::size_t matchup_run_count(const world::Arena& arena, const MatchupSettings& 
 
 nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& base, const MatchupSettings& s) {
   nlohmann::json pursuers = nlohmann::json::array(), evaders = nlohmann::json::array();
-  for (const auto p : s.pursuers) pursuers.push_back(game::to_string(p));
-  for (const auto e : s.evaders) evaders.push_back(game::to_string(e));
-  const auto policy_hash = [](const std::shared_ptr<game::FaclModel>& m) {
-    if (!m) return nlohmann::json(nullptr);
-    Fnv1a h;
-    h.add_text(game::policy_to_json(*m).dump());
-    return nlohmann::json(fmt::format("fnv1a64:{:016x}", h.value()));
+  for (const auto p : s.pursuers) pursuers.push_back(matchup_policy_name(s, game::Role::kPursuer, p));
+  for (const auto e : s.evaders) evaders.push_back(matchup_policy_name(s, game::Role::kEvader, e));
+  const auto policy_hash = [](const std::shared_ptr<const game::SavedPolicy>& m) {
+    return m ? nlohmann::json(m->content_hash) : nlohmann::json(nullptr);
   };
   nlohmann::json setup = setup_header("matchup", arena, s.sweep);
   setup["repeats"] = s.sweep.repeats;
@@ -80,6 +75,11 @@ nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSet
           {"runs", scenario_run_seeds(arena.map().scenarios, s.sweep.repeats, s.sweep.seed)}};
 }
 
+std::string matchup_policy_name(const MatchupSettings& s, game::Role role, game::PolicyKind kind) {
+  const auto& saved = role == game::Role::kPursuer ? s.pursuer_policy : s.evader_policy;
+  return kind == game::PolicyKind::kFacl && saved ? saved->kind_name() : game::to_string(kind);
+}
+
 namespace {
 
 bool needs_training(const MatchupSettings& s) {
@@ -88,12 +88,6 @@ bool needs_training(const MatchupSettings& s) {
   for (const auto e : s.evaders)
     if (e == game::PolicyKind::kFacl && !s.evader_policy) return true;
   return false;
-}
-
-game::RoleModels loaded_models(const std::shared_ptr<game::FaclModel>& m) {
-  game::RoleModels r;
-  if (m) r.models = {m}, r.of_agent = {0};
-  return r;
 }
 
 // One run of the matchups: the FACL agents of a start (trained or loaded), then every pairing's greedy game.
@@ -117,8 +111,6 @@ class MatchupRun {
       facl_pursuers = std::move(t.pursuer_models);
       facl_evaders = std::move(t.evader_models);
     }
-    if (s_.pursuer_policy) facl_pursuers = loaded_models(s_.pursuer_policy);
-    if (s_.evader_policy) facl_evaders = loaded_models(s_.evader_policy);
     game::SimState state(sims_.front());
     std::vector<MatchupRecord> records;
     for (std::size_t p = 0; p < s_.pursuers.size(); ++p) {
@@ -141,17 +133,22 @@ class MatchupRun {
     const int pursuers = static_cast<int>(scenario.pursuers.size()), evaders = static_cast<int>(scenario.evaders.size());
     const std::uint64_t pseed = derive_seed(seed, {10, p, e});
     game::Lineup lineup;
-    if (s_.pursuers[p] == game::PolicyKind::kFacl) {
+    if (s_.pursuers[p] == game::PolicyKind::kFacl && s_.pursuer_policy) {
+      game::add_saved(lineup, *s_.pursuer_policy, pursuers);
+    } else if (s_.pursuers[p] == game::PolicyKind::kFacl) {
       game::add_frozen(lineup, facl_pursuers, pursuers);
     } else {
       game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
     }
-    if (s_.evaders[e] == game::PolicyKind::kFacl) {
+    if (s_.evaders[e] == game::PolicyKind::kFacl && s_.evader_policy) {
+      game::add_saved(lineup, *s_.evader_policy, evaders);
+    } else if (s_.evaders[e] == game::PolicyKind::kFacl) {
       game::add_frozen(lineup, facl_evaders, evaders);
     } else {
       game::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
     }
-    MatchupRecord record{scenario.name, rep, game::to_string(s_.pursuers[p]), game::to_string(s_.evaders[e]), {}, {}, {}};
+    MatchupRecord record{scenario.name, rep, matchup_policy_name(s_, game::Role::kPursuer, s_.pursuers[p]),
+                         matchup_policy_name(s_, game::Role::kEvader, s_.evaders[e]), {}, {}, {}};
     std::shared_ptr<game::Trace> trace;
     if (s_.keep_trace && s_.keep_trace(matchup_key(record))) {
       trace = std::make_shared<game::Trace>();
@@ -270,10 +267,12 @@ nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& reco
   };
   for (const auto p : s.pursuers) {
     for (const auto e : s.evaders) {
+      const std::string pname = matchup_policy_name(s, game::Role::kPursuer, p);
+      const std::string ename = matchup_policy_name(s, game::Role::kEvader, e);
       std::size_t runs = 0, caps = 0, coll = 0, evaders = 0, evaders_captured = 0;
       std::vector<double> time, each, path, epath, pinned;
       for (const auto& r : records) {
-        if (r.pursuer != game::to_string(p) || r.evader != game::to_string(e)) continue;
+        if (r.pursuer != pname || r.evader != ename) continue;
         ++runs;
         caps += r.result.captured();
         coll += r.result.collisions > 0;
@@ -286,8 +285,8 @@ nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& reco
         epath.push_back(r.result.evader_path);
         pinned.push_back(r.result.pinned_fraction(game::Role::kEvader));
       }
-      out.push_back({{"pursuer", game::to_string(p)},
-                     {"evader", game::to_string(e)},
+      out.push_back({{"pursuer", pname},
+                     {"evader", ename},
                      {"runs", runs},
                      {"captures", caps},
                      {"capture_rate", rate_json(results::wilson_interval(caps, runs))},

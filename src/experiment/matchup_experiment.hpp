@@ -17,6 +17,7 @@
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
+#include "game/saved_policy.hpp"
 #include "game/game_config.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
@@ -31,8 +32,10 @@ struct MatchupSettings {
   /// Seeds, budget (FACL training episodes, ignored for a loaded policy), repeats (seeds per scenario, 10 by
   /// default), threads and control.
   SweepSettings sweep{.repeats = 10};
-  std::shared_ptr<game::FaclModel> pursuer_policy;  ///< a saved FACL pursuer instead of training (every pursuer plays it)
-  std::shared_ptr<game::FaclModel> evader_policy;   ///< a saved FACL evader instead of training (every evader plays it)
+  /// A saved pursuer (FACL or MLP) playing the "facl" slot instead of a trained one (every pursuer plays it);
+  /// results name the slot by its kind ("facl" or "mlp").
+  std::shared_ptr<const game::SavedPolicy> pursuer_policy;
+  std::shared_ptr<const game::SavedPolicy> evader_policy;  ///< the same for the evaders
   /// The classic opponents mixed into FACL training (experiment/training.hpp); null: co-learning.
   std::shared_ptr<const OpponentPool> pool{};
   /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
@@ -47,6 +50,10 @@ struct MatchupRecord {
   std::vector<game::AgentSummary> agents;
   std::shared_ptr<const game::Trace> trace;  ///< every instant, when settings.keep_trace chose the game
 };
+
+/// The name results give a pairing's policy of `role`: the kind's name, except that the "facl" slot played by a
+/// saved policy is named by that policy's kind ("facl" or "mlp").
+std::string matchup_policy_name(const MatchupSettings& settings, game::Role role, game::PolicyKind kind);
 
 /// A game's key: SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee.
 std::string matchup_key(const MatchupRecord& r);

@@ -15,7 +15,7 @@
 #include "game/config_file.hpp"
 #include "game/lineup.hpp"
 #include "game/policy_factory.hpp"
-#include "game/policy_io.hpp"
+#include "game/saved_policy.hpp"
 #include "geometry/angles.hpp"
 #include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
@@ -239,18 +239,21 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     }
     if (!found) throw InputError(c.file, d.line, "agents." + d.label, "no agent of scenario '" + scenario->name + "' has this label");
   }
-  // A saved policy plays with the agent configuration it was saved with (its guard, steering, observation), as
-  // in peg-matchup: its agent's entry in the game configuration becomes that one.
-  std::vector<std::shared_ptr<game::FaclModel>> saved(static_cast<std::size_t>(n));
+  // A saved FACL policy plays with the agent configuration it was saved with (its guard, steering, observation),
+  // as in peg-matchup: its agent's entry in the game configuration becomes that one. An MLP plays with the
+  // case's configuration.
+  std::vector<std::shared_ptr<const game::SavedPolicy>> saved(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr || d->kind != AgentDriver::Kind::kPolicy) continue;
     const game::Role role = game::role_at(i, p);
     const std::size_t rank = std::size_t(game::rank_at(i, p));
-    saved[std::size_t(i)] = game::load_policy(d->policy, role);
+    saved[std::size_t(i)] = game::load_saved_policy(d->policy, role);
+    const game::AgentConfig* own = saved[std::size_t(i)]->config();
+    if (own == nullptr) continue;
     auto& entries = role == game::Role::kPursuer ? config.pursuers : config.evaders;
     if (entries.size() <= rank) entries.resize(rank + 1, role == game::Role::kPursuer ? config.pursuer : config.evader);
-    entries[rank] = saved[std::size_t(i)]->config();
+    entries[rank] = *own;
   }
   const game::Sim sim(arena, config);
   game::Lineup lineup;
@@ -266,7 +269,7 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     } else if (d->kind == AgentDriver::Kind::kWaypoints) {
       lineup.add(std::make_unique<game::WaypointFollower>(d->waypoints));
     } else if (d->kind == AgentDriver::Kind::kPolicy) {
-      lineup.add(std::make_unique<game::FaclPolicy>(std::shared_ptr<const game::FaclModel>(saved[std::size_t(i)])));
+      lineup.add(saved[std::size_t(i)]->make());
     } else {
       game::AgentConfig a = config.agent(role, rank);
       a.policy = d->scripted;

@@ -11,7 +11,7 @@
 //   agents:                       optional, who drives which agent (the others play the configuration's policy)
 //     pursuer: {commands: pursuer.commands}     timed steering commands (a file, or inline [[t, da, dt], ...])
 //     evader: {waypoints: evader.waypoints}     waypoints flown at the agent's speed (file or [[x, y, z, t?]])
-//     pursuer1: {policy: pursuer.json}          a saved FACL policy
+//     pursuer1: {policy: pursuer.json}          a saved policy (FACL or MLP)
 //     evader1: {scripted: flee}                 a scripted policy by name
 
 #include <cstdint>
@@ -34,7 +34,7 @@ struct AgentDriver {
   Kind kind = Kind::kCommands;
   std::vector<game::TimedCommand> commands;
   std::vector<game::Waypoint> waypoints;
-  std::filesystem::path policy;  ///< a saved FACL policy file
+  std::filesystem::path policy;  ///< a saved policy file (FACL or MLP)
   game::PolicyKind scripted = game::PolicyKind::kFlee;
 };
 

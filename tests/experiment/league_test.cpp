@@ -10,6 +10,7 @@
 
 #include "experiment/league_experiment.hpp"
 #include "experiment/league_report.hpp"
+#include "game/policy_io.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::experiment {
@@ -199,6 +200,54 @@ TEST(League, FindingsCompareWithTheBestClassicOpponent) {
   EXPECT_DOUBLE_EQ(vs_pp["survival_s"]["mean"].get<double>(), 30.0);
   EXPECT_DOUBLE_EQ(vs_pp["mean_difference_s"].get<double>(), 0.0);
   EXPECT_FALSE(vs_pp["survives_longer"].get<bool>());
+}
+
+TEST(League, ASavedEntrantPlaysAsTheTrainedPolicyItWasSavedFrom) {
+  // Save a#0's trained pursuer and evader and enter them again, as files: at every start and seed they play the
+  // games a#0 plays, bit for bit, after the classic entrants.
+  const League first = league({algorithm("a", "peg3d")}, small());
+  const auto first_games = first.run(true);
+  const auto dir = std::filesystem::path(::testing::TempDir());
+  game::save_policy(dir / "league_p.json", *first.models(0, 0, Role::kPursuer).models.at(0));
+  game::save_policy(dir / "league_e.json", *first.models(0, 0, Role::kEvader).models.at(0));
+  LeagueSettings s = small();
+  s.saved_pursuers = {{"saved_p", game::load_saved_policy(dir / "league_p.json", Role::kPursuer)}};
+  s.saved_evaders = {{"saved_e", game::load_saved_policy(dir / "league_e.json", Role::kEvader)}};
+  const League second = league({algorithm("a", "peg3d")}, s);
+  EXPECT_EQ(second.pursuers().back().name, "saved_p");
+  EXPECT_EQ(second.pursuers().back().group, "saved_p");
+  EXPECT_EQ(second.evaders().back().name, "saved_e");
+  const auto games = second.run(true);
+  ASSERT_EQ(games.size(), 6u * 6u * 2u * 2u);
+  const auto find = [](const std::vector<League::Game>& all, const League::Game& like, const std::string& p,
+                       const std::string& e) -> const League::Game* {
+    for (const auto& g : all)
+      if (g.scenario == like.scenario && g.eval_seed == like.eval_seed && g.pursuer == p && g.evader == e) return &g;
+    return nullptr;
+  };
+  int compared = 0;
+  for (const auto& g : first_games) {
+    if (g.pursuer != "a#0" && g.evader != "a#0") continue;
+    const std::string p = g.pursuer == "a#0" ? "saved_p" : g.pursuer, e = g.evader == "a#0" ? "saved_e" : g.evader;
+    const League::Game* h = find(games, g, p, e);
+    ASSERT_NE(h, nullptr) << p << " vs " << e;
+    EXPECT_EQ(h->result.steps, g.result.steps) << p << " vs " << e;
+    EXPECT_EQ(h->result.final_distance, g.result.final_distance) << p << " vs " << e;
+    ++compared;
+  }
+  EXPECT_EQ(compared, (5 + 5 - 1) * 2 * 2);
+  EXPECT_EQ(second.setup()["saved_pursuers"][0]["kind"], "facl");
+  EXPECT_FALSE(first.setup().contains("saved_pursuers"));  // leagues without them keep their journal header
+}
+
+TEST(League, ASavedEntrantMustHaveANameOfItsOwn) {
+  const auto file = std::filesystem::path(::testing::TempDir()) / "league_clash.json";
+  game::save_policy(file, game::FaclModel(game::agent_preset("peg3d", Role::kPursuer), Role::kPursuer));
+  LeagueSettings s = small();
+  s.saved_pursuers = {{"pure-pursuit", game::load_saved_policy(file, Role::kPursuer)}};
+  EXPECT_THROW(league({algorithm("a", "peg3d")}, s), InvalidParameter);
+  s.saved_pursuers = {{"", game::load_saved_policy(file, Role::kPursuer)}};
+  EXPECT_THROW(league({algorithm("a", "peg3d")}, s), InvalidParameter);
 }
 
 }  // namespace

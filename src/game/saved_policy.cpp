@@ -1,0 +1,46 @@
+#include "game/saved_policy.hpp"
+
+#include <fmt/format.h>
+
+#include "core/hash.hpp"
+#include "game/policy_io.hpp"
+
+namespace peg3d::game {
+
+namespace {
+
+std::string hash_of(const std::string& canonical) {
+  Fnv1a h;
+  h.add_text(canonical);
+  return fmt::format("fnv1a64:{:016x}", h.value());
+}
+
+}  // namespace
+
+std::unique_ptr<Policy> SavedPolicy::make() const {
+  if (facl) return std::make_unique<FaclPolicy>(facl);
+  return std::make_unique<MlpPolicy>(mlp);
+}
+
+std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role) {
+  const PolicyDocument d = read_policy_document(file);
+  auto p = std::make_shared<SavedPolicy>();
+  p->file = file;
+  p->role = role;
+  if (is_mlp_document(d.doc)) {
+    p->mlp = mlp_from_json(d.doc, file, role, d.text);
+    p->content_hash = hash_of(d.doc.dump());
+  } else {
+    std::shared_ptr<const FaclModel> m = policy_from_json(d.doc, file, role, d.text);
+    // The hash peg-matchup's journal has always recorded for a loaded FACL policy.
+    p->content_hash = hash_of(policy_to_json(*m).dump());
+    p->facl = std::move(m);
+  }
+  return p;
+}
+
+void add_saved(Lineup& lineup, const SavedPolicy& policy, int count) {
+  for (int k = 0; k < count; ++k) lineup.add(policy.make());
+}
+
+}  // namespace peg3d::game

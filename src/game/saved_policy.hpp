@@ -1,0 +1,42 @@
+#pragma once
+// A policy read from a file and played greedily, whatever trained it: a FACL model (game/policy_io.hpp) or an
+// MLP (game/mlp_policy.hpp, trained in Python). Read once and shared read-only by every game and thread that
+// plays it, so every program that takes a policy file (peg-matchup, peg-league, peg-collide cases, the Python
+// front's opponents) plays both kinds the same way.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "game/facl_policy.hpp"
+#include "game/lineup.hpp"
+#include "game/mlp_policy.hpp"
+#include "game/policy.hpp"
+
+namespace peg3d::game {
+
+struct SavedPolicy {
+  std::filesystem::path file;
+  Role role = Role::kPursuer;
+  std::shared_ptr<const FaclModel> facl;  ///< set for a FACL file
+  std::shared_ptr<const MlpModel> mlp;    ///< set for an MLP file
+  /// "fnv1a64:..." of the model's canonical JSON (a FACL model's as policy_to_json writes it, an MLP's document)
+  std::string content_hash;
+
+  /// "facl" or "mlp": the name results give the policy's kind.
+  const char* kind_name() const { return facl ? "facl" : "mlp"; }
+  /// The agent configuration it must play with (its guard, steering, observation): a FACL model's own; null for
+  /// an MLP, which plays with the game's agent configuration (the one its observations were made under).
+  const AgentConfig* config() const { return facl ? &facl->config() : nullptr; }
+  /// A new greedy player of the policy (its per-agent buffers its own, the model shared).
+  std::unique_ptr<Policy> make() const;
+};
+
+/// Reads a policy file of either kind for an agent of `role`. A file that cannot be read, is not a policy
+/// document, does not fit or was saved for the other role is a PolicyFormatError (an InputError) naming it.
+std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role);
+
+/// Adds `count` greedy players of `policy` to a line-up.
+void add_saved(Lineup& lineup, const SavedPolicy& policy, int count);
+
+}  // namespace peg3d::game

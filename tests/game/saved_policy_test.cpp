@@ -1,0 +1,143 @@
+// SavedPolicy (game/saved_policy.hpp): one reader for both kinds of policy file, each played as its own kind.
+#include "game/saved_policy.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/random.hpp"
+#include "game/observation_vector.hpp"
+#include "game/policy_io.hpp"
+
+namespace peg3d::game {
+namespace {
+
+std::filesystem::path temp(const std::string& name) { return std::filesystem::path(::testing::TempDir()) / name; }
+
+AgentView random_view(Rng& rng) {
+  std::uniform_real_distribution<double> d(0.5, 40.0), a(-kPi, kPi);
+  AgentView v;
+  v.percept.target_distance = d(rng);
+  v.percept.target = {a(rng), a(rng)};
+  v.percept.obstacle = {d(rng) / 8, Vec3::Zero(), true};
+  v.percept.to_obstacle = {a(rng), a(rng)};
+  v.self.position = {d(rng) / 2, d(rng) / 2, d(rng) / 4};
+  v.other.position = {d(rng) / 2, d(rng) / 2, d(rng) / 4};
+  return v;
+}
+
+// A FACL pursuer with distinct table values (learning on random transitions), saved to `file`.
+std::shared_ptr<const FaclModel> trained_facl(const std::filesystem::path& file) {
+  FaclPolicy p(agent_preset("peg3d", Role::kPursuer), Role::kPursuer, 5);
+  Rng rng(1);
+  p.begin_episode({}, true);
+  for (int i = 0; i < 2000; ++i) {
+    p.act(random_view(rng));
+    p.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_view(rng), i % 50 == 49);
+  }
+  save_policy(file, p.model());
+  return p.shared_model();
+}
+
+// A 20 -> 2 MLP whose weights all differ, saved to `file`.
+void write_mlp(const std::filesystem::path& file, const std::string& role) {
+  nlohmann::json w = nlohmann::json::array();
+  for (int j = 0; j < 2; ++j) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int i = 0; i < kObservationBase; ++i) row.push_back(0.01 * (i + 1) * (j == 0 ? 1 : -1));
+    w.push_back(row);
+  }
+  const nlohmann::json doc{{"format", "peg3d-mlp"}, {"version", 1}, {"role", role}, {"inputs", 20}, {"action_bound", 0.4},
+                           {"input_mean", std::vector<double>(20, 0.5)}, {"input_std", std::vector<double>(20, 2.0)},
+                           {"layers", {{{"weights", w}, {"bias", {0.1, -0.2}}}}}};
+  std::ofstream(file) << doc.dump(1);
+}
+
+TEST(SavedPolicy, AFaclFilePlaysAsItsModelWithItsOwnConfiguration) {
+  const auto file = temp("saved_facl.json");
+  const auto model = trained_facl(file);
+  const auto saved = load_saved_policy(file, Role::kPursuer);
+  EXPECT_STREQ(saved->kind_name(), "facl");
+  ASSERT_NE(saved->config(), nullptr);
+  EXPECT_EQ(*saved->config(), model->config());
+  FaclPolicy reference(model);
+  const auto player = saved->make();
+  reference.begin_episode({}, false);
+  player->begin_episode({}, false);
+  Rng rng(2);
+  int turned = 0;
+  for (int i = 0; i < 500; ++i) {
+    const AgentView v = random_view(rng);
+    const Steering a = reference.act(v), b = player->act(v);
+    ASSERT_EQ(a.d_alpha, b.d_alpha);
+    ASSERT_EQ(a.d_theta, b.d_theta);
+    turned += a.d_alpha != 0.0;
+  }
+  EXPECT_GT(turned, 400);  // the comparison is of real actions, not of zeros
+}
+
+TEST(SavedPolicy, AnMlpFilePlaysAsTheMlpWithTheGamesConfiguration) {
+  const auto file = temp("saved_mlp.json");
+  write_mlp(file, "evader");
+  const auto saved = load_saved_policy(file, Role::kEvader);
+  EXPECT_STREQ(saved->kind_name(), "mlp");
+  EXPECT_EQ(saved->config(), nullptr);
+  MlpPolicy reference(load_mlp_policy(file, Role::kEvader));
+  const auto player = saved->make();
+  Rng rng(3);
+  for (int i = 0; i < 200; ++i) {
+    const AgentView v = random_view(rng);
+    const Steering a = reference.act(v), b = player->act(v);
+    ASSERT_EQ(a.d_alpha, b.d_alpha);
+    ASSERT_EQ(a.d_theta, b.d_theta);
+    ASSERT_NE(a.d_alpha, 0.0);
+  }
+}
+
+TEST(SavedPolicy, TheHashIsOfTheModelNotOfTheFilesLayout) {
+  const auto compact = temp("hash_compact.json"), pretty = temp("hash_pretty.json"), other = temp("hash_other.json");
+  write_mlp(compact, "pursuer");
+  const nlohmann::json doc = read_policy_document(compact).doc;
+  std::ofstream(pretty) << doc.dump(4) << "\n";
+  nlohmann::json changed = doc;
+  changed["layers"][0]["bias"][0] = 0.3;
+  std::ofstream(other) << changed.dump();
+  const auto a = load_saved_policy(compact, Role::kPursuer), b = load_saved_policy(pretty, Role::kPursuer),
+             c = load_saved_policy(other, Role::kPursuer);
+  EXPECT_EQ(a->content_hash, b->content_hash);
+  EXPECT_NE(a->content_hash, c->content_hash);
+  EXPECT_EQ(a->content_hash.rfind("fnv1a64:", 0), 0u);
+}
+
+TEST(SavedPolicy, AFileOfTheOtherRoleOrNoPolicyIsRefusedNamingIt) {
+  const auto mlp = temp("role_mlp.json"), facl = temp("role_facl.json"), junk = temp("role_junk.json");
+  write_mlp(mlp, "pursuer");
+  trained_facl(facl);
+  std::ofstream(junk) << "{\"format\": \"something-else\"}";
+  for (const auto& file : {mlp, facl, junk}) {
+    try {
+      load_saved_policy(file, Role::kEvader);
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const PolicyFormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SavedPolicy, AddSavedGivesEachAgentItsOwnPlayer) {
+  const auto file = temp("lineup_mlp.json");
+  write_mlp(file, "pursuer");
+  Lineup lineup;
+  add_saved(lineup, *load_saved_policy(file, Role::kPursuer), 3);
+  ASSERT_EQ(lineup.size(), 3);
+  EXPECT_NE(&lineup[0], &lineup[1]);
+  EXPECT_NE(&lineup[1], &lineup[2]);
+}
+
+}  // namespace
+}  // namespace peg3d::game
