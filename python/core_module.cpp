@@ -19,6 +19,8 @@
 #include "core/hash.hpp"
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
+#include "view/replay.hpp"
+#include "view/viewer_html.hpp"
 #include "world/arena.hpp"
 #include "world/map_loader.hpp"
 
@@ -27,18 +29,18 @@ using namespace peg3d;
 
 namespace {
 
-std::shared_ptr<const game::Sim> make_sim(const std::string& map, const std::string& config,
-                                          const std::vector<std::string>& sets, bool cache) {
+std::unique_ptr<env::Batch> make_batch(const std::string& map, const std::string& config,
+                                       const std::vector<std::string>& sets, bool cache, env::BatchSettings settings) {
   game::GameConfig c = game::apply_game_overrides(game::load_game_config(config), sets);
   const world::MapSpec spec = world::load_map(map);
   world::BuildOptions options;
   if (cache) options.cache_dir = world::default_cache_dir();
-  return std::make_shared<const game::Sim>(world::Arena::build(spec, options), std::move(c));
+  return std::make_unique<env::Batch>(world::Arena::build(spec, options), std::move(c), std::move(settings));
 }
 
 // A numpy view of `count` elements at `data`, shaped, kept alive by `owner` (the Batch's Python object).
 template <class T>
-py::array view(py::handle owner, T* data, std::vector<py::ssize_t> shape, const char* dtype = nullptr) {
+py::array numpy_view(py::handle owner, T* data, std::vector<py::ssize_t> shape, const char* dtype = nullptr) {
   std::vector<py::ssize_t> strides(shape.size());
   py::ssize_t s = sizeof(T);
   for (std::size_t k = shape.size(); k-- > 0;) strides[k] = s, s *= shape[k];
@@ -63,16 +65,18 @@ PYBIND11_MODULE(_core, m) {
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
                        const std::string& scenario, int games, int threads, std::uint64_t seed, int neighbours,
-                       const std::vector<std::pair<std::string, std::string>>& controllers, bool cache) {
+                       const std::vector<std::pair<std::string, std::string>>& controllers, bool cache, bool record) {
              env::BatchSettings s;
              s.games = games, s.threads = threads, s.seed = seed, s.neighbours = neighbours;
              s.scenario = scenario;
              s.controllers = controllers;
+             s.record = record;
              py::gil_scoped_release unlocked;  // building a world can take seconds
-             return std::make_unique<env::Batch>(make_sim(map, config, sets, cache), std::move(s));
+             return make_batch(map, config, sets, cache, std::move(s));
            }),
            py::arg("map"), py::arg("config"), py::arg("sets"), py::arg("scenario"), py::arg("games"),
-           py::arg("threads"), py::arg("seed"), py::arg("neighbours"), py::arg("controllers"), py::arg("cache") = true)
+           py::arg("threads"), py::arg("seed"), py::arg("neighbours"), py::arg("controllers"), py::arg("cache") = true,
+           py::arg("record") = false)
       .def_property_readonly("games", &env::Batch::games)
       .def_property_readonly("agents", &env::Batch::agents)
       .def_property_readonly("pursuers", &env::Batch::pursuers)
@@ -121,19 +125,19 @@ PYBIND11_MODULE(_core, m) {
       })
       .def_property_readonly("observations", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.observations(), {b.games(), b.agents(), b.observation_size()});
+        return numpy_view(self, b.observations(), {b.games(), b.agents(), b.observation_size()});
       })
       .def_property_readonly("rewards", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.rewards(), {b.games(), b.agents()});
+        return numpy_view(self, b.rewards(), {b.games(), b.agents()});
       })
       .def_property_readonly("reward_terms", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.reward_terms(), {b.games(), b.agents(), 3});
+        return numpy_view(self, b.reward_terms(), {b.games(), b.agents(), 3});
       })
       .def_property_readonly("reset_flags", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
-        return view(self, b.reset_flags(), {b.games()}, "bool");
+        return numpy_view(self, b.reset_flags(), {b.games()}, "bool");
       })
       .def("global_state", [](const env::Batch& b, int g) {
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");
@@ -157,6 +161,16 @@ PYBIND11_MODULE(_core, m) {
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");
         return b.episode(g);
       })
+      .def("write_replay", [](const env::Batch& b, const std::string& file, const std::string& assets,
+                              const std::string& title, const std::string& subtitle) {
+        // The browser replay (docs/viewer.md) of game 0's episode so far, as peg-matchup --html writes one.
+        const game::Trace* trace = b.trace(0);
+        if (trace == nullptr) throw py::value_error("render: the environment was made without render_mode=\"html\"");
+        const view::ViewerAssets viewer = view::ViewerAssets::load(assets);
+        py::gil_scoped_release unlocked;  // simplifying terrain for drawing can take a while
+        const view::ReplayScene scene(b.sim().arena());
+        view::write_viewer_html(file, viewer, view::replay_json(scene, b.sim(), *trace, {title, subtitle}), title);
+      })
       .def("game_info", [](const env::Batch& b, int g) {
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");
         const game::SimState& st = b.state(g);
@@ -177,7 +191,7 @@ PYBIND11_MODULE(_core, m) {
                                     {"captured", &env::Batch::captured}}) {
     batch.def_property_readonly(name, [flags = flags](py::object self) {
       env::Batch& b = self.cast<env::Batch&>();
-      return view(self, (b.*flags)(), {b.games(), b.agents()}, "bool");
+      return numpy_view(self, (b.*flags)(), {b.games(), b.agents()}, "bool");
     });
   }
 }

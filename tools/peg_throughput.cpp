@@ -78,12 +78,12 @@ Pass run_pass(const game::Sim& sim, long long steps, int threads, bool profiled)
 
 // The batch of `games` games stepped with uniform random steering until `steps` env steps are made; returns the
 // seconds of the stepping (the actions' drawing included, as the Python benchmark draws its own).
-Pass run_random_batch(std::shared_ptr<const game::Sim> sim, long long steps, int games, int threads) {
+Pass run_random_batch(const game::Sim& sim, long long steps, int games, int threads) {
   env::BatchSettings settings;
   settings.games = games;
   settings.threads = threads;
   settings.seed = 1;
-  env::Batch batch(std::move(sim), settings);
+  env::Batch batch(sim.arena_ptr(), sim.config(), settings);
   const double bound = batch.action_bound(game::Role::kPursuer);
   const double evader_bound = batch.action_bound(game::Role::kEvader);
   std::vector<double> actions(std::size_t(games) * std::size_t(batch.agents()) * 2);
@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
     const world::ArenaStats& stats = arena->stats();
 
     if (actions == "random") {
-      const Pass p = run_random_batch(std::make_shared<const game::Sim>(sim), steps, games, threads);
+      const Pass p = run_random_batch(sim, steps, games, threads);
       nlohmann::ordered_json out{{"map", cli::resolve_input(map).string()}, {"actions", "random"}, {"games", games},
                                  {"threads", threads}, {"config", config_source}, {"steps", p.steps},
                                  {"seconds", p.seconds}, {"env_steps_per_s", double(p.steps) / p.seconds},

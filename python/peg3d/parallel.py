@@ -1,5 +1,7 @@
 """peg3d.parallel_env: one game with PettingZoo's ParallelEnv API."""
 
+import os
+
 import numpy as np
 
 from . import _loading
@@ -16,14 +18,19 @@ class ParallelEnv(_Base):
     """One peg3d game. Agents are pursuer_0.., evader_0.. (those not left to `opponents`); each step() takes an
     action per agent still in the game and returns dicts keyed by the agents that acted."""
 
-    metadata = {"name": "peg3d_v0", "render_modes": [], "is_parallelizable": True}
+    metadata = {"name": "peg3d_v0", "render_modes": ["html"], "is_parallelizable": True}
 
     def __init__(self, map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None,
-                 render_mode=None, neighbours=2, cache=True):
-        if render_mode is not None:
-            raise ValueError("render_mode: only None (the HTML replay of render() is not built yet)")
-        self.render_mode = None
-        self._batch = _loading.make_batch(map, config, scenario, set, opponents, 1, 1, 0, neighbours, cache)
+                 render_mode=None, neighbours=2, cache=True, render_path="peg3d_replay.html"):
+        if render_mode not in (None, "html"):
+            raise ValueError(f"render_mode: None or 'html', not {render_mode!r}")
+        if not isinstance(render_path, (str, os.PathLike)):
+            raise TypeError("render_path: a file name")
+        self.render_mode = render_mode
+        self.render_path = str(render_path)
+        self._batch = _loading.make_batch(map, config, scenario, set, opponents, 1, 1, 0, neighbours, cache,
+                                          record=render_mode == "html")
+        self._seed = None
         b = self._batch
         names = b.agent_names
         self._index = {n: i for i, n in enumerate(names) if not b.controlled(i)}
@@ -59,6 +66,8 @@ class ParallelEnv(_Base):
         self._check_open()
         seed = _loading.check_seed(seed)
         self._batch.reset(seed)
+        if seed is not None:
+            self._seed = seed
         self._started = True
         active = self._batch.active[0]
         self.agents = [n for n in self.possible_agents if active[self._index[n]]]
@@ -113,7 +122,20 @@ class ParallelEnv(_Base):
         return self._batch.global_state_size
 
     def render(self):
-        return None
+        """With render_mode="html": writes the browser replay (docs/viewer.md) of the episode so far (the whole
+        episode once it has ended, until the next reset) to render_path, and returns that path. None otherwise."""
+        self._check_open()
+        if self.render_mode is None:
+            return None
+        if not self._started:
+            raise RuntimeError("peg3d: render() before reset()")
+        b = self._batch
+        game = b.game_info(0)
+        title = f"{b.map_name}: {', '.join(self.possible_agents)} (episode {b.episode(0)}, seed {self._seed})"
+        ending = game["outcome"] if game["done"] else "in progress"
+        subtitle = f"peg3d.parallel_env, step {game['step']}, t = {game['time']:.1f} s; {ending}"
+        b.write_replay(self.render_path, str(_loading.data_dir() / "assets" / "viewer"), title, subtitle)
+        return self.render_path
 
     def close(self):
         self._closed = True

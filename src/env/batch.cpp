@@ -14,7 +14,6 @@
 #include "core/validation.hpp"
 #include "game/observation_vector.hpp"
 #include "game/policy_factory.hpp"
-#include "game/policy_io.hpp"
 
 namespace peg3d::env {
 
@@ -93,14 +92,14 @@ struct Batch::Pool {
   }
 };
 
-Batch::Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings)
-    : sim_(std::move(sim)), settings_(std::move(settings)) {
+Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config, BatchSettings settings)
+    : settings_(std::move(settings)) {
   require_in_range("games", settings_.games, 1, 65536);
   require_in_range("threads", settings_.threads, 1, 256);
   require_in_range("neighbours", settings_.neighbours, 0, 16);
   settings_.threads = std::min(settings_.threads, settings_.games);
   layout_.neighbours = settings_.neighbours;
-  const auto& all = sim_->arena().map().scenarios;
+  const auto& all = arena->map().scenarios;
   if (all.empty()) throw InvalidParameter("scenario", "(none)", "the map has no scenario");
   if (!settings_.scenario.empty()) {
     const auto it = std::find_if(all.begin(), all.end(), [&](const world::Scenario& s) { return s.name == settings_.scenario; });
@@ -141,10 +140,23 @@ Batch::Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings)
   }
   controllers_.resize(std::size_t(agents_));
   for (int i = 0; i < agents_; ++i) {
-    if (!source[std::size_t(i)].empty()) controllers_[std::size_t(i)] = resolve_controller(i, source[std::size_t(i)]);
+    if (source[std::size_t(i)].empty()) continue;
+    controllers_[std::size_t(i)] = resolve_controller(i, source[std::size_t(i)]);
+    const game::AgentConfig* own = controllers_[std::size_t(i)]->saved ? controllers_[std::size_t(i)]->saved->config() : nullptr;
+    if (own == nullptr) continue;
+    const bool pursuer = i < pursuers_;
+    const std::size_t rank = std::size_t(pursuer ? i : i - pursuers_);
+    auto& entries = pursuer ? config.pursuers : config.evaders;
+    if (entries.size() <= rank) entries.resize(rank + 1, pursuer ? config.pursuer : config.evader);
+    entries[rank] = *own;
   }
+  sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
   games_.reserve(std::size_t(settings_.games));
   for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
+  if (settings_.record) {
+    games_.front().trace = std::make_unique<game::Trace>();
+    games_.front().trace->reserve(sim_->max_steps(), agents_);
+  }
   const std::size_t n = std::size_t(settings_.games) * std::size_t(agents_);
   observations_.assign(n * std::size_t(layout_.size()), 0.0f);
   rewards_.assign(n, 0.0f);
@@ -167,12 +179,7 @@ Batch::Controller Batch::resolve_controller(int i, const std::string& source) co
   Controller c;
   std::error_code ec;
   if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
-    const game::PolicyDocument d = game::read_policy_document(source);
-    if (game::is_mlp_document(d.doc)) {
-      c.mlp = game::mlp_from_json(d.doc, source, role, d.text);
-    } else {
-      c.facl = game::policy_from_json(d.doc, source, role, d.text);
-    }
+    c.saved = game::load_saved_policy(source, role);
     return c;
   }
   const std::string field = "opponents." + names_[std::size_t(i)];
@@ -192,10 +199,8 @@ void Batch::build_policies(int g) {
     const std::optional<Controller>& c = controllers_[std::size_t(i)];
     std::unique_ptr<game::Policy>& p = game.policies[std::size_t(i)];
     if (!c) continue;
-    if (c->mlp) {
-      p = std::make_unique<game::MlpPolicy>(c->mlp);
-    } else if (c->facl) {
-      p = std::make_unique<game::FaclPolicy>(c->facl);
+    if (c->saved) {
+      p = c->saved->make();
     } else {
       const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
       game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
@@ -225,6 +230,10 @@ void Batch::start_episode(int g) {
     terminated_[k] = truncated_[k] = acted_[k] = collided_[k] = captured_[k] = 0;
   }
   reset_flags_[std::size_t(g)] = 1;
+  if (game.trace) {
+    game.trace->clear();
+    game.trace->record(game.state, false);
+  }
   write_outputs(g);
 }
 
@@ -273,6 +282,7 @@ void Batch::step_game(int g, const double* actions) {
     }
   }
   const game::StepEvents& ev = game::step(*sim_, game.state, game.commands);
+  if (game.trace) game.trace->record(game.state, true);
   const std::size_t base = std::size_t(g) * std::size_t(agents_);
   for (int i = 0; i < agents_; ++i) {
     const game::AgentEvents& e = ev.agents[std::size_t(i)];

@@ -2,7 +2,7 @@
 // A batch of games stepped together, for learners outside the C++ side (the Python front, python/): N
 // independent runs of one Sim, each with its own SimState, stepped by one call on T threads. The batch owns
 // flat buffers (observations, rewards, flags) that a caller reads in place, without a copy; every step
-// overwrites them. Agents can be left to C++ policies (a classic strategy or a saved FACL policy), which act
+// overwrites them. Agents can be left to C++ policies (a classic strategy or a saved FACL or MLP policy), which act
 // inside the step with no call out per game.
 //
 // Results depend on the root seed only, never on the thread count: game g's episode e starts from
@@ -21,10 +21,10 @@
 #include <thread>
 #include <vector>
 
-#include "game/facl_policy.hpp"
+#include "game/episode.hpp"
 #include "game/lineup.hpp"
-#include "game/mlp_policy.hpp"
 #include "game/observation_vector.hpp"
+#include "game/saved_policy.hpp"
 #include "game/sim.hpp"
 
 namespace peg3d::env {
@@ -50,8 +50,10 @@ struct BatchSettings {
   /// (the map's scenarios must then all have the same numbers of pursuers and evaders).
   std::string scenario;
   /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> a policy name (flee, pure-pursuit, ...)
-  /// or a saved FACL policy file: those agents are played on the C++ side. The others take the caller's actions.
+  /// or a saved policy file (FACL or MLP): those agents are played on the C++ side. The others take the caller's actions.
   std::vector<std::pair<std::string, std::string>> controllers;
+  /// Keep every instant of game 0's current episode (trace(0)), for replays: the Python front's render().
+  bool record = false;
 };
 
 /// Lower and upper bounds of every observation entry on this Sim.
@@ -61,7 +63,9 @@ struct ObservationBounds {
 
 class Batch {
  public:
-  Batch(std::shared_ptr<const game::Sim> sim, BatchSettings settings);
+  /// The batch's Sim is built from `arena` and `config`, with every agent played by a saved FACL policy given
+  /// that policy's own agent configuration (its guard, steering, observation), as peg-matchup plays it.
+  Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config, BatchSettings settings);
   ~Batch();
   Batch(const Batch&) = delete;
   Batch& operator=(const Batch&) = delete;
@@ -108,6 +112,8 @@ class Batch {
   std::vector<float> global_state(int game) const;
   int global_state_size() const { return agents_ * 6 + 1; }
   long long episode(int game) const { return games_[std::size_t(game)].episode; }
+  /// Every instant of game 0's current episode so far when settings.record (null otherwise, and for other games).
+  const game::Trace* trace(int game) const { return games_[std::size_t(game)].trace.get(); }
 
  private:
   struct Game {
@@ -116,6 +122,7 @@ class Batch {
     std::vector<std::unique_ptr<game::Policy>> policies;  // null for the caller's agents
     std::vector<Steering> commands;
     long long episode = 0;
+    std::unique_ptr<game::Trace> trace;  // settings.record, game 0 only
   };
   const world::Scenario& scenario_for(long long episode) const;
   void start_episode(int g);
@@ -134,8 +141,7 @@ class Batch {
   // by every game's policy (nullopt: the caller's agent).
   struct Controller {
     game::PolicyKind kind = game::PolicyKind::kFacl;
-    std::shared_ptr<const game::FaclModel> facl;
-    std::shared_ptr<const game::MlpModel> mlp;
+    std::shared_ptr<const game::SavedPolicy> saved;  // a policy file of either kind
   };
   Controller resolve_controller(int agent, const std::string& source) const;
   std::vector<std::optional<Controller>> controllers_;

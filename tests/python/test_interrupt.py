@@ -32,3 +32,32 @@ def test_sigint_stops_a_loop_of_long_steps():
     assert time.monotonic() - sent < 5
     assert p.returncode != 0
     assert "KeyboardInterrupt" in err
+
+
+# The C++ batch's steps driven from C (map() over the module's step, consumed by a deque): no Python bytecode
+# runs between them, so the interpreter never looks at the signal itself. Only the step's own check can raise
+# it; without it this loop would never end.
+C_LOOP = """
+import collections, itertools
+import peg3d, numpy as np
+v = peg3d.vector_env(num_envs=512, threads=2, opponents={"evader": "flee"})
+v.reset(seed=0)
+a = np.zeros((512, 2, 2))
+print("stepping", flush=True)
+collections.deque(map(v._batch.step, itertools.repeat(a)), maxlen=0)
+"""
+
+
+def test_the_step_itself_raises_the_interrupt():
+    p = subprocess.Popen([sys.executable, "-c", C_LOOP], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         env=dict(os.environ), text=True)
+    assert p.stdout.readline().strip() == "stepping"
+    time.sleep(0.5)
+    p.send_signal(signal.SIGINT)
+    try:
+        _, err = p.communicate(timeout=10)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        raise AssertionError("the step did not raise the interrupt") from None
+    assert p.returncode != 0
+    assert "KeyboardInterrupt" in err

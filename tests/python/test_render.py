@@ -1,0 +1,60 @@
+"""render(): the browser replay of the episode, as peg-matchup --html writes one (docs/viewer.md)."""
+
+import base64
+import html
+import json
+import re
+
+import numpy as np
+import pytest
+
+import peg3d
+from conftest import SHORT, play
+
+
+def replay_of(path):
+    text = path.read_text()
+    assert text.startswith("<!DOCTYPE html>")
+    data = re.search(r'<script id="peg-replay" type="application/json">(.*?)</script>', text, re.S).group(1)
+    title = html.unescape(re.search(r"<title>(.*?)</title>", text).group(1))
+    return json.loads(data), title
+
+
+def test_render_writes_every_frame_of_the_finished_episode(tmp_path):
+    out = tmp_path / "episode.html"
+    env = peg3d.parallel_env(map="maps/paper.yaml", opponents={"evader": "flee"}, set=SHORT,
+                             render_mode="html", render_path=out)
+    assert "html" in env.metadata["render_modes"]
+    record = play(env, seed=4)
+    assert env.render() == str(out)
+    replay, title = replay_of(out)
+    steps = len(record) - 1
+    assert replay["frames"] == steps + 1  # the start and every step
+    assert "paper" in title and "seed 4" in title
+    # every agent's track ends where the game left it (float32 positions, base64)
+    states = env._batch.agent_states(0)
+    for i, agent in enumerate(replay["agents"]):
+        track = np.frombuffer(base64.b64decode(agent["track"]["position_f32"]), dtype="<f4").reshape(-1, 3)
+        assert track.shape[0] == steps + 1
+        assert np.allclose(track[-1], states[i, :3], atol=1e-4)
+    env.close()
+
+
+def test_render_mid_episode_writes_the_frames_so_far_and_reset_starts_afresh(tmp_path):
+    out = tmp_path / "partial.html"
+    env = peg3d.parallel_env(map="maps/paper.yaml", opponents={"evader": "flee"}, set=SHORT,
+                             render_mode="html", render_path=out)
+    play(env, seed=1, steps=5)
+    env.render()
+    assert replay_of(out)[0]["frames"] == 6
+    env.reset(seed=2)
+    env.render()
+    assert replay_of(out)[0]["frames"] == 1
+    env.close()
+
+
+def test_render_without_a_mode_returns_none_and_a_bad_mode_is_refused(env):
+    env.reset(seed=0)
+    assert env.render() is None
+    with pytest.raises(ValueError, match="render_mode"):
+        peg3d.parallel_env(map="maps/paper.yaml", render_mode="human")
