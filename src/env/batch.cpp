@@ -210,14 +210,14 @@ void Batch::build_policies(int g) {
   }
 }
 
-const world::Scenario& Batch::scenario_for(long long episode) const {
+const world::Scenario& Batch::scenario_for(int g, long long episode) const {
   const auto& all = sim_->arena().map().scenarios;
-  return all[std::size_t(scenarios_[std::size_t(episode % (long long)scenarios_.size())])];
+  return all[std::size_t(scenarios_[std::size_t((g + episode) % (long long)scenarios_.size())])];
 }
 
 void Batch::start_episode(int g) {
   Game& game = games_[std::size_t(g)];
-  game::reset(*sim_, game.state, scenario_for(game.episode),
+  game::reset(*sim_, game.state, scenario_for(g, game.episode),
               derive_seed(settings_.seed, {std::uint64_t(g), std::uint64_t(game.episode)}));
   for (int i = 0; i < agents_; ++i) {
     if (game.policies[std::size_t(i)]) game.policies[std::size_t(i)]->begin_episode(game::observe(game.state, i), false);

@@ -46,7 +46,8 @@ struct BatchSettings {
   int threads = 1;              ///< T, in [1, 256]; capped at games
   std::uint64_t seed = 0;       ///< root seed
   int neighbours = 2;           ///< ObservationLayout::neighbours
-  /// The map's scenario every episode starts from; empty: episode e of a game plays scenario e mod count
+  /// The map's scenario every episode starts from; empty: episode e of game g plays scenario (g + e) mod count,
+  /// so that the games of one batch spread over the starts from their first episode
   /// (the map's scenarios must then all have the same numbers of pursuers and evaders).
   std::string scenario;
   /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> a policy name (flee, pure-pursuit, ...)
@@ -124,7 +125,7 @@ class Batch {
     long long episode = 0;
     std::unique_ptr<game::Trace> trace;  // settings.record, game 0 only
   };
-  const world::Scenario& scenario_for(long long episode) const;
+  const world::Scenario& scenario_for(int game, long long episode) const;
   void start_episode(int g);
   void step_game(int g, const double* actions);
   void write_outputs(int g);

@@ -85,3 +85,17 @@ def test_each_game_is_the_parallel_env_game_of_its_seed():
     obs, _ = v.reset(seed=4)
     starts = obs["pursuer"][:, 0, 9]  # alpha
     assert len(set(starts.tolist())) == 3
+
+
+def test_the_games_spread_over_the_maps_scenarios_from_the_first_episode():
+    # episode e of game g plays scenario (g + e) mod count: with 4 games on the paper map's 4 starts, game g
+    # starts where a game of scenario S(g+1) starts
+    v = peg3d.vector_env(map="maps/paper.yaml", num_envs=4, threads=1, opponents={"evader": "flee"})
+    v.reset(seed=0)
+    names = ["S1", "S2", "S3", "S4"]
+    for g, name in enumerate(names):
+        one = peg3d.vector_env(map="maps/paper.yaml", num_envs=1, threads=1, scenario=name, opponents={"evader": "flee"})
+        one.reset(seed=0)
+        np.testing.assert_array_equal(v._batch.agent_states(g)[:, :3], one._batch.agent_states(0)[:, :3])
+        one.close()
+    v.close()
