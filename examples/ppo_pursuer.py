@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
-"""Trains a pursuer with PPO on peg3d.vector_env against a C++-side evader, with numpy and PyTorch (CPU) only,
+"""Trains a pursuer with PPO on peg3d.vector_env against C++-side evaders, with numpy and PyTorch (CPU) only,
 and saves it as an MLP policy file the C++ side plays (game/mlp_policy.hpp, docs/python.md).
 
-    PYTHONPATH=build/python /usr/bin/python3 examples/ppo_pursuer.py --steps 2000000 --out ppo_pursuer.json
+    PYTHONPATH=build/python /usr/bin/python3 examples/ppo_pursuer.py --steps 2000000 --out ppo_pursuer.json \
+        --opponent flee --opponent flee-apollonius --opponent robust_0_evader.json
+
+With several --opponent, the games are split evenly among them (one vector env per evader, stepped in turn):
+every update sees every opponent.
 
 The pursuer sees the 20 entries of its observation (no neighbours: a 1 v 1 game), normalized by running
 statistics that are saved with the network. Its policy is a Gaussian about action_bound * tanh(net(obs)); the
@@ -50,20 +54,48 @@ def mlp(sizes, out_scale=1.0):
     return nn.Sequential(*layers)
 
 
-def save_policy(path, actor, stats, bound):
+def save_policy(path, actor, stats, bound, opponents):
     layers = [{"weights": m.weight.detach().double().tolist(), "bias": m.bias.detach().double().tolist()}
               for m in actor if isinstance(m, nn.Linear)]
     doc = {"format": "peg3d-mlp", "version": 1, "role": "pursuer", "inputs": int(stats.mean.size),
            "action_bound": float(bound), "input_mean": stats.mean.tolist(), "input_std": stats.std.tolist(),
-           "layers": layers, "trained_by": "examples/ppo_pursuer.py"}
+           "layers": layers, "trained_by": "examples/ppo_pursuer.py", "opponents": list(opponents)}
     with open(path, "w") as f:
         json.dump(doc, f)
+
+
+class MixedOpponents:
+    """One vector env per evader, the games split among them, seen as one batch of pursuer arrays."""
+
+    def __init__(self, opponents, num_envs, seed, **kw):
+        k = len(opponents)
+        if num_envs < k:
+            raise SystemExit(f"--num-envs {num_envs}: at least one game per opponent ({k})")
+        self.sizes = [num_envs // k + (i < num_envs % k) for i in range(k)]
+        self.envs = [peg3d.vector_env(num_envs=n, opponents={"evader": o}, seed=seed + i, **kw)
+                     for i, (n, o) in enumerate(zip(self.sizes, opponents))]
+        self.single_observation_space = self.envs[0].single_observation_space
+        self.single_action_space = self.envs[0].single_action_space
+
+    def reset(self, seed):
+        return np.concatenate([e.reset(seed=seed + i)[0]["pursuer"][:, 0] for i, e in enumerate(self.envs)])
+
+    def step(self, a):
+        """The pursuer's observation, reward, terminated, truncated, acted and success flags, one row per game."""
+        out, lo = [], 0
+        for e, n in zip(self.envs, self.sizes):
+            obs, rew, term, trunc, info = e.step({"pursuer": a[lo:lo + n, None, :]})
+            out.append((obs["pursuer"][:, 0], rew["pursuer"][:, 0], term["pursuer"][:, 0], trunc["pursuer"][:, 0],
+                        info["acted"]["pursuer"][:, 0], info["reward_terms"]["pursuer"]["success"][:, 0] > 0))
+            lo += n
+        return [np.concatenate(parts) for parts in zip(*out)]
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--map", default="maps/paper.yaml")
-    ap.add_argument("--opponent", default="flee", help="the evader: flee, flee-apollonius or a FACL policy file")
+    ap.add_argument("--opponent", action="append",
+                    help="an evader: flee, flee-apollonius or a saved policy file; repeat to mix (default: flee)")
     ap.add_argument("--steps", type=int, default=1_000_000, help="env steps to train for")
     ap.add_argument("--num-envs", type=int, default=32)
     ap.add_argument("--threads", type=int, default=2)
@@ -72,11 +104,12 @@ def main():
     ap.add_argument("--set", action="append", default=[], help="configuration override key=value")
     ap.add_argument("--out", default="ppo_pursuer.json")
     args = ap.parse_args()
+    opponents = args.opponent or ["flee"]
     torch.manual_seed(args.seed)
     torch.set_num_threads(1)
     settings = dict(s.split("=", 1) for s in args.set)
-    env = peg3d.vector_env(map=args.map, num_envs=args.num_envs, threads=args.threads, neighbours=0,
-                           opponents={"evader": args.opponent}, set=settings, seed=args.seed)
+    env = MixedOpponents(opponents, args.num_envs, args.seed, map=args.map, threads=args.threads, neighbours=0,
+                         set=settings)
     n_obs = env.single_observation_space["pursuer"].shape[-1]
     bound = float(env.single_action_space["pursuer"].high[0, 0])
     actor, critic = mlp([n_obs, 64, 64, 2], 0.01), mlp([n_obs, 64, 64, 1], 1.0)
@@ -84,8 +117,7 @@ def main():
     opt = torch.optim.Adam(list(actor.parameters()) + list(critic.parameters()) + [log_std], lr=3e-4)
     stats = RunningStats(n_obs)
     gamma, lam, clip = 0.99, 0.95, 0.2
-    obs, _ = env.reset(seed=args.seed)
-    x = obs["pursuer"][:, 0].astype(np.float64)
+    x = env.reset(seed=args.seed).astype(np.float64)
     N, T = args.num_envs, args.rollout
     done_steps, update, start = 0, 0, time.time()
     episodes = captures = 0
@@ -99,15 +131,14 @@ def main():
                 dist = torch.distributions.Normal(mu, log_std.exp())
                 a = dist.sample()
                 logp = dist.log_prob(a).sum(-1)
-            obs, rew, term, trunc, info = env.step({"pursuer": a.numpy()[:, None, :].astype(np.float64)})
-            x2 = obs["pursuer"][:, 0].astype(np.float64)
+            o2, rew, term, trunc, acted, success = env.step(a.numpy().astype(np.float64))
+            x2 = o2.astype(np.float64)
             buf["x"].append(xn.numpy()); buf["a"].append(a.numpy()); buf["logp"].append(logp.numpy())
-            buf["r"].append(rew["pursuer"][:, 0].copy()); buf["term"].append(term["pursuer"][:, 0].copy())
-            buf["trunc"].append(trunc["pursuer"][:, 0].copy()); buf["valid"].append(info["acted"]["pursuer"][:, 0].copy())
+            buf["r"].append(rew); buf["term"].append(term)
+            buf["trunc"].append(trunc); buf["valid"].append(acted)
             buf["x2"].append(((x2 - stats.mean) / stats.std).astype(np.float32))
-            ended = (term["pursuer"][:, 0] | trunc["pursuer"][:, 0]) & info["acted"]["pursuer"][:, 0]
-            episodes += int(ended.sum())
-            captures += int((term["pursuer"][:, 0] & (info["reward_terms"]["pursuer"]["success"][:, 0] > 0)).sum())
+            episodes += int(((term | trunc) & acted).sum())
+            captures += int((term & success).sum())
             x = x2
         done_steps += N * T
         b = {k: np.asarray(v) for k, v in buf.items()}  # (T, N, ...)
@@ -147,7 +178,7 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "episodes": episodes, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             episodes = captures = 0
-    save_policy(args.out, actor, stats, bound)
+    save_policy(args.out, actor, stats, bound, opponents)
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 
 

@@ -157,16 +157,35 @@ def main():
         check(any(c["pool_opponent"] for c in curves if c["algorithm"] == "robust"), "robust meets the pool")
         check({c["pool_opponent"] for c in curves} <= {"", "pure-pursuit", "pn", "apollonius", "flee",
                                                       "flee-apollonius", "random"}, "pool opponents by policy name")
+    # A held-out map, and a saved MLP pursuer (the shipped PPO network) entering the league.
+    ppo = "tests/data/policies/ppo_pursuer.json"
     r = run([league, "--out", os.path.join(work, "league2"), "--train-seeds", "1", "--eval-seeds", "1", "--episodes", "1",
-             "--eval-maps", "maps/paper.yaml,maps/forest.yaml", "--no-plots", "--plain-progress", "--no-cache"])
+             "--eval-maps", "maps/paper.yaml,maps/forest.yaml", "--pursuer-entrant", "ppo=" + ppo, "--no-plots",
+             "--plain-progress", "--no-cache"])
     check(r.returncode == 0, f"peg-league on a held-out map: {r.stderr[-500:]}")
     if r.returncode == 0:
-        maps_played = {g["map"] for g in rows(os.path.join(work, "league2", "games.csv"))}
+        games = rows(os.path.join(work, "league2", "games.csv"))
+        maps_played = {g["map"] for g in games}
         check(maps_played == {"paper", "forest"}, f"games on {sorted(maps_played)}")
+        evaders = {g["evader"] for g in games}  # peg3d#0, robust#0 and the 3 scripted ones
+        check(len(evaders) == 5 and sum(g["pursuer"] == "ppo" for g in games) == 8 * len(evaders),
+              "the saved pursuer plays every start (8) against every evader")
+        setup = json.load(open(os.path.join(work, "league2", "run_info.json")))["setup"]
+        check(setup["saved_pursuers"][0]["kind"] == "mlp", "run_info names the saved entrant's kind")
+    # peg-matchup plays the MLP in the facl slot and names it by its kind.
+    mu = os.path.join(work, "matchup_mlp")
+    r = run([matchup, "--out", mu, "--pursuer-policy", ppo, "--pursuers", "facl,pure-pursuit", "--evaders", "flee",
+             "--repeats", "1", "--plain-progress", "--no-cache"])
+    check(r.returncode == 0, f"peg-matchup --pursuer-policy MLP: {r.stderr[-500:]}")
+    if r.returncode == 0:
+        check({g["pursuer"] for g in rows(os.path.join(mu, "matchups.csv"))} == {"mlp", "pure-pursuit"},
+              "matchups.csv names the MLP slot mlp")
     for args, named in [(["--algorithms", "peg3d,nonsense"], "nonsense"), (["--eval-heading", "sideways"], "--eval-heading"),
                         (["--train-heading", "backwards"], "--train-heading"),
                         (["--evaders", "flee,pn"], "--evaders"), (["--eval-maps", os.path.join(maps, "tight.yaml")], "tight.yaml:6"),
-                        (["--set", "training.pool_share=2"], "training.pool_share"), (["--train-seeds", "0"], "--train-seeds")]:
+                        (["--set", "training.pool_share=2"], "training.pool_share"), (["--train-seeds", "0"], "--train-seeds"),
+                        (["--evader-entrant", ppo], "ppo_pursuer.json"), (["--pursuer-entrant", "pn=" + ppo], "--pursuer-entrant"),
+                        (["--pursuer-entrant", "x=missing.json"], "missing.json")]:
         shutil.rmtree(bad, ignore_errors=True)
         r = run([league, "--out", bad, "--episodes", "1", "--plain-progress", "--no-cache", *args])
         what = f"peg-league {' '.join(args)}"
