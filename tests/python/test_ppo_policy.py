@@ -32,11 +32,13 @@ def forward(doc, x):
 def test_a_short_ppo_run_trains_and_saves_a_policy_the_cpp_side_plays(tmp_path):
     out = tmp_path / "ppo.json"
     run = subprocess.run([sys.executable, str(ROOT / "examples/ppo_pursuer.py"), "--steps", "4096", "--num-envs", "8",
-                          "--rollout", "64", "--threads", "2", "--out", str(out)], capture_output=True, text=True,
+                          "--rollout", "64", "--threads", "2", "--out", str(out), "--opponent", "flee",
+                          "--opponent", str(ROOT / "tests/data/policies/robust_evader.json")], capture_output=True, text=True,
                          timeout=600)
     assert run.returncode == 0, run.stderr
     doc = json.loads(out.read_text())
     assert doc["format"] == "peg3d-mlp" and doc["inputs"] == 20
+    assert doc["opponents"] == ["flee", str(ROOT / "tests/data/policies/robust_evader.json")]
     v = peg3d.vector_env(num_envs=2, opponents={"pursuer": str(out), "evader": "flee"}, neighbours=0,
                          set={"time_limit": 2.0})
     v.reset(seed=0)
