@@ -80,8 +80,6 @@ class BoxTree {
       }
     }
   }
-  template <class Visit>
-  void nearest_depth_first(std::int32_t from, const Vec3& p, double& bound, double& bound2, Visit& visit) const;
 
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;  // in tree order
@@ -110,75 +108,34 @@ void BoxTree::overlapping(const Box& query, Visit&& visit) const {
 template <class Visit>
 void BoxTree::nearest(const Vec3& p, double bound, Visit&& visit) const {
   if (nodes_.empty() || !(bound >= 0.0)) return;
-  // Best first: a binary min-heap of nodes by their (squared) distance, so that the leaves come roughly in
-  // order of distance and the bound tightens before the farther subtrees are reached. A child that does not
-  // fit the heap is searched depth first at once, which stays exact.
+  // Depth first, the nearer child first: the bound tightens at the first leaves, and a pending sibling is
+  // skipped when it is popped beyond the bound by then. At most one sibling waits per level, so the stack
+  // cannot overflow. (A best-first heap pops a few nodes fewer, but each pop costs a sift through the heap.)
   struct Entry {
     double distance2;
     std::int32_t node;
   };
-  constexpr int kHeap = 128;
-  Entry heap[kHeap];
-  int size = 0;
-  const auto push = [&](Entry e) {
-    int i = size++;
-    while (i > 0 && heap[(i - 1) / 2].distance2 > e.distance2) heap[i] = heap[(i - 1) / 2], i = (i - 1) / 2;
-    heap[i] = e;
-  };
-  const auto pop = [&] {
-    const Entry top = heap[0];
-    const Entry last = heap[--size];
-    int i = 0;
-    for (;;) {
-      int c = 2 * i + 1;
-      if (c >= size) break;
-      if (c + 1 < size && heap[c + 1].distance2 < heap[c].distance2) ++c;
-      if (!(heap[c].distance2 < last.distance2)) break;
-      heap[i] = heap[c];
-      i = c;
-    }
-    if (size > 0) heap[i] = last;
-    return top;
-  };
+  Entry stack[kMaxDepth + 2];
+  int top = 0;
   double bound2 = bound * bound;
   const double root2 = nodes_[0].bounds.distance2(p);
   if (root2 > bound2) return;
-  push({root2, 0});
-  while (size > 0) {
-    const Entry e = pop();
-    if (e.distance2 > bound2) break;  // every other queued node is farther still
+  stack[top++] = {root2, 0};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.distance2 > bound2) continue;
     const Node& n = nodes_[std::size_t(e.node)];
     if (n.count > 0) {
       visit_leaves(n, p, bound, bound2, visit);
       continue;
     }
-    for (int c = 0; c < 2; ++c) {
-      const std::int32_t child = n.first + c;
-      const double d2 = nodes_[std::size_t(child)].bounds.distance2(p);
-      if (d2 > bound2) continue;
-      if (size < kHeap) {
-        push({d2, child});
-      } else {
-        nearest_depth_first(child, p, bound, bound2, visit);
-      }
-    }
-  }
-}
-
-template <class Visit>
-void BoxTree::nearest_depth_first(std::int32_t from, const Vec3& p, double& bound, double& bound2, Visit& visit) const {
-  std::int32_t stack[kMaxDepth + 2];
-  int top = 0;
-  stack[top++] = from;
-  while (top > 0) {
-    const Node& n = nodes_[std::size_t(stack[--top])];
-    if (n.bounds.distance2(p) > bound2) continue;
-    if (n.count > 0) {
-      visit_leaves(n, p, bound, bound2, visit);
-      continue;
-    }
-    stack[top++] = n.first + 1;
-    stack[top++] = n.first;
+    const std::int32_t l = n.first, r = n.first + 1;
+    const double dl = nodes_[std::size_t(l)].bounds.distance2(p), dr = nodes_[std::size_t(r)].bounds.distance2(p);
+    const bool left_first = dl <= dr;
+    const Entry near_child = left_first ? Entry{dl, l} : Entry{dr, r};
+    const Entry far_child = left_first ? Entry{dr, r} : Entry{dl, l};
+    if (far_child.distance2 <= bound2) stack[top++] = far_child;
+    if (near_child.distance2 <= bound2) stack[top++] = near_child;
   }
 }
 
