@@ -141,14 +141,10 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   controllers_.resize(std::size_t(agents_));
   for (int i = 0; i < agents_; ++i) {
     if (source[std::size_t(i)].empty()) continue;
-    controllers_[std::size_t(i)] = resolve_controller(i, source[std::size_t(i)]);
-    const game::AgentConfig* own = controllers_[std::size_t(i)]->saved ? controllers_[std::size_t(i)]->saved->config() : nullptr;
-    if (own == nullptr) continue;
-    const bool pursuer = i < pursuers_;
-    const std::size_t rank = std::size_t(pursuer ? i : i - pursuers_);
-    auto& entries = pursuer ? config.pursuers : config.evaders;
-    if (entries.size() <= rank) entries.resize(rank + 1, pursuer ? config.pursuer : config.evader);
-    entries[rank] = *own;
+    const Controller& c = *(controllers_[std::size_t(i)] = resolve_controller(i, source[std::size_t(i)]));
+    if (const game::AgentConfig* own = c.saved ? c.saved->config() : nullptr) {
+      config.set_agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_), *own);
+    }
   }
   sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
   games_.reserve(std::size_t(settings_.games));

@@ -44,8 +44,8 @@ std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, c
     out.push_back({game::to_string(kind), game::to_string(kind), role, kind, -1, -1});
   }
   const auto& saved = role == game::Role::kPursuer ? s.saved_pursuers : s.saved_evaders;
+  const char* field = role == game::Role::kPursuer ? "--pursuer-entrant" : "--evader-entrant";
   for (std::size_t k = 0; k < saved.size(); ++k) {
-    const std::string field = role == game::Role::kPursuer ? "--pursuer-entrant" : "--evader-entrant";
     if (saved[k].name.empty()) throw InvalidParameter(field, "(empty)", "needs a name: NAME=FILE");
     for (const Entrant& e : out) {
       if (e.name == saved[k].name) throw InvalidParameter(field, saved[k].name, "names another entrant of the league");

@@ -73,8 +73,7 @@ struct Entrant {
 };
 
 /// The trained entrants first (algorithm-major, then training seed), then the classic ones, then the saved ones,
-/// per role. An
-/// algorithm whose role is not played by FACL has no trained entrant of that role.
+/// per role. An algorithm whose role is not played by FACL has no trained entrant of that role.
 std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, const LeagueSettings& settings,
                                      game::Role role);
 

@@ -50,6 +50,12 @@ AgentConfig scripted_agent(const AgentConfig& base, PolicyKind policy) {
   return a;
 }
 
+void GameConfig::set_agent(Role r, int k, const AgentConfig& a) {
+  auto& list = r == Role::kPursuer ? pursuers : evaders;
+  if (list.size() <= std::size_t(k)) list.resize(std::size_t(k) + 1, r == Role::kPursuer ? pursuer : evader);
+  list[std::size_t(k)] = a;
+}
+
 GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy) {
   AgentConfig& all = role == Role::kPursuer ? config.pursuer : config.evader;
   all = scripted_agent(all, policy);

@@ -304,6 +304,9 @@ struct GameConfig {
     const auto& list = r == Role::kPursuer ? pursuers : evaders;
     return k < static_cast<int>(list.size()) ? list[static_cast<std::size_t>(k)] : (r == Role::kPursuer ? pursuer : evader);
   }
+  /// Gives the k-th agent (k >= 0) of a role its own configuration; agents before it without an entry of their
+  /// own get one equal to the role's default, so they play as before.
+  void set_agent(Role r, int k, const AgentConfig& a);
   /// The configuration of agent i of a game's order, `pursuers` pursuers first and then the evaders.
   const AgentConfig& agent_at(int i, int pursuers) const { return agent(role_at(i, pursuers), rank_at(i, pursuers)); }
   /// Throws InvalidParameter naming the dotted field.

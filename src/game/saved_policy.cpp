@@ -25,8 +25,6 @@ std::unique_ptr<Policy> SavedPolicy::make() const {
 std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role) {
   const PolicyDocument d = read_policy_document(file);
   auto p = std::make_shared<SavedPolicy>();
-  p->file = file;
-  p->role = role;
   if (is_mlp_document(d.doc)) {
     p->mlp = mlp_from_json(d.doc, file, role, d.text);
     p->content_hash = hash_of(d.doc.dump());

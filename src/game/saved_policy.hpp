@@ -16,8 +16,6 @@
 namespace peg3d::game {
 
 struct SavedPolicy {
-  std::filesystem::path file;
-  Role role = Role::kPursuer;
   std::shared_ptr<const FaclModel> facl;  ///< set for a FACL file
   std::shared_ptr<const MlpModel> mlp;    ///< set for an MLP file
   /// "fnv1a64:..." of the model's canonical JSON (a FACL model's as policy_to_json writes it, an MLP's document)

@@ -247,13 +247,8 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr || d->kind != AgentDriver::Kind::kPolicy) continue;
     const game::Role role = game::role_at(i, p);
-    const std::size_t rank = std::size_t(game::rank_at(i, p));
     saved[std::size_t(i)] = game::load_saved_policy(d->policy, role);
-    const game::AgentConfig* own = saved[std::size_t(i)]->config();
-    if (own == nullptr) continue;
-    auto& entries = role == game::Role::kPursuer ? config.pursuers : config.evaders;
-    if (entries.size() <= rank) entries.resize(rank + 1, role == game::Role::kPursuer ? config.pursuer : config.evader);
-    entries[rank] = *own;
+    if (const game::AgentConfig* own = saved[std::size_t(i)]->config()) config.set_agent(role, game::rank_at(i, p), *own);
   }
   const game::Sim sim(arena, config);
   game::Lineup lineup;
