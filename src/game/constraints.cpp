@@ -135,7 +135,10 @@ std::optional<Cone> second_obstacle_cone(const ConstraintInputs& in, const Vec3&
     return std::nullopt;
   }
   const Vec3& p = in.self.position;
-  const ObstacleSense ahead = in.probe->nearest(p + g.look_ahead * d);
+  // A point farther than look_ahead + stop_distance from the probed point lies farther than stop_distance from
+  // the agent (d is a unit vector), so it gives no cone: the probe need not look beyond (the margin covers
+  // the rounding of both distances).
+  const ObstacleSense ahead = in.probe->nearest(p + g.look_ahead * d, g.look_ahead + g.stop_distance + 1e-9);
   if (!ahead.found || (ahead.point - in.field.point).squaredNorm() < 1e-18) return std::nullopt;
   const double distance = (ahead.point - p).norm();
   if (!(distance < g.stop_distance)) return std::nullopt;

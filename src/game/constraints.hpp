@@ -67,7 +67,9 @@ bool guard_along_faces(const Cone& allowed, Vec3& d, const Vec3& position, const
 /// nearest one is (AgentView::field).
 class ObstacleProbe {
  public:
-  virtual ObstacleSense nearest(const Vec3& p) const = 0;
+  /// The obstacle nearest to p when one lies within `reach` (m) of it; otherwise an answer farther than `reach`
+  /// or none (a probe may stop looking there: the guard cannot use what lies beyond).
+  virtual ObstacleSense nearest(const Vec3& p, double reach) const = 0;
 
  protected:
   ~ObstacleProbe() = default;

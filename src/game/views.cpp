@@ -1,15 +1,18 @@
 #include "game/views.hpp"
 
+#include <algorithm>
+
 namespace peg3d::game {
 
-ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p) {
+ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p, double reach) {
   const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(p) : sim.arena().nearest_shape(p);
   if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
-    // Moving obstacles where they are now, exactly.
-    world::MoverPoint m = movers->nearest(p, st.time, n.distance);
+    // Moving obstacles where they are now, exactly: those nearer than the field's obstacle and within reach.
+    const double cap = std::min(n.distance, reach);
+    world::MoverPoint m = movers->nearest(p, st.time, cap);
     if (st.push) {
       // Push mode: the run's own dynamic bodies where they are now.
-      const world::MoverPoint d = st.push->nearest(p, m.mover >= 0 ? m.distance : n.distance);
+      const world::MoverPoint d = st.push->nearest(p, m.mover >= 0 ? m.distance : cap);
       if (d.mover >= 0 && (m.mover < 0 || d.distance < m.distance || (d.distance == m.distance && d.mover < m.mover))) m = d;
     }
     if (m.mover >= 0) return {m.distance, m.point, true};

@@ -3,6 +3,8 @@
 // with moving obstacles, the nearer of them and the movers), and each agent's view rebuilt from the state.
 // reset() and step() build every view this way; the guard's look-ahead senses through a StateProbe.
 
+#include <limits>
+
 #include "game/constraints.hpp"
 #include "game/sim.hpp"
 
@@ -10,13 +12,15 @@ namespace peg3d::game {
 
 /// The map's obstacle nearest to p at the state's time: its shapes only (whether the arena's faces count is the
 /// agent's observation setting, not the map's) and, on a map with movers, the nearer of them and the field.
-ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& p);
+/// Movers are looked for within `reach` (m) only: beyond it the answer is the field's (ObstacleProbe::nearest).
+ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& p,
+                             double reach = std::numeric_limits<double>::infinity());
 
 /// The guard's look ahead senses as the agent does.
 class StateProbe final : public ObstacleProbe {
  public:
   StateProbe(const Sim& sim, const SimState& state) : sim_(sim), state_(state) {}
-  ObstacleSense nearest(const Vec3& p) const override { return sense_obstacle(sim_, state_, p); }
+  ObstacleSense nearest(const Vec3& p, double reach) const override { return sense_obstacle(sim_, state_, p, reach); }
 
  private:
   const Sim& sim_;

@@ -116,7 +116,7 @@ class Trunks final : public ObstacleProbe {
     double x, y, radius;
   };
   explicit Trunks(std::vector<Trunk> trunks) : trunks_(std::move(trunks)) {}
-  ObstacleSense nearest(const Vec3& p) const override {
+  ObstacleSense nearest(const Vec3& p, double) const override {
     ObstacleSense best;
     for (const Trunk& t : trunks_) {
       const Vec3 axis(t.x, t.y, p.z());

@@ -4,12 +4,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <regex>
 
 #include <gtest/gtest.h>
 
 #include "game/episode.hpp"
 #include "game/scripted_policies.hpp"
+#include "game/views.hpp"
 #include "test_arena.hpp"
 #include "world/map_loader.hpp"
 #include "world/map_spec.hpp"
@@ -354,6 +356,45 @@ TEST(Sim, AgentsSenseMoversWhereTheyAreNow) {
   }
   EXPECT_GT(steps, 100);
   EXPECT_GT(near_movers, 0);  // movers were the nearest obstacle at some steps
+}
+
+TEST(Sim, WithinItsReachTheProbeSensesWhatTheAgentWould) {
+  // The guard's look-ahead asks for the obstacle nearest to a point within a reach. Within it, the answer is
+  // the full one to the bit; beyond it, the answer lies beyond it too (the guard cannot use it either way).
+  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/patrol.yaml"));
+  GameConfig c = preset("peg3d");
+  c.pursuer.policy = PolicyKind::kPurePursuit;
+  c.evader.policy = PolicyKind::kFlee;
+  c.collision = CollisionMode::kPenalize;
+  const Sim sim(arena, c);
+  SimState st(sim);
+  Lineup l = testing::lineup_for(c, arena->map().scenarios[1]);
+  reset(sim, st, arena->map().scenarios[1], 3);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  int within = 0, beyond = 0;
+  std::vector<Steering> commands(2);
+  while (!st.done) {
+    for (int i = 0; i < 2; ++i) {
+      for (const double reach : {0.5, 1.4, 3.0}) {
+        const Vec3 p = arena->bounds().clamp(st.agents[std::size_t(i)].kinematics.position + Vec3(u(rng), u(rng), u(rng)));
+        const ObstacleSense full = sense_obstacle(sim, st, p), near = sense_obstacle(sim, st, p, reach);
+        if (full.found && full.distance <= reach) {
+          ++within;
+          EXPECT_EQ(near.distance, full.distance) << "t = " << st.time;
+          EXPECT_EQ(near.point, full.point);
+          EXPECT_TRUE(near.found);
+        } else {
+          ++beyond;
+          EXPECT_TRUE(!near.found || near.distance > reach) << "t = " << st.time;
+        }
+      }
+      commands[std::size_t(i)] = l[i].act(observe(st, i));
+    }
+    step(sim, st, commands);
+  }
+  EXPECT_GT(within, 100);
+  EXPECT_GT(beyond, 100);
 }
 
 TEST(Sim, OctreeSensingFollowsTheMoversWithinTheFieldsError) {
