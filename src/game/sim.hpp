@@ -83,6 +83,15 @@ struct AgentState {
   /// faces excluded), both agents' states. Rebuilt by reset() and by every step() it takes part in.
   AgentView view;
   int body = -1;                      ///< its sphere in the state's collision world
+  /// The view's word on the movers: at `at`, time `time` (s), every mover queried by the timeline lay at least
+  /// `distance` (m) away (the field's distance: a mover's, or the cap no mover came within). The step's mover
+  /// contacts need no query when the agent starts there and then and no mover can close that gap
+  /// (MoverTimeline::clear_of_contact). `time` < 0: no such word (no exact mover sensing).
+  struct {
+    Vec3 at = Vec3::Zero();
+    double time = -1.0;
+    double distance = 0.0;
+  } mover_clearance;
   // Totals over the run so far.
   double path = 0.0;                  ///< m travelled
   double total_reward = 0.0;          ///< undiscounted sum of its rewards

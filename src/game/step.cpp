@@ -146,7 +146,10 @@ void mover_contacts(const Sim& sim, SimState& st, int i, const Vec3& from, const
   AgentState& a = st.agents[std::size_t(i)];
   KinematicState& k = st.scratch.next[std::size_t(i)];
   const double radius = a.config->radius;
-  const auto m = movers.first_contact(from, to, radius, st.time, dt);
+  // The view of this instant may show that no mover comes near during the step: then there is nothing to find.
+  const auto& c = a.mover_clearance;
+  const bool clear = c.time == st.time && c.at == from && movers.clear_of_contact(c.distance, from, to, radius, st.time, dt);
+  const auto m = clear ? std::nullopt : movers.first_contact(from, to, radius, st.time, dt);
   if (m && (!hit || m->fraction < hit->fraction)) {
     k.position = stopped_at(from, to, m->fraction);
     st.collider.place_agent(a.body, k.position);
@@ -156,7 +159,7 @@ void mover_contacts(const Sim& sim, SimState& st, int i, const Vec3& from, const
   if (!hit) return;
   k.position = st.collider.agent_position(a.body);  // stopped at the time of impact
   record_collision(st, event_of(st, i, *hit, dt));
-  if (hit->fraction >= 1.0) return;
+  if (hit->fraction >= 1.0 || clear) return;  // clear: the sphere anywhere on its segment during the step
   const double rest = 1.0 - hit->fraction;
   if (auto late = movers.first_contact(k.position, k.position, radius, st.time + hit->fraction * dt, rest * dt)) {
     late->fraction = hit->fraction + late->fraction * rest;

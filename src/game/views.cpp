@@ -35,6 +35,9 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.time = st.time;
   v.arena = sim.arena().bounds();
   v.field = sense_obstacle(sim, st, a.kinematics.position);
+  // Exactly sensed, the field's distance bounds every mover's from below (sense_obstacle): kept for the step.
+  const bool exact = sim.movers() != nullptr && !st.moving_field;
+  a.mover_clearance = {a.kinematics.position, exact ? st.time : -1.0, v.field.distance};
   v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());
 }

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "geometry/angles.hpp"
 #include "world/body_physics.hpp"
 #include "world/movers.hpp"
 
@@ -17,6 +18,16 @@ namespace {
 
 // The rotation angle between two orientations, rad.
 double angle_between(const Quat& a, const Quat& b) { return a.angularDistance(b); }
+
+// A bound on how far any point within `radius` of the centre moves from pose a to pose b (interpolated
+// between them: positions linearly, orientations spherically): the centre's step plus the arc of the
+// rotation angle theta, with theta <= pi |qb -+ qa| for unit quaternions (|qb - qa| = 2 sin(theta / 4) on
+// the same hemisphere, and sin x >= 2 x / pi up to pi / 2), which spares an inverse cosine a keyframe.
+double point_travel(const Pose& a, const Pose& b, double radius) {
+  const Eigen::Vector4d qa = a.orientation.coeffs(), qb = b.orientation.coeffs();
+  const double turn = std::min((qb - qa).norm(), (qb + qa).norm());
+  return (b.position - a.position).norm() + kPi * turn * radius;
+}
 
 // Two poses equal to the bit: a body Bullet put to sleep keeps its transform exactly.
 bool same_bits(const Pose& a, const Pose& b) {
@@ -58,6 +69,7 @@ struct MoverTimeline::Block {
   std::vector<std::uint8_t> resting;  ///< per dynamic body: 1 when one pose holds for the whole block
   std::vector<Pose> poses;
   BoxTree index;                      ///< leaf m: mover m's bounds over the block's time span
+  double travel = 0.0;                ///< m, the most any point of a dynamic body moves over the block
 
   const Pose& at(int row, long k) const {
     return poses[start[std::size_t(row)] + (resting[std::size_t(row)] ? 0 : std::size_t(k - first))];
@@ -139,6 +151,7 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
       start_poses_.push_back({movers_[i].start, orientation_deg(movers_[i].rotation_deg)});
     }
     if (with_dynamic_ || movers_[i].kinematic()) queried_.push_back(static_cast<int>(i));
+    if (movers_[i].kinematic()) scripted_speed_ = std::max(scripted_speed_, scripted_speed(movers_[i]));
   }
   if (!with_dynamic_) {
     // Only the scripted movers' bounds are kept; nothing is simulated.
@@ -227,10 +240,13 @@ void MoverTimeline::simulate_through(std::size_t b) const {
       } else {
         const int row = dynamic_index_[m];
         const long kmax = block->resting[std::size_t(row)] ? block->first : block->last;
+        double travel = 0.0;
         for (long k = block->first; k <= kmax; ++k) {
-          const Vec3& c = block->at(row, k).position;
-          box.lo = box.lo.cwiseMin(c), box.hi = box.hi.cwiseMax(c);
+          const Pose& at = block->at(row, k);
+          box.lo = box.lo.cwiseMin(at.position), box.hi = box.hi.cwiseMax(at.position);
+          if (k > block->first) travel += point_travel(block->at(row, k - 1), at, spec.shape.bounding_radius());
         }
+        block->travel = std::max(block->travel, travel);
       }
       box.lo.array() -= widen;
       box.hi.array() += widen;
@@ -285,6 +301,24 @@ double MoverTimeline::travel_bound(int m, double t0, double t1) const {
     bound += (c.position - a.position).norm() + angle_between(a.orientation, c.orientation) * r;
   }
   return bound;
+}
+
+double MoverTimeline::max_travel(double t0, double t1) const {
+  double travel = scripted_speed_ * (t1 - t0);
+  if (with_dynamic_ && dynamic_ > 0) {
+    for (std::size_t b = block_at(t0), last = block_at(t1); b <= last; ++b) travel += block(b).travel;
+  }
+  return travel;
+}
+
+bool MoverTimeline::clear_of_contact(double clearance, const Vec3& from, const Vec3& to, double radius, double t0,
+                                     double dt) const {
+  // At s of the step the sphere's centre is within |to - from| of `from` and every mover point within
+  // max_travel of where it was at t0, so each gap stays above clearance - radius - both. The margin covers
+  // the rounding of the distances conservative advancement computes.
+  constexpr double kMargin = 1e-6;
+  if (!indexed(t0, t0 + dt) || !(clearance < std::numeric_limits<double>::infinity())) return false;
+  return clearance - radius - (to - from).norm() - max_travel(t0, t0 + dt) > kContactTolerance + kMargin;
 }
 
 void offer_nearer(int m, const Shape& shape, const Pose& at, const Vec3& p, MoverPoint& best) {

@@ -142,6 +142,16 @@ class MoverTimeline {
   /// The largest distance any point of mover m moves during [t0, t1] (a bound, m).
   double travel_bound(int m, double t0, double t1) const;
 
+  /// A bound (m) on how far any point of any queried mover moves during [t0, t1] (within the timeline).
+  double max_travel(double t0, double t1) const;
+
+  /// Whether first_contact(from, to, radius, t0, dt) finds no contact, known from `clearance`: every queried
+  /// mover lay at least that far (m) from `from` at t0 (the nearest() of that instant, or its cap when none
+  /// was nearer). True only when no mover can close the gap to within kContactTolerance during the step, by
+  /// the agent's travel and max_travel(): then the query need not run. False outside the timeline.
+  bool clear_of_contact(double clearance, const Vec3& from, const Vec3& to, double radius, double t0,
+                        double dt) const;
+
   /// The worst-case bytes of a map's timeline over `duration` s (what the budget is checked against).
   static std::size_t worst_case_bytes(const MapSpec& spec, double duration);
 
@@ -179,6 +189,7 @@ class MoverTimeline {
   bool with_dynamic_ = true;
   std::vector<int> queried_;         ///< the movers the queries look at, ascending: leaf i of a block's index is queried_[i]
   std::vector<Pose> start_poses_;    ///< per dynamic body, where it starts (its pose when left out)
+  double scripted_speed_ = 0.0;      ///< m/s, the fastest queried scripted mover's speed bound
   double duration_ = 0.0;
   int rate_hz_ = 240;
   int stride_ = 1;            ///< substeps per keyframe

@@ -47,20 +47,21 @@ const Shape kBall{Shape::Kind::kSphere, 0.4, 1.0, Vec3::Ones()};
 const Shape kPost{Shape::Kind::kCylinder, 0.3, 1.2, Vec3::Ones()};
 const Shape kCrate{Shape::Kind::kBox, 1.0, 1.0, Vec3(0.8, 0.5, 0.6)};
 
-// 300 movers in a 30 m box: orbits and paths of every shape (some at 25 m/s, several arena widths a second),
-// and dynamic bodies dropped onto the floor, that bounce and come to rest.
-MapSpec crowded(int keyframe_hz = 0) {
+// 300 movers in a 30 m box: orbits and paths of every shape (with `fast`, some at 25 m/s, several arena widths a
+// second, and orbits up to 15 m/s; else at most 4 m/s), and dynamic bodies dropped onto the floor, that bounce
+// and come to rest.
+MapSpec crowded(int keyframe_hz = 0, bool fast = true) {
   MapSpec spec = testing::empty_spec(Vec3(30, 30, 15), 0.5);
   spec.physics.keyframe_hz = keyframe_hz;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const Shape shapes[] = {kBall, kPost, kCrate};
   for (int k = 0; k < 100; ++k) {
-    spec.movers.push_back(orbit(Vec3(15, 15, 2 + 11 * u(rng)), 2 + 10 * u(rng), 5 + 20 * u(rng), 6 * u(rng), shapes[k % 3]));
+    spec.movers.push_back(orbit(Vec3(15, 15, 2 + 11 * u(rng)), 2 + 10 * u(rng), (fast ? 5 : 20) + 20 * u(rng), 6 * u(rng), shapes[k % 3]));
   }
   for (int k = 0; k < 100; ++k) {
     const double y = 2 + 26 * u(rng), z = 2 + 11 * u(rng);
-    spec.movers.push_back(path(Vec3(2, y, z), Vec3(28, y, z), k % 10 == 0 ? 25.0 : 0.5 + 3 * u(rng), shapes[k % 3]));
+    spec.movers.push_back(path(Vec3(2, y, z), Vec3(28, y, z), k % 10 == 0 && fast ? 25.0 : 0.5 + 3 * u(rng), shapes[k % 3]));
   }
   for (int k = 0; k < 100; ++k) {
     spec.movers.push_back(body(Vec3(1.5 + (k % 10) * 2.9, 1.5 + (k / 10) * 2.9, 1 + 5 * u(rng)), shapes[k % 2 == 0 ? 0 : 2]));
@@ -102,6 +103,67 @@ TEST(WorldMoverIndex, IndexedQueriesGiveTheAnswersOfAVisitOfEveryMover) {
   std::printf("%d of 4000 points with a mover within the cap, %d contacts\n", near, contacts);
   EXPECT_GT(near, 1000);
   EXPECT_GT(contacts, 300);
+}
+
+TEST(WorldMoverIndex, NoPointOfAnyMoverTravelsFartherThanTheBound) {
+  // Points of every mover (its centre, a box's corners, a point off the centre) between two instants of a game
+  // step: all movers, the bodies alone (bouncing, tumbling and rolling), the scripted movers alone, whose
+  // fastest one's straight run reaches the bound (the bound is not vacuous).
+  enum Which { kAll, kBodies, kScripted };
+  for (const Which which : {kAll, kBodies, kScripted}) {
+    MapSpec spec = crowded();
+    if (which == kScripted) spec.movers.resize(200);  // the orbits and paths
+    if (which == kBodies) spec.movers.erase(spec.movers.begin(), spec.movers.begin() + 200);
+    const auto t = testing::build(spec)->movers_until(12.0);
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    double nearest_to_bound = 0.0;
+    for (int q = 0; q < 2000; ++q) {
+      const double t0 = 11.8 * u(rng), t1 = t0 + 0.1 * u(rng);
+      const double bound = t->max_travel(t0, t1);
+      for (int m = 0; m < t->count(); ++m) {
+        const Pose a = t->pose(m, t0), b = t->pose(m, t1);
+        const Vec3 half = t->mover(m).shape.kind == Shape::Kind::kBox ? Vec3(0.5 * t->mover(m).shape.size) : Vec3::Zero();
+        for (const Vec3& local : {Vec3(Vec3::Zero()), half, Vec3(-half), Vec3(0.3, -0.2, 0.25)}) {
+          const double moved = (b.position + b.orientation * local - a.position - a.orientation * local).norm();
+          ASSERT_LE(moved, bound + 1e-12) << "mover " << m << " from " << t0 << " to " << t1;  // to rounding
+          if (bound > 0.0) nearest_to_bound = std::max(nearest_to_bound, moved / bound);
+        }
+      }
+    }
+    if (which == kScripted) {
+      EXPECT_GT(nearest_to_bound, 0.999);
+    }
+  }
+}
+
+TEST(WorldMoverIndex, AClearanceThatRulesOutAContactRulesItOut) {
+  // Agents' steps (0 to 0.3 m in 0.1 s) from random points, each with the clearance its view would give (the
+  // nearest mover's distance, or the cap no mover came within): whenever clear_of_contact says no mover can
+  // touch, a visit of every mover finds no contact. Slow movers make it say so often; fast ones rarely.
+  for (const bool fast : {false, true}) {
+    const auto t = testing::build(crowded(0, fast))->movers_until(12.0);
+    std::mt19937_64 rng(fast ? 3 : 8);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int clear = 0, contacts = 0;
+    for (int q = 0; q < 6000; ++q) {
+      const double time = 11.8 * u(rng), cap = q % 2 == 0 ? 5.0 : 2.0;
+      const Vec3 p(30 * u(rng), 30 * u(rng), 15 * u(rng));
+      const Vec3 to = p + Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized() * 0.3 * u(rng);
+      const MoverPoint seen = t->nearest_scan(p, time, cap);
+      const double clearance = seen.mover >= 0 ? seen.distance : cap;
+      const auto contact = t->first_contact_scan(p, to, 0.25, time, 0.1);
+      contacts += contact.has_value();
+      if (!t->clear_of_contact(clearance, p, to, 0.25, time, 0.1)) continue;
+      ++clear;
+      ASSERT_FALSE(contact.has_value()) << "query " << q << ": mover " << contact->mover << " touches";
+    }
+    std::printf("%s movers: %d of 6000 steps clear, %d contacts\n", fast ? "fast" : "slow", clear, contacts);
+    EXPECT_GT(contacts, 50);
+    if (!fast) {
+      EXPECT_GT(clear, 1000);
+    }
+  }
 }
 
 TEST(WorldMoverIndex, AFastMoverIsFoundAtTheTimeOfImpactOfAVisitOfEveryMover) {
