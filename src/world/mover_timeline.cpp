@@ -68,7 +68,7 @@ struct MoverTimeline::Block {
   std::vector<std::uint32_t> start;   ///< per dynamic body: index in poses of its keyframe `first`
   std::vector<std::uint8_t> resting;  ///< per dynamic body: 1 when one pose holds for the whole block
   std::vector<Pose> poses;
-  BoxTree index;                      ///< leaf m: mover m's bounds over the block's time span
+  BoxIndex index;                     ///< leaf m: mover m's bounds over the block's time span
   double travel = 0.0;                ///< m, the most any point of a dynamic body moves over the block
 
   const Pose& at(int row, long k) const {
@@ -120,8 +120,8 @@ class MoverTimeline::Simulation {
 
 std::size_t MoverTimeline::estimate(long keyframes, std::size_t blocks, std::size_t dynamic, std::size_t indexed) {
   const std::size_t poses = dynamic * (std::size_t(keyframes) + blocks) * sizeof(Pose);
-  // Per block: the pose offsets and rest flags, the bounds of every indexed mover with its share of the tree's
-  // nodes.
+  // Per block: the pose offsets and rest flags, and per indexed mover its bounds in the index (floats, padding
+  // and its cluster's share: under 48 bytes) and its bounds while the index is built (a Box); 72 bytes bound both.
   const std::size_t per_block = sizeof(Block) + dynamic * (sizeof(std::uint32_t) + 1) + indexed * (sizeof(Box) + 24);
   return poses + blocks * per_block;
 }
@@ -252,7 +252,7 @@ void MoverTimeline::simulate_through(std::size_t b) const {
       box.hi.array() += widen;
       bounds[leaf] = box;
     }
-    block->index = BoxTree(bounds);
+    block->index = BoxIndex(bounds);
     bytes_.fetch_add(block->bytes(), std::memory_order_relaxed);
     blocks_[r] = std::move(block);
     ready_.store(r + 1, std::memory_order_release);

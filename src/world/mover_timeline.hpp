@@ -15,7 +15,7 @@
 // simulated on demand, in order, under a lock, as the first query reaches them: building a Sim costs nothing,
 // and no run waits for motion it does not reach.
 //
-// Every block also holds a broadphase over the movers (a BoxTree of each mover's bounds over the block's time
+// Every block also holds a broadphase over the movers (a BoxIndex of each mover's bounds over the block's time
 // span), so that the two questions the game asks of movers at a time t visit only the movers near the agent:
 // the nearest point of any mover to a point (exact, per shape), and the first contact of an agent's sphere
 // moving along a segment during a game step, by conservative advancement on exact distances (no tunnelling at
@@ -30,7 +30,7 @@
 #include <span>
 #include <vector>
 
-#include "geometry/box_tree.hpp"
+#include "geometry/box_index.hpp"
 #include "geometry/pose.hpp"
 #include "world/map_spec.hpp"
 #include "world/movers.hpp"

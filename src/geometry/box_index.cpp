@@ -1,0 +1,148 @@
+#include "geometry/box_index.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace peg3d {
+namespace {
+
+// A double rounded down (lo) or up (hi) to a float, so that the float box contains the double one.
+float down(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float up(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// Splits order[begin, end) at median centres along the axis where they spread most, down to ranges of at most
+// `size` boxes, appended to `ranges` in order.
+void cluster(std::vector<std::int32_t>& order, std::span<const Box> boxes, int begin, int end, int size,
+             std::vector<std::pair<int, int>>& ranges) {
+  if (end - begin <= size) {
+    ranges.emplace_back(begin, end);
+    return;
+  }
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int k = begin; k < end; ++k) {
+    const Vec3 c = boxes[std::size_t(order[std::size_t(k)])].center();
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  int axis = 0;
+  const Vec3 spread = hi - lo;
+  if (spread.y() > spread[axis]) axis = 1;
+  if (spread.z() > spread[axis]) axis = 2;
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](std::int32_t a, std::int32_t b) {
+    const double ca = boxes[std::size_t(a)].center()[axis], cb = boxes[std::size_t(b)].center()[axis];
+    return ca < cb || (ca == cb && a < b);
+  });
+  cluster(order, boxes, begin, mid, size, ranges);
+  cluster(order, boxes, mid, end, size, ranges);
+}
+
+int padded(int n) { return (n + 3) / 4 * 4; }
+
+}  // namespace
+
+BoxIndex::BoxIndex(std::span<const Box> boxes) : size_(boxes.size()) {
+  if (boxes.empty()) return;
+  assert(boxes.size() <= kMaxBoxes);
+  Vec3 lo = boxes[0].lo, hi = boxes[0].hi;
+  for (const Box& b : boxes) lo = lo.cwiseMin(b.lo), hi = hi.cwiseMax(b.hi);
+  for (int a = 0; a < 3; ++a) origin_[std::size_t(a)] = lo[a];
+  extent_ = (hi - lo).maxCoeff();
+
+  std::vector<std::int32_t> order(boxes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<std::pair<int, int>> ranges;
+  cluster(order, boxes, 0, static_cast<int>(order.size()), kClusterSize, ranges);
+  cluster_count_ = padded(static_cast<int>(ranges.size()));
+  slot_count_ = 0;
+  for (const auto& [b, e] : ranges) slot_count_ += padded(e - b);
+
+  // Layout (Level): the clusters' lo x, y, z, hi x, y, z, then the boxes' likewise; an empty slot is an
+  // inverted box, which no query meets.
+  floats_.assign(6 * std::size_t(cluster_count_ + slot_count_), 0.0f);
+  ints_.assign(2 * std::size_t(cluster_count_) + std::size_t(slot_count_), -1);
+  const auto put = [&](std::size_t offset, int count, int i, const Box* b) {
+    for (int a = 0; a < 3; ++a) {
+      floats_[offset + std::size_t(a * count + i)] =
+          b ? down(b->lo[a] - origin_[std::size_t(a)]) : std::numeric_limits<float>::infinity();
+      floats_[offset + std::size_t((3 + a) * count + i)] =
+          b ? up(b->hi[a] - origin_[std::size_t(a)]) : -std::numeric_limits<float>::infinity();
+    }
+  };
+  const std::size_t box_level = 6 * std::size_t(cluster_count_);
+  std::int32_t* first = ints_.data();
+  std::int32_t* count = first + cluster_count_;
+  std::int32_t* id = count + cluster_count_;
+  int next = 0;
+  for (int c = 0; c < cluster_count_; ++c) {
+    first[c] = next;
+    count[c] = 0;
+    if (c >= static_cast<int>(ranges.size())) {
+      put(0, cluster_count_, c, nullptr);
+      continue;
+    }
+    const auto [b, e] = ranges[std::size_t(c)];
+    Box bounds{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
+    for (int k = 0; k < padded(e - b); ++k) {
+      const Box* box = k < e - b ? &boxes[std::size_t(order[std::size_t(b + k)])] : nullptr;
+      put(box_level, slot_count_, next + k, box);
+      if (box) {
+        id[next + k] = order[std::size_t(b + k)];
+        bounds.lo = bounds.lo.cwiseMin(box->lo);
+        bounds.hi = bounds.hi.cwiseMax(box->hi);
+      }
+    }
+    put(0, cluster_count_, c, &bounds);
+    count[c] = padded(e - b);
+    next += count[c];
+  }
+}
+
+void BoxIndex::distances2(const Level& level, int begin, int n, const float q[3], float* out) {
+#if defined(__SSE2__)
+  const __m128 qx = _mm_set1_ps(q[0]), qy = _mm_set1_ps(q[1]), qz = _mm_set1_ps(q[2]), zero = _mm_setzero_ps();
+  for (int i = begin; i < begin + n; i += 4, out += 4) {
+    // Per axis max(lo - q, q - hi, 0): the gap outside the box.
+    const __m128 x = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[0] + i), qx), _mm_sub_ps(qx, _mm_loadu_ps(level.hi[0] + i))), zero);
+    const __m128 y = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[1] + i), qy), _mm_sub_ps(qy, _mm_loadu_ps(level.hi[1] + i))), zero);
+    const __m128 z = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[2] + i), qz), _mm_sub_ps(qz, _mm_loadu_ps(level.hi[2] + i))), zero);
+    _mm_storeu_ps(out, _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
+  }
+#else
+  // The same operations one box at a time (max(a, b) as maxps takes it: a > b ? a : b).
+  const auto max = [](float a, float b) { return a > b ? a : b; };
+  for (int i = begin; i < begin + n; ++i, ++out) {
+    float d2 = 0.0f;
+    float e[3];
+    for (int a = 0; a < 3; ++a) e[a] = max(max(level.lo[a][i] - q[a], q[a] - level.hi[a][i]), 0.0f);
+    d2 = (e[0] * e[0] + e[1] * e[1]) + e[2] * e[2];
+    *out = d2;
+  }
+#endif
+}
+
+void BoxIndex::overlaps(const Level& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out) {
+  // Boxes meet when on every axis neither lies wholly beyond the other.
+  for (int i = begin; i < begin + n; ++i, ++out) {
+    bool meets = true;
+    for (int a = 0; a < 3; ++a) meets &= !(hi[a] < level.lo[a][i]) & !(lo[a] > level.hi[a][i]);
+    *out = meets ? 1 : 0;
+  }
+}
+
+}  // namespace peg3d

@@ -1,0 +1,165 @@
+#pragma once
+// A static index over axis-aligned boxes: which boxes overlap a query box, and the boxes in order of their
+// distance to a point within a bound (branch and bound). It answers the broadphase questions of the movers'
+// timeline (world/mover_timeline.hpp): built once per time window, read by every thread.
+//
+// Two flat levels instead of a deep tree: the boxes in clusters of at most 16 that lie near each other (the
+// cells of median splits along the widest spread), and the clusters' bounds. Each level's bounds lie side by
+// side, one coordinate of every box in a row, so a query measures four boxes with one instruction each (SSE2,
+// or plain loops elsewhere: the same floats) in straight-line code that reads memory in order: no chain of
+// dependent loads from node to node, which costs a cache miss a level when a window's index is cold. Bounds are
+// floats relative to the boxes' lowest corner, rounded outwards, and every query widens its bound by a slack
+// far above float rounding, so no box it should report is missed (it may report one that misses by less,
+// which callers test exactly anyway). What a query reports does not depend on the clustering: callers that
+// need an exact answer break ties by box index themselves.
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/vector.hpp"
+
+namespace peg3d {
+
+class BoxIndex {
+ public:
+  /// Most boxes an index holds (the buffers of a query live on the stack).
+  static constexpr std::size_t kMaxBoxes = 8192;
+
+  BoxIndex() = default;
+  /// Boxes 0..n-1 are `boxes` (each with lo <= hi), n <= kMaxBoxes.
+  explicit BoxIndex(std::span<const Box> boxes);
+
+  std::size_t size() const { return size_; }
+  /// Bytes the index holds.
+  std::size_t bytes() const { return floats_.capacity() * sizeof(float) + ints_.capacity() * sizeof(std::int32_t); }
+
+  /// Calls visit(box) for every box that meets `query` (closed boxes: touching counts), in no particular order.
+  /// No allocation.
+  template <class Visit>
+  void overlapping(const Box& query, Visit&& visit) const;
+
+  /// Visits the boxes that lie within `bound` of p (the distance from p to the box, 0 inside), nearer ones
+  /// first: visit(box) returns the new bound (the best distance found so far, or `bound` unchanged), and boxes
+  /// farther than the bound are skipped. No allocation.
+  template <class Visit>
+  void nearest(const Vec3& p, double bound, Visit&& visit) const;
+
+ private:
+  static constexpr int kClusterSize = 16;
+  static constexpr int kMaxClusters = int(kMaxBoxes / (kClusterSize / 2)) + 4;
+
+  /// One level's bounds, side by side: lo[axis][i], hi[axis][i], padded to a multiple of four with boxes that
+  /// contain nothing (the pointers of a query into floats_).
+  struct Level {
+    const float* lo[3];
+    const float* hi[3];
+  };
+  /// The level starting at `offset` in floats_, of `count` slots.
+  Level level(std::size_t offset, int count) const {
+    const float* f = floats_.data() + offset;
+    return {{f, f + count, f + 2 * count}, {f + 3 * count, f + 4 * count, f + 5 * count}};
+  }
+  Level clusters() const { return level(0, cluster_count_); }
+  Level boxes() const { return level(6 * std::size_t(cluster_count_), slot_count_); }
+  const std::int32_t* first() const { return ints_.data(); }                       // per cluster, its first slot
+  const std::int32_t* count() const { return ints_.data() + cluster_count_; }      // per cluster, its slots (x 4)
+  const std::int32_t* id() const { return ints_.data() + 2 * cluster_count_; }     // per slot, its box or -1
+
+  /// Squared distances (float) from q to the boxes [begin, begin + n) of a level, n a multiple of four.
+  static void distances2(const Level& level, int begin, int n, const float q[3], float* out);
+  /// Whether each of the boxes [begin, begin + n) of a level meets [lo, hi] (1 or 0 in `out`).
+  static void overlaps(const Level& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out);
+
+  /// The query's slack (m): float rounding of coordinates as far as `reach` from the origin is far below it.
+  double slack(double reach) const { return 1e-6 * (1.0 + extent_ + reach); }
+  /// The point relative to the origin, in floats.
+  void relative(const Vec3& p, float out[3]) const {
+    for (int a = 0; a < 3; ++a) out[a] = static_cast<float>(p[a] - origin_[a]);
+  }
+  /// The squared bound a box's float distance is held against: the bound widened by the slack.
+  float limit2(double bound, double reach) const {
+    const double b = bound + slack(reach);
+    return static_cast<float>(b * b * (1.0 + 1e-6));
+  }
+
+  std::vector<float> floats_;        // the clusters' level, then the boxes' level
+  std::vector<std::int32_t> ints_;   // per cluster its first slot, per cluster its slot count, per slot its box
+  int cluster_count_ = 0;            // padded to a multiple of four
+  int slot_count_ = 0;               // every cluster's boxes, each cluster padded to a multiple of four
+  std::array<double, 3> origin_{};
+  double extent_ = 0.0;              // m, the largest coordinate relative to the origin
+  std::size_t size_ = 0;
+};
+
+template <class Visit>
+void BoxIndex::overlapping(const Box& query, Visit&& visit) const {
+  if (size_ == 0) return;
+  float lo[3], hi[3];
+  const double s = slack((query.hi - query.lo).cwiseAbs().maxCoeff() + (query.lo - Vec3(origin_.data())).cwiseAbs().maxCoeff());
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = static_cast<float>(query.lo[a] - origin_[a] - s);
+    hi[a] = static_cast<float>(query.hi[a] - origin_[a] + s);
+  }
+  const Level cl = clusters(), bx = boxes();
+  const std::int32_t *firsts = first(), *counts = count(), *ids = id();
+  alignas(16) std::int32_t hit[kMaxClusters];
+  overlaps(cl, 0, cluster_count_, lo, hi, hit);
+  alignas(16) std::int32_t in[kClusterSize];
+  for (int c = 0; c < cluster_count_; ++c) {
+    if (!hit[c]) continue;
+    const int from = firsts[c], n = counts[c];
+    overlaps(bx, from, n, lo, hi, in);
+    for (int k = 0; k < n; ++k) {
+      if (in[k] && ids[from + k] >= 0) visit(int(ids[from + k]));
+    }
+  }
+}
+
+template <class Visit>
+void BoxIndex::nearest(const Vec3& p, double bound, Visit&& visit) const {
+  if (size_ == 0 || !(bound >= 0.0)) return;
+  float q[3];
+  relative(p, q);
+  const double reach = (p - Vec3(origin_.data())).cwiseAbs().maxCoeff();
+  float limit = limit2(bound, reach);
+  const Level bx = boxes();
+  const std::int32_t *firsts = first(), *counts = count(), *ids = id();
+  alignas(16) float cd2[kMaxClusters];
+  distances2(clusters(), 0, cluster_count_, q, cd2);
+  // The clusters within the bound, taken nearest first (by then the bound has pruned most: no full sort).
+  std::int32_t pending[kMaxClusters];
+  int m = 0;
+  for (int c = 0; c < cluster_count_; ++c) {
+    if (cd2[c] <= limit) pending[m++] = c;
+  }
+  alignas(16) float bd2[kClusterSize];
+  while (m > 0) {
+    int at = 0;
+    for (int j = 1; j < m; ++j) {
+      if (cd2[pending[j]] < cd2[pending[at]]) at = j;
+    }
+    const int c = pending[at];
+    pending[at] = pending[--m];
+    if (!(cd2[c] <= limit)) break;  // the nearest pending one: the rest lie farther
+    const int from = firsts[c], n = counts[c];
+    distances2(bx, from, n, q, bd2);
+    // Its boxes within the bound, nearest first, so that the bound tightens at the first ones.
+    int near[kClusterSize], h = 0;
+    for (int k = 0; k < n; ++k) {
+      if (!(bd2[k] <= limit) || ids[from + k] < 0) continue;
+      int i = h++;
+      for (; i > 0 && bd2[near[i - 1]] > bd2[k]; --i) near[i] = near[i - 1];
+      near[i] = k;
+    }
+    for (int i = 0; i < h && bd2[near[i]] <= limit; ++i) {
+      bound = visit(int(ids[from + near[i]]));
+      limit = limit2(bound, reach);
+    }
+  }
+}
+
+}  // namespace peg3d

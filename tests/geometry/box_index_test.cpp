@@ -1,0 +1,97 @@
+// The box index (geometry/box_index.hpp) against a visit of every box: the same overlaps and the same nearest
+// box, on random boxes and queries (far from the origin too), duplicates, sizes that leave clusters partly empty,
+// the most boxes an index holds, and an index of one box.
+#include "geometry/box_index.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace peg3d {
+namespace {
+
+double box_distance(const Box& b, const Vec3& p) { return (p - b.clamp(p)).norm(); }
+
+std::vector<Box> random_boxes(std::mt19937_64& rng, int n, double spread, const Vec3& offset = Vec3::Zero()) {
+  std::uniform_real_distribution<double> at(0.0, spread), size(0.01, 2.0);
+  std::vector<Box> boxes;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 lo = offset + Vec3(at(rng), at(rng), at(rng));
+    boxes.push_back({lo, lo + Vec3(size(rng), size(rng), size(rng))});
+  }
+  return boxes;
+}
+
+bool meets(const Box& b, const Box& q) { return (b.lo.array() <= q.hi.array()).all() && (q.lo.array() <= b.hi.array()).all(); }
+
+TEST(GeometryBoxIndex, OverlapsAreThoseOfAVisitOfEveryBox) {
+  std::mt19937_64 rng(7);
+  for (const int n : {1, 3, 17, 33, 1000, int(BoxIndex::kMaxBoxes)}) {
+    // Away from the origin too: the index keeps coordinates relative to its boxes' corner.
+    const Vec3 offset = n == 33 ? Vec3(5000, -3000, 200) : Vec3::Zero();
+    std::vector<Box> boxes = random_boxes(rng, n, 30.0, offset);
+    if (n == 1000) std::fill(boxes.begin(), boxes.begin() + 200, boxes[0]);  // many copies of one box
+    const BoxIndex index(boxes);
+    EXPECT_EQ(index.size(), std::size_t(n));
+    for (const Box& q : random_boxes(rng, 300, 32.0, offset)) {
+      std::vector<int> found, expected;
+      index.overlapping(q, [&](int i) { found.push_back(i); });
+      for (int i = 0; i < n; ++i) {
+        if (meets(boxes[std::size_t(i)], q)) expected.push_back(i);
+      }
+      std::sort(found.begin(), found.end());
+      EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end()) << "a box reported twice";
+      // The float bounds and the slack may add a box that misses by far less than a micrometre, never drop one.
+      EXPECT_TRUE(std::includes(found.begin(), found.end(), expected.begin(), expected.end()));
+      for (const int i : found) {
+        const Box& b = boxes[std::size_t(i)];
+        EXPECT_TRUE(meets({b.lo.array() - 1e-4, b.hi.array() + 1e-4}, q)) << "box " << i << " is far from the query";
+      }
+    }
+  }
+}
+
+TEST(GeometryBoxIndex, NearestFindsTheNearestBoxWithinTheBoundAsAVisitOfEveryBox) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> at(-2.0, 32.0);
+  for (const int n : {1, 5, 16, 17, 1000, int(BoxIndex::kMaxBoxes)}) {
+    const std::vector<Box> boxes = random_boxes(rng, n, 30.0);
+    const BoxIndex index(boxes);
+    for (int q = 0; q < 500; ++q) {
+      const Vec3 p(at(rng), at(rng), at(rng));
+      const double cap = q % 3 == 0 ? 1.0 : 50.0;
+      // The callback keeps the nearest, the lower index on a tie, as the game's queries do.
+      int best = -1, visits = 0;
+      double best_d = cap;
+      index.nearest(p, cap, [&](int i) {
+        ++visits;
+        const double d = box_distance(boxes[std::size_t(i)], p);
+        if (d < best_d || (best >= 0 && d == best_d && i < best)) best = i, best_d = d;
+        return best_d;
+      });
+      int expected = -1;
+      double expected_d = cap;
+      for (int i = 0; i < n; ++i) {
+        const double d = box_distance(boxes[std::size_t(i)], p);
+        if (d < expected_d) expected = i, expected_d = d;
+      }
+      EXPECT_EQ(best, expected) << "query " << q;
+      EXPECT_EQ(best_d, expected_d);
+      EXPECT_LE(visits, 64) << "nearer boxes first: the bound prunes the rest";
+    }
+  }
+}
+
+TEST(GeometryBoxIndex, AnEmptyIndexVisitsNothing) {
+  const BoxIndex index;
+  int visits = 0;
+  index.overlapping({Vec3::Zero(), Vec3::Ones()}, [&](int) { ++visits; });
+  index.nearest(Vec3::Zero(), 10.0, [&](int) { ++visits; return 10.0; });
+  EXPECT_EQ(visits, 0);
+}
+
+}  // namespace
+}  // namespace peg3d
