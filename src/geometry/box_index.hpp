@@ -130,33 +130,44 @@ void BoxIndex::nearest(const Vec3& p, double bound, Visit&& visit) const {
   const std::int32_t *firsts = first(), *counts = count(), *ids = id();
   alignas(16) float cd2[kMaxClusters];
   distances2(clusters(), 0, cluster_count_, q, cd2);
-  // The clusters within the bound, taken nearest first (by then the bound has pruned most: no full sort).
+  // The clusters within the bound, taken nearest first: by then the bound has pruned most of them, so each
+  // round picks the nearest pending one and drops those beyond the bound instead of sorting them all. Branch
+  // free where the outcome is a coin toss (is this box within the bound?).
   std::int32_t pending[kMaxClusters];
   int m = 0;
   for (int c = 0; c < cluster_count_; ++c) {
-    if (cd2[c] <= limit) pending[m++] = c;
+    pending[m] = c;
+    m += cd2[c] <= limit;
   }
   alignas(16) float bd2[kClusterSize];
   while (m > 0) {
-    int at = 0;
-    for (int j = 1; j < m; ++j) {
-      if (cd2[pending[j]] < cd2[pending[at]]) at = j;
+    int at = 0, kept = 0;
+    for (int j = 0; j < m; ++j) {
+      const std::int32_t c = pending[j];
+      const bool within = cd2[c] <= limit;
+      pending[kept] = c;
+      at = within && cd2[c] < cd2[pending[at]] ? kept : at;
+      kept += within;
     }
+    m = kept;
+    if (m == 0) break;
     const int c = pending[at];
     pending[at] = pending[--m];
-    if (!(cd2[c] <= limit)) break;  // the nearest pending one: the rest lie farther
     const int from = firsts[c], n = counts[c];
     distances2(bx, from, n, q, bd2);
-    // Its boxes within the bound, nearest first, so that the bound tightens at the first ones.
+    // Its boxes within the bound, nearest first, likewise: the first visits tighten the bound.
     int near[kClusterSize], h = 0;
     for (int k = 0; k < n; ++k) {
-      if (!(bd2[k] <= limit) || ids[from + k] < 0) continue;
-      int i = h++;
-      for (; i > 0 && bd2[near[i - 1]] > bd2[k]; --i) near[i] = near[i - 1];
-      near[i] = k;
+      near[h] = k;
+      h += bd2[k] <= limit && ids[from + k] >= 0;
     }
-    for (int i = 0; i < h && bd2[near[i]] <= limit; ++i) {
-      bound = visit(int(ids[from + near[i]]));
+    while (h > 0) {
+      int best = 0;
+      for (int i = 1; i < h; ++i) best = bd2[near[i]] < bd2[near[best]] ? i : best;
+      const int k = near[best];
+      if (!(bd2[k] <= limit)) break;
+      near[best] = near[--h];
+      bound = visit(int(ids[from + k]));
       limit = limit2(bound, reach);
     }
   }

@@ -152,6 +152,7 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
     }
     if (with_dynamic_ || movers_[i].kinematic()) queried_.push_back(static_cast<int>(i));
     if (movers_[i].kinematic()) scripted_speed_ = std::max(scripted_speed_, scripted_speed(movers_[i]));
+    reach_.push_back(movers_[i].shape.bounding_radius());
   }
   if (!with_dynamic_) {
     // Only the scripted movers' bounds are kept; nothing is simulated.
@@ -321,10 +322,10 @@ bool MoverTimeline::clear_of_contact(double clearance, const Vec3& from, const V
   return clearance - radius - (to - from).norm() - max_travel(t0, t0 + dt) > kContactTolerance + kMargin;
 }
 
-void offer_nearer(int m, const Shape& shape, const Pose& at, const Vec3& p, MoverPoint& best) {
+void offer_nearer(int m, const Shape& shape, double reach, const Pose& at, const Vec3& p, MoverPoint& best) {
   // Cheap rejection on the bounding ball before the exact distance. Not ">=": an equally near mover of a lower
   // index than the best one found wins the tie, as in a visit in index order.
-  if ((p - at.position).norm() - shape.bounding_radius() > best.distance) return;
+  if ((p - at.position).norm() - reach > best.distance) return;
   const ShapePoint s = nearest_on_shape(shape, at, p);
   if (s.distance < best.distance || (best.mover >= 0 && s.distance == best.distance && m < best.mover)) {
     best = {m, s.distance, s.point};
@@ -340,7 +341,7 @@ TouchPoint touch_point(const Shape& shape, const Pose& at, const Vec3& c, double
 }
 
 void MoverTimeline::nearer(int m, const Vec3& p, double t, MoverPoint& best) const {
-  offer_nearer(m, movers_[std::size_t(m)].shape, pose(m, t), p, best);
+  offer_nearer(m, movers_[std::size_t(m)].shape, reach_[std::size_t(m)], pose(m, t), p, best);
 }
 
 MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {

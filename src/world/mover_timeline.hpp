@@ -46,8 +46,9 @@ struct MoverPoint {
 };
 
 /// Makes mover m (of `shape`, posed at `at`) the `best` answer of a nearest-mover query at p when it is nearer
-/// (the lower index among equally near ones); a bounding-ball test first spares the exact distance of the far.
-void offer_nearer(int m, const Shape& shape, const Pose& at, const Vec3& p, MoverPoint& best);
+/// (the lower index among equally near ones); a test on its bounding ball (`reach`: shape.bounding_radius())
+/// first spares the exact distance of the far.
+void offer_nearer(int m, const Shape& shape, double reach, const Pose& at, const Vec3& p, MoverPoint& best);
 
 /// Where a sphere of `radius` centred at c touches a posed shape: the shape's point nearest c (or, with c on or
 /// inside the shape, the sphere's point along the normal) and the unit normal from the shape towards c (away
@@ -190,6 +191,7 @@ class MoverTimeline {
   std::vector<int> queried_;         ///< the movers the queries look at, ascending: leaf i of a block's index is queried_[i]
   std::vector<Pose> start_poses_;    ///< per dynamic body, where it starts (its pose when left out)
   double scripted_speed_ = 0.0;      ///< m/s, the fastest queried scripted mover's speed bound
+  std::vector<double> reach_;        ///< per mover: its shape's bounding radius
   double duration_ = 0.0;
   int rate_hz_ = 240;
   int stride_ = 1;            ///< substeps per keyframe

@@ -23,14 +23,46 @@ Quat orientation_deg(const Vec3& r) {
               Eigen::AngleAxisd(r.x() * k, Vec3::UnitX()));
 }
 
-ScriptedMotion::ScriptedMotion(const MoverSpec& m) : mover_(&m), orientation_(orientation_deg(m.rotation_deg)) {
+double exact_remainder(double x, double y) {
+  if (x < y) return x;
+  const double q = x / y;
+  if (!(q < 0x1p52)) return std::fmod(x, y);
+  // Dekker's product: n y = p + e exactly, each factor split into halves of 26 bits whose products are exact.
+  const auto remainder_of = [&](double n) {
+    constexpr double kSplit = 0x1p27 + 1.0;
+    const double p = n * y;
+    const double nc = kSplit * n, yc = kSplit * y;
+    const double nh = nc - (nc - n), nl = n - nh, yh = yc - (yc - y), yl = y - yh;
+    const double e = ((nh * yh - p) + nh * yl + nl * yh) + nl * yl;
+    // x - p is exact (p lies within [x / 2, 2 x]); so is the remainder, which fmod's result always is.
+    return (x - p) - e;
+  };
+  double n = static_cast<double>(static_cast<long long>(q));  // q >= 1: truncation is the whole part
+  double r = remainder_of(n);
+  if (r < 0.0) {
+    r = remainder_of(n - 1.0);
+  } else if (r >= y) {
+    r = remainder_of(n + 1.0);
+  }
+  return r;
+}
+
+ScriptedMotion::ScriptedMotion(const MoverSpec& m)
+    : orbit_(m.motion == MoverSpec::Motion::kOrbit), orientation_(orientation_deg(m.rotation_deg)) {
   if (m.motion == MoverSpec::Motion::kOrbit) {
     const Vec3 a = m.orbit.axis.normalized();
     const Vec3 ref = std::abs(a.x()) > 1.0 - 1e-12 ? Vec3::UnitY() : Vec3::UnitX();
     u_ = (ref - ref.dot(a) * a).normalized();
     v_ = a.cross(u_);
+    center_ = m.orbit.center;
+    radius_ = m.orbit.radius;
+    period_ = m.orbit.period;
+    phase_ = m.orbit.phase;
   } else if (m.motion == MoverSpec::Motion::kPath) {
-    const auto& w = m.path.waypoints;
+    waypoints_ = m.path.waypoints;
+    speed_ = m.path.speed;
+    loop_ = m.path.loop;
+    const auto& w = waypoints_;
     // Segments in travel order: 0..n-2 forward, then the closing one (loop) or the same ones backwards.
     for (std::size_t i = 0; i + 1 < w.size(); ++i) {
       lengths_.push_back((w[i + 1] - w[i]).norm());
@@ -41,30 +73,21 @@ ScriptedMotion::ScriptedMotion(const MoverSpec& m) : mover_(&m), orientation_(or
   }
 }
 
-Pose ScriptedMotion::pose(double t) const {
-  Pose p;
-  p.orientation = orientation_;
-  if (mover_->motion == MoverSpec::Motion::kOrbit) {
-    const OrbitMotion& o = mover_->orbit;
-    const double w = o.phase + 2.0 * kPi * t / o.period;
-    p.position = o.center + o.radius * (std::cos(w) * u_ + std::sin(w) * v_);
-    return p;
+Vec3 ScriptedMotion::position(double t) const {
+  if (orbit_) {
+    const double w = phase_ + 2.0 * kPi * t / period_;
+    return center_ + radius_ * (std::cos(w) * u_ + std::sin(w) * v_);
   }
-  const PathMotion& path = mover_->path;
-  const auto& w = path.waypoints;
-  double s = std::fmod(path.speed * std::max(t, 0.0), cycle_);
-  if (!path.loop && s > open_) s = cycle_ - s;  // on the way back: the same point as going out
+  const auto& w = waypoints_;
+  double s = exact_remainder(speed_ * std::max(t, 0.0), cycle_);
+  if (!loop_ && s > open_) s = cycle_ - s;  // on the way back: the same point as going out
   for (std::size_t i = 0; i < lengths_.size(); ++i) {
     const double len = lengths_[i];
-    if (s <= len) {
-      p.position = w[i] + (s / len) * (w[i + 1] - w[i]);
-      return p;
-    }
+    if (s <= len) return w[i] + (s / len) * (w[i + 1] - w[i]);
     s -= len;
   }
   // The closing segment of a loop.
-  p.position = closing_ > 0.0 ? Vec3(w.back() + (std::min(s, closing_) / closing_) * (w.front() - w.back())) : w.front();
-  return p;
+  return closing_ > 0.0 ? Vec3(w.back() + (std::min(s, closing_) / closing_) * (w.front() - w.back())) : w.front();
 }
 
 Vec3 path_position(const PathMotion& path, double t) {

@@ -96,7 +96,10 @@ MoverPoint PushWorld::nearest(const Vec3& p, double cap) const {
   candidates_.clear();
   const Box box = std::isfinite(cap) ? Box{p.array() - cap, p.array() + cap} : spec_.bounds;
   physics_->bodies_in(box, candidates_);
-  for (const int m : candidates_) offer_nearer(m, spec_.movers[std::size_t(m)].shape, physics_->pose(std::size_t(m)), p, best);
+  for (const int m : candidates_) {
+    const Shape& shape = spec_.movers[std::size_t(m)].shape;
+    offer_nearer(m, shape, shape.bounding_radius(), physics_->pose(std::size_t(m)), p, best);
+  }
   return best;
 }
 

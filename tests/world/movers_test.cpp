@@ -2,6 +2,8 @@
 // analytic drop, rest and rolling, and the contact and distance queries the game asks.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -50,6 +52,40 @@ TEST(WorldMovers, PathMoversAreWhereTheirRouteSaysAtAnyTime) {
   EXPECT_LT((path_position(bounce, 7.5) - Vec3(10, 5, 0)).norm(), 1e-9);   // turning at the last waypoint
   EXPECT_LT((path_position(bounce, 15.0) - Vec3(0, 0, 0)).norm(), 1e-9);   // home again
   EXPECT_LT((path_position(bounce, 18.0) - Vec3(6, 0, 0)).norm(), 1e-9);   // and out once more
+}
+
+TEST(WorldMovers, TheExactRemainderIsTheLibrarysFmodToTheBit) {
+  // Paths wrap their arc length with it: random magnitudes, exact multiples and their neighbours a few ulps
+  // away (where the division rounds across a whole number), quotients up to 2^52, and x < y.
+  const auto same = [](double x, double y) {
+    const double a = exact_remainder(x, y), b = std::fmod(x, y);
+    return std::memcmp(&a, &b, sizeof(double)) == 0;
+  };
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> mantissa(1.0, 2.0);
+  std::uniform_int_distribution<int> exponent(-30, 30), big(0, 52);
+  long checked = 0;
+  for (int i = 0; i < 2000000; ++i) {
+    const double y = std::ldexp(mantissa(rng), exponent(rng));
+    const double x = i % 2 == 0 ? std::ldexp(mantissa(rng), exponent(rng)) : y * std::ldexp(mantissa(rng), big(rng));
+    ASSERT_TRUE(same(x, y)) << std::hexfloat << x << " mod " << y;
+    ++checked;
+  }
+  for (int i = 0; i < 200000; ++i) {
+    const double y = std::ldexp(mantissa(rng), exponent(rng));
+    double x = y * std::floor(std::ldexp(mantissa(rng), big(rng) / 2));
+    for (int k = 0; k < 4; ++k) x = std::nextafter(x, 0.0);
+    for (int k = 0; k < 9; ++k, x = std::nextafter(x, 1e300)) ASSERT_TRUE(same(x, y)) << std::hexfloat << x << " mod " << y;
+    checked += 9;
+  }
+  // What paths ask: arc lengths speed * t over game times and cycles of map routes.
+  for (int k = 0; k < 100000; ++k) {
+    const double t = k * 0.1, x = 1.75 * t, y = 2.0 * (3.0 + std::sqrt(2.0));
+    ASSERT_TRUE(same(x, y)) << k;
+  }
+  EXPECT_TRUE(same(0.0, 3.0));
+  EXPECT_TRUE(same(3.0, 3.0));
+  EXPECT_GT(checked, 3000000);
 }
 
 TEST(WorldMovers, OrbitMoversAreWhereTheirCircleSaysAtAnyTime) {
