@@ -56,15 +56,24 @@ int padded(int n) { return (n + 3) / 4 * 4; }
 
 }  // namespace
 
-BoxIndex::BoxIndex(std::span<const Box> boxes) : size_(boxes.size()) {
-  if (boxes.empty()) return;
-  assert(boxes.size() <= kMaxBoxes);
-  Vec3 lo = boxes[0].lo, hi = boxes[0].hi;
-  for (const Box& b : boxes) lo = lo.cwiseMin(b.lo), hi = hi.cwiseMax(b.hi);
+BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / std::size_t(std::max(frames, 1))), frames_(frames) {
+  assert(frames >= 1 && all.size() == size_ * std::size_t(frames));
+  if (size_ == 0) return;
+  assert(size_ <= kMaxBoxes);
+  Vec3 lo = all[0].lo, hi = all[0].hi;
+  for (const Box& b : all) lo = lo.cwiseMin(b.lo), hi = hi.cwiseMax(b.hi);
   for (int a = 0; a < 3; ++a) origin_[std::size_t(a)] = lo[a];
   extent_ = (hi - lo).maxCoeff();
 
-  std::vector<std::int32_t> order(boxes.size());
+  // Clusters of the boxes' unions over the frames: they bound every frame's.
+  std::vector<Box> boxes(all.begin(), all.begin() + std::ptrdiff_t(size_));
+  for (std::size_t f = 1; f < std::size_t(frames); ++f) {
+    for (std::size_t i = 0; i < size_; ++i) {
+      boxes[i].lo = boxes[i].lo.cwiseMin(all[f * size_ + i].lo);
+      boxes[i].hi = boxes[i].hi.cwiseMax(all[f * size_ + i].hi);
+    }
+  }
+  std::vector<std::int32_t> order(size_);
   std::iota(order.begin(), order.end(), 0);
   std::vector<std::pair<int, int>> ranges;
   cluster(order, boxes, 0, static_cast<int>(order.size()), kClusterSize, ranges);
@@ -72,9 +81,9 @@ BoxIndex::BoxIndex(std::span<const Box> boxes) : size_(boxes.size()) {
   slot_count_ = 0;
   for (const auto& [b, e] : ranges) slot_count_ += padded(e - b);
 
-  // Layout (Level): the clusters' lo x, y, z, hi x, y, z, then the boxes' likewise; an empty slot is an
+  // Layout (Level): the clusters' lo x, y, z, hi x, y, z, then each frame's boxes' likewise; an empty slot is an
   // inverted box, which no query meets.
-  floats_.assign(6 * std::size_t(cluster_count_ + slot_count_), 0.0f);
+  floats_.assign(6 * (std::size_t(cluster_count_) + std::size_t(frames) * std::size_t(slot_count_)), 0.0f);
   ints_.assign(2 * std::size_t(cluster_count_) + std::size_t(slot_count_), -1);
   const auto put = [&](std::size_t offset, int count, int i, const Box* b) {
     for (int a = 0; a < 3; ++a) {
@@ -100,7 +109,10 @@ BoxIndex::BoxIndex(std::span<const Box> boxes) : size_(boxes.size()) {
     Box bounds{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
     for (int k = 0; k < padded(e - b); ++k) {
       const Box* box = k < e - b ? &boxes[std::size_t(order[std::size_t(b + k)])] : nullptr;
-      put(box_level, slot_count_, next + k, box);
+      for (std::size_t f = 0; f < std::size_t(frames); ++f) {
+        put(box_level + 6 * f * std::size_t(slot_count_), slot_count_, next + k,
+            box ? &all[f * size_ + std::size_t(order[std::size_t(b + k)])] : nullptr);
+      }
       if (box) {
         id[next + k] = order[std::size_t(b + k)];
         bounds.lo = bounds.lo.cwiseMin(box->lo);
@@ -113,27 +125,35 @@ BoxIndex::BoxIndex(std::span<const Box> boxes) : size_(boxes.size()) {
   }
 }
 
-void BoxIndex::distances2(const Level& level, int begin, int n, const float q[3], float* out) {
+int BoxIndex::within(const Level& level, int begin, int n, const float q[3], float limit, float* d2, std::int32_t* out) {
+  int count = 0;
 #if defined(__SSE2__)
   const __m128 qx = _mm_set1_ps(q[0]), qy = _mm_set1_ps(q[1]), qz = _mm_set1_ps(q[2]), zero = _mm_setzero_ps();
-  for (int i = begin; i < begin + n; i += 4, out += 4) {
+  const __m128 bound = _mm_set1_ps(limit);
+  for (int k = 0; k < n; k += 4) {
+    const int i = begin + k;
     // Per axis max(lo - q, q - hi, 0): the gap outside the box.
     const __m128 x = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[0] + i), qx), _mm_sub_ps(qx, _mm_loadu_ps(level.hi[0] + i))), zero);
     const __m128 y = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[1] + i), qy), _mm_sub_ps(qy, _mm_loadu_ps(level.hi[1] + i))), zero);
     const __m128 z = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[2] + i), qz), _mm_sub_ps(qz, _mm_loadu_ps(level.hi[2] + i))), zero);
-    _mm_storeu_ps(out, _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
+    const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z));
+    _mm_storeu_ps(d2 + k, d);
+    for (int bits = _mm_movemask_ps(_mm_cmple_ps(d, bound)); bits != 0; bits &= bits - 1) {
+      out[count++] = k + __builtin_ctz(static_cast<unsigned>(bits));
+    }
   }
 #else
   // The same operations one box at a time (max(a, b) as maxps takes it: a > b ? a : b).
   const auto max = [](float a, float b) { return a > b ? a : b; };
-  for (int i = begin; i < begin + n; ++i, ++out) {
-    float d2 = 0.0f;
+  for (int k = 0; k < n; ++k) {
+    const int i = begin + k;
     float e[3];
     for (int a = 0; a < 3; ++a) e[a] = max(max(level.lo[a][i] - q[a], q[a] - level.hi[a][i]), 0.0f);
-    d2 = (e[0] * e[0] + e[1] * e[1]) + e[2] * e[2];
-    *out = d2;
+    d2[k] = (e[0] * e[0] + e[1] * e[1]) + e[2] * e[2];
+    if (d2[k] <= limit) out[count++] = k;
   }
 #endif
+  return count;
 }
 
 void BoxIndex::overlaps(const Level& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out) {

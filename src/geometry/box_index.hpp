@@ -3,6 +3,11 @@
 // distance to a point within a bound (branch and bound). It answers the broadphase questions of the movers'
 // timeline (world/mover_timeline.hpp): built once per time window, read by every thread.
 //
+// The same n boxes may come in several frames (a mover's bounds over each block of a window): each frame has
+// bounds of its own, the clusters are shared and bound the boxes of every frame. A query asks one frame. The
+// queries of the window's next frames then find the cluster level (and the memory it lives in) where the first
+// one left it.
+//
 // Two flat levels instead of a deep tree: the boxes in clusters of at most 16 that lie near each other (the
 // cells of median splits along the widest spread), and the clusters' bounds. Each level's bounds lie side by
 // side, one coordinate of every box in a row, so a query measures four boxes with one instruction each (SSE2,
@@ -30,23 +35,30 @@ class BoxIndex {
   static constexpr std::size_t kMaxBoxes = 8192;
 
   BoxIndex() = default;
-  /// Boxes 0..n-1 are `boxes` (each with lo <= hi), n <= kMaxBoxes.
-  explicit BoxIndex(std::span<const Box> boxes);
+  /// Boxes 0..n-1 in each of `frames` frames (each with lo <= hi): box i of frame f is boxes[f n + i], n <=
+  /// kMaxBoxes.
+  explicit BoxIndex(std::span<const Box> boxes, int frames = 1);
 
+  /// Boxes a frame.
   std::size_t size() const { return size_; }
+  int frames() const { return frames_; }
   /// Bytes the index holds.
   std::size_t bytes() const { return floats_.capacity() * sizeof(float) + ints_.capacity() * sizeof(std::int32_t); }
 
-  /// Calls visit(box) for every box that meets `query` (closed boxes: touching counts), in no particular order.
-  /// No allocation.
+  /// Calls visit(box) for every box of `frame` that meets `query` (closed boxes: touching counts), in no
+  /// particular order. No allocation.
   template <class Visit>
-  void overlapping(const Box& query, Visit&& visit) const;
+  void overlapping(int frame, const Box& query, Visit&& visit) const;
+  template <class Visit>
+  void overlapping(const Box& query, Visit&& visit) const { overlapping(0, query, visit); }
 
-  /// Visits the boxes that lie within `bound` of p (the distance from p to the box, 0 inside), nearer ones
-  /// first: visit(box) returns the new bound (the best distance found so far, or `bound` unchanged), and boxes
-  /// farther than the bound are skipped. No allocation.
+  /// Visits the boxes of `frame` that lie within `bound` of p (the distance from p to the box, 0 inside), nearer
+  /// ones first: visit(box) returns the new bound (the best distance found so far, or `bound` unchanged), and
+  /// boxes farther than the bound are skipped. No allocation.
   template <class Visit>
-  void nearest(const Vec3& p, double bound, Visit&& visit) const;
+  void nearest(int frame, const Vec3& p, double bound, Visit&& visit) const;
+  template <class Visit>
+  void nearest(const Vec3& p, double bound, Visit&& visit) const { nearest(0, p, bound, visit); }
 
  private:
   static constexpr int kClusterSize = 16;
@@ -64,13 +76,16 @@ class BoxIndex {
     return {{f, f + count, f + 2 * count}, {f + 3 * count, f + 4 * count, f + 5 * count}};
   }
   Level clusters() const { return level(0, cluster_count_); }
-  Level boxes() const { return level(6 * std::size_t(cluster_count_), slot_count_); }
+  Level boxes(int frame) const {
+    return level(6 * (std::size_t(cluster_count_) + std::size_t(frame) * std::size_t(slot_count_)), slot_count_);
+  }
   const std::int32_t* first() const { return ints_.data(); }                       // per cluster, its first slot
   const std::int32_t* count() const { return ints_.data() + cluster_count_; }      // per cluster, its slots (x 4)
   const std::int32_t* id() const { return ints_.data() + 2 * cluster_count_; }     // per slot, its box or -1
 
-  /// Squared distances (float) from q to the boxes [begin, begin + n) of a level, n a multiple of four.
-  static void distances2(const Level& level, int begin, int n, const float q[3], float* out);
+  /// Squared distances (float) from q to the boxes [begin, begin + n) of a level, n a multiple of four, in
+  /// d2[0, n); appends to `out` the k whose d2[k] <= limit and returns how many.
+  static int within(const Level& level, int begin, int n, const float q[3], float limit, float* d2, std::int32_t* out);
   /// Whether each of the boxes [begin, begin + n) of a level meets [lo, hi] (1 or 0 in `out`).
   static void overlaps(const Level& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out);
 
@@ -86,17 +101,18 @@ class BoxIndex {
     return static_cast<float>(b * b * (1.0 + 1e-6));
   }
 
-  std::vector<float> floats_;        // the clusters' level, then the boxes' level
+  std::vector<float> floats_;        // the clusters' level, then each frame's boxes' level
   std::vector<std::int32_t> ints_;   // per cluster its first slot, per cluster its slot count, per slot its box
   int cluster_count_ = 0;            // padded to a multiple of four
   int slot_count_ = 0;               // every cluster's boxes, each cluster padded to a multiple of four
   std::array<double, 3> origin_{};
   double extent_ = 0.0;              // m, the largest coordinate relative to the origin
   std::size_t size_ = 0;
+  int frames_ = 1;
 };
 
 template <class Visit>
-void BoxIndex::overlapping(const Box& query, Visit&& visit) const {
+void BoxIndex::overlapping(int frame, const Box& query, Visit&& visit) const {
   if (size_ == 0) return;
   float lo[3], hi[3];
   const double s = slack((query.hi - query.lo).cwiseAbs().maxCoeff() + (query.lo - Vec3(origin_.data())).cwiseAbs().maxCoeff());
@@ -104,7 +120,7 @@ void BoxIndex::overlapping(const Box& query, Visit&& visit) const {
     lo[a] = static_cast<float>(query.lo[a] - origin_[a] - s);
     hi[a] = static_cast<float>(query.hi[a] - origin_[a] + s);
   }
-  const Level cl = clusters(), bx = boxes();
+  const Level cl = clusters(), bx = boxes(frame);
   const std::int32_t *firsts = first(), *counts = count(), *ids = id();
   alignas(16) std::int32_t hit[kMaxClusters];
   overlaps(cl, 0, cluster_count_, lo, hi, hit);
@@ -120,25 +136,20 @@ void BoxIndex::overlapping(const Box& query, Visit&& visit) const {
 }
 
 template <class Visit>
-void BoxIndex::nearest(const Vec3& p, double bound, Visit&& visit) const {
+void BoxIndex::nearest(int frame, const Vec3& p, double bound, Visit&& visit) const {
   if (size_ == 0 || !(bound >= 0.0)) return;
   float q[3];
   relative(p, q);
   const double reach = (p - Vec3(origin_.data())).cwiseAbs().maxCoeff();
   float limit = limit2(bound, reach);
-  const Level bx = boxes();
+  const Level bx = boxes(frame);
   const std::int32_t *firsts = first(), *counts = count(), *ids = id();
-  alignas(16) float cd2[kMaxClusters];
-  distances2(clusters(), 0, cluster_count_, q, cd2);
   // The clusters within the bound, taken nearest first: by then the bound has pruned most of them, so each
   // round picks the nearest pending one and drops those beyond the bound instead of sorting them all. Branch
   // free where the outcome is a coin toss (is this box within the bound?).
+  alignas(16) float cd2[kMaxClusters];
   std::int32_t pending[kMaxClusters];
-  int m = 0;
-  for (int c = 0; c < cluster_count_; ++c) {
-    pending[m] = c;
-    m += cd2[c] <= limit;
-  }
+  int m = within(clusters(), 0, cluster_count_, q, limit, cd2, pending);
   alignas(16) float bd2[kClusterSize];
   while (m > 0) {
     int at = 0, kept = 0;
@@ -153,20 +164,17 @@ void BoxIndex::nearest(const Vec3& p, double bound, Visit&& visit) const {
     if (m == 0) break;
     const int c = pending[at];
     pending[at] = pending[--m];
-    const int from = firsts[c], n = counts[c];
-    distances2(bx, from, n, q, bd2);
+    const int from = firsts[c];
     // Its boxes within the bound, nearest first, likewise: the first visits tighten the bound.
-    int near[kClusterSize], h = 0;
-    for (int k = 0; k < n; ++k) {
-      near[h] = k;
-      h += bd2[k] <= limit && ids[from + k] >= 0;
-    }
+    std::int32_t near[kClusterSize];
+    int h = within(bx, from, counts[c], q, limit, bd2, near);
     while (h > 0) {
       int best = 0;
       for (int i = 1; i < h; ++i) best = bd2[near[i]] < bd2[near[best]] ? i : best;
       const int k = near[best];
       if (!(bd2[k] <= limit)) break;
       near[best] = near[--h];
+      if (ids[from + k] < 0) continue;  // a padding slot (only an infinite bound reaches one)
       bound = visit(int(ids[from + k]));
       limit = limit2(bound, reach);
     }

@@ -68,15 +68,13 @@ struct MoverTimeline::Block {
   std::vector<std::uint32_t> start;   ///< per dynamic body: index in poses of its keyframe `first`
   std::vector<std::uint8_t> resting;  ///< per dynamic body: 1 when one pose holds for the whole block
   std::vector<Pose> poses;
-  BoxIndex index;                     ///< leaf m: mover m's bounds over the block's time span
   double travel = 0.0;                ///< m, the most any point of a dynamic body moves over the block
 
   const Pose& at(int row, long k) const {
     return poses[start[std::size_t(row)] + (resting[std::size_t(row)] ? 0 : std::size_t(k - first))];
   }
   std::size_t bytes() const {
-    return sizeof(Block) + start.capacity() * sizeof(std::uint32_t) + resting.capacity() + poses.capacity() * sizeof(Pose) +
-           index.bytes();
+    return sizeof(Block) + start.capacity() * sizeof(std::uint32_t) + resting.capacity() + poses.capacity() * sizeof(Pose);
   }
 };
 
@@ -158,6 +156,7 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
     // Only the scripted movers' bounds are kept; nothing is simulated.
     worst_case_bytes_ = estimate(l.keyframes, l.blocks, 0, queried_.size());
     blocks_.resize(l.blocks);
+    windows_.resize((l.blocks + kWindowBlocks - 1) / kWindowBlocks);
     return;
   }
   worst_case_bytes_ = estimate(l.keyframes, l.blocks, std::size_t(dynamic_), movers_.size());
@@ -173,6 +172,7 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
                                max_bytes / 1048576.0, std::max(fits, 0), rate_hz_));
   }
   blocks_.resize(l.blocks);
+  windows_.resize((l.blocks + kWindowBlocks - 1) / kWindowBlocks);
   if (dynamic_ > 0) simulation_ = std::make_unique<Simulation>(spec, meshes, movers_, dynamic_index_, dynamic_);
 }
 
@@ -189,77 +189,99 @@ const MoverTimeline::Block& MoverTimeline::block(std::size_t b) const {
   return *blocks_[b];
 }
 
+const BoxIndex& MoverTimeline::window(std::size_t b) const {
+  if (b >= ready_.load(std::memory_order_acquire)) simulate_through(b);
+  return *windows_[b / kWindowBlocks];
+}
+
 void MoverTimeline::simulate_through(std::size_t b) const {
   const std::lock_guard lock(simulate_mutex_);
   const auto t0 = std::chrono::steady_clock::now();
+  // Whole windows: the index of a window is built over the bounds of all its blocks.
+  b = std::min(blocks_.size() - 1, (b / kWindowBlocks + 1) * kWindowBlocks - 1);
+  std::vector<Box> frames;
   for (std::size_t r = ready_.load(std::memory_order_relaxed); r <= b; ++r) {
-    auto block = std::make_unique<Block>();
-    block->first = static_cast<long>(r) * block_keyframes_;
-    block->last = std::min(keyframes_, block->first + block_keyframes_);
-    const long n = block->last - block->first + 1;
-    // The dynamic bodies' keyframes, each body's stored once when it did not move over the whole block.
-    block->start.resize(std::size_t(with_dynamic_ ? dynamic_ : 0));
-    block->resting.resize(std::size_t(with_dynamic_ ? dynamic_ : 0));
-    if (simulation_) {
-      simulation_->advance(block->first, block->last, stride_);
-      std::size_t total = 0;
-      for (const auto& t : simulation_->tracks()) {
-        total += std::all_of(t.begin(), t.end(), [&](const Pose& p) { return same_bits(p, t.front()); }) ? 1 : std::size_t(n);
-      }
-      block->poses.reserve(total);
-      for (int row = 0; row < dynamic_; ++row) {
-        const auto& t = simulation_->tracks()[std::size_t(row)];
-        const bool rests = std::all_of(t.begin(), t.end(), [&](const Pose& p) { return same_bits(p, t.front()); });
-        block->start[std::size_t(row)] = static_cast<std::uint32_t>(block->poses.size());
-        block->resting[std::size_t(row)] = rests ? 1 : 0;
-        if (rests) {
-          block->poses.push_back(t.front());
-          ++resting_entries_;
-        } else {
-          block->poses.insert(block->poses.end(), t.begin(), t.end());
-          ++moving_entries_;
-        }
-      }
-    }
-    // The queried movers' bounds over the block's time span.
-    std::vector<Box> bounds(queried_.size());
-    const double t_first = static_cast<double>(block->first * stride_) / rate_hz_;
-    const double t_last = static_cast<double>(block->last * stride_) / rate_hz_;
-    for (std::size_t leaf = 0; leaf < queried_.size(); ++leaf) {
-      const std::size_t m = std::size_t(queried_[leaf]);
-      const MoverSpec& spec = movers_[m];
-      Box box{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
-      double widen = spec.shape.bounding_radius() + kBoundsMargin;
-      if (spec.kinematic()) {
-        // Samples in time, and between two of them the centre moves at most speed * interval / 2 from the nearer.
-        const long samples = std::min(kScriptedSamples, std::max(1L, n - 1));
-        for (long s = 0; s <= samples; ++s) {
-          const Vec3 c = scripted_[m].pose(t_first + (t_last - t_first) * static_cast<double>(s) / samples).position;
-          box.lo = box.lo.cwiseMin(c), box.hi = box.hi.cwiseMax(c);
-        }
-        widen += scripted_speed(spec) * 0.5 * (t_last - t_first) / samples;
-      } else {
-        const int row = dynamic_index_[m];
-        const long kmax = block->resting[std::size_t(row)] ? block->first : block->last;
-        double travel = 0.0;
-        for (long k = block->first; k <= kmax; ++k) {
-          const Pose& at = block->at(row, k);
-          box.lo = box.lo.cwiseMin(at.position), box.hi = box.hi.cwiseMax(at.position);
-          if (k > block->first) travel += point_travel(block->at(row, k - 1), at, spec.shape.bounding_radius());
-        }
-        block->travel = std::max(block->travel, travel);
-      }
-      box.lo.array() -= widen;
-      box.hi.array() += widen;
-      bounds[leaf] = box;
-    }
-    block->index = BoxIndex(bounds);
+    auto block = simulate_block(r);
+    const std::size_t frame = r % kWindowBlocks;
+    frames.resize((frame + 1) * queried_.size());
+    bound_block(*block, std::span<Box>(frames).subspan(frame * queried_.size()));
     bytes_.fetch_add(block->bytes(), std::memory_order_relaxed);
     blocks_[r] = std::move(block);
-    ready_.store(r + 1, std::memory_order_release);
+    if (frame + 1 == kWindowBlocks || r + 1 == blocks_.size()) {
+      auto index = std::make_unique<const BoxIndex>(frames, static_cast<int>(frame + 1));
+      bytes_.fetch_add(index->bytes(), std::memory_order_relaxed);
+      windows_[r / kWindowBlocks] = std::move(index);
+      frames.clear();
+      ready_.store(r + 1, std::memory_order_release);
+    }
   }
   if (ready_.load(std::memory_order_relaxed) == blocks_.size()) simulation_.reset();  // every keyframe is stored
   simulate_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::unique_ptr<MoverTimeline::Block> MoverTimeline::simulate_block(std::size_t r) const {
+  auto block = std::make_unique<Block>();
+  block->first = static_cast<long>(r) * block_keyframes_;
+  block->last = std::min(keyframes_, block->first + block_keyframes_);
+  const long n = block->last - block->first + 1;
+  // The dynamic bodies' keyframes, each body's stored once when it did not move over the whole block.
+  block->start.resize(std::size_t(with_dynamic_ ? dynamic_ : 0));
+  block->resting.resize(std::size_t(with_dynamic_ ? dynamic_ : 0));
+  if (!simulation_) return block;
+  simulation_->advance(block->first, block->last, stride_);
+  std::size_t total = 0;
+  for (const auto& t : simulation_->tracks()) {
+    total += std::all_of(t.begin(), t.end(), [&](const Pose& p) { return same_bits(p, t.front()); }) ? 1 : std::size_t(n);
+  }
+  block->poses.reserve(total);
+  for (int row = 0; row < dynamic_; ++row) {
+    const auto& t = simulation_->tracks()[std::size_t(row)];
+    const bool rests = std::all_of(t.begin(), t.end(), [&](const Pose& p) { return same_bits(p, t.front()); });
+    block->start[std::size_t(row)] = static_cast<std::uint32_t>(block->poses.size());
+    block->resting[std::size_t(row)] = rests ? 1 : 0;
+    if (rests) {
+      block->poses.push_back(t.front());
+      ++resting_entries_;
+    } else {
+      block->poses.insert(block->poses.end(), t.begin(), t.end());
+      ++moving_entries_;
+    }
+  }
+  return block;
+}
+
+void MoverTimeline::bound_block(Block& block, std::span<Box> bounds) const {
+  const long n = block.last - block.first + 1;
+  const double t_first = static_cast<double>(block.first * stride_) / rate_hz_;
+  const double t_last = static_cast<double>(block.last * stride_) / rate_hz_;
+  for (std::size_t leaf = 0; leaf < queried_.size(); ++leaf) {
+    const std::size_t m = std::size_t(queried_[leaf]);
+    const MoverSpec& spec = movers_[m];
+    Box box{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
+    double widen = reach_[m] + kBoundsMargin;
+    if (spec.kinematic()) {
+      // Samples in time, and between two of them the centre moves at most speed * interval / 2 from the nearer.
+      const long samples = std::min(kScriptedSamples, std::max(1L, n - 1));
+      for (long s = 0; s <= samples; ++s) {
+        const Vec3 c = scripted_[m].position(t_first + (t_last - t_first) * static_cast<double>(s) / samples);
+        box.lo = box.lo.cwiseMin(c), box.hi = box.hi.cwiseMax(c);
+      }
+      widen += scripted_speed(spec) * 0.5 * (t_last - t_first) / samples;
+    } else {
+      const int row = dynamic_index_[m];
+      const long kmax = block.resting[std::size_t(row)] ? block.first : block.last;
+      double travel = 0.0;
+      for (long k = block.first; k <= kmax; ++k) {
+        const Pose& at = block.at(row, k);
+        box.lo = box.lo.cwiseMin(at.position), box.hi = box.hi.cwiseMax(at.position);
+        if (k > block.first) travel += point_travel(block.at(row, k - 1), at, reach_[m]);
+      }
+      block.travel = std::max(block.travel, travel);
+    }
+    box.lo.array() -= widen;
+    box.hi.array() += widen;
+    bounds[leaf] = box;
+  }
 }
 
 const Pose& MoverTimeline::keyframe(int row, long k) const {
@@ -348,7 +370,8 @@ MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
   if (!indexed(t, t)) return nearest_scan(p, t, cap);
   MoverPoint best;
   best.distance = cap;
-  block(block_at(t)).index.nearest(p, cap, [&](int leaf) {
+  const std::size_t b = block_at(t);
+  window(b).nearest(static_cast<int>(b % kWindowBlocks), p, cap, [&](int leaf) {
     nearer(queried_[std::size_t(leaf)], p, t, best);
     return best.distance;
   });
@@ -385,7 +408,7 @@ int MoverTimeline::candidates(const Box& box, double reach, double t0, double t1
   std::size_t n = 0;
   bool overflow = false;
   for (std::size_t b = block_at(t0), last = block_at(t1); b <= last; ++b) {
-    block(b).index.overlapping(query, [&](int leaf) {
+    window(b).overlapping(static_cast<int>(b % kWindowBlocks), query, [&](int leaf) {
       if (n < out.size()) {
         out[n++] = queried_[std::size_t(leaf)];
       } else {

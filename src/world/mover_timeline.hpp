@@ -15,8 +15,9 @@
 // simulated on demand, in order, under a lock, as the first query reaches them: building a Sim costs nothing,
 // and no run waits for motion it does not reach.
 //
-// Every block also holds a broadphase over the movers (a BoxIndex of each mover's bounds over the block's time
-// span), so that the two questions the game asks of movers at a time t visit only the movers near the agent:
+// Every block also has a broadphase over the movers (each mover's bounds over the block's time span, a frame of
+// its window's BoxIndex: four blocks share clusters, so that the queries of a window's later blocks find them
+// in the cache), so that the two questions the game asks of movers at a time t visit only the movers near the agent:
 // the nearest point of any mover to a point (exact, per shape), and the first contact of an agent's sphere
 // moving along a segment during a game step, by conservative advancement on exact distances (no tunnelling at
 // any relative speed). Both give the answers of a visit of every mover, to the bit (the *_scan versions, kept
@@ -89,6 +90,8 @@ class MoverTimeline {
   static constexpr std::size_t kMaxBytes = std::size_t{256} << 20;
   /// Length of a block, s (its keyframes are the nearest whole number at the keyframe rate, at least one).
   static constexpr double kBlockSeconds = 0.25;
+  /// Blocks a window: one index serves the blocks of a window, each block a frame of its own (BoxIndex).
+  static constexpr std::size_t kWindowBlocks = 4;
 
   /// The map's movers from 0 to at least `duration` s. `meshes` are the map's placed terrain meshes, in
   /// spec.meshes' order, kept by reference until every block is simulated (the Arena owns them). Throws MapError
@@ -171,7 +174,14 @@ class MoverTimeline {
 
   /// Block b, simulated first when it is not yet.
   const Block& block(std::size_t b) const;
+  /// The index of block b's window (block b is its frame b % kWindowBlocks), simulated first when it is not yet.
+  const BoxIndex& window(std::size_t b) const;
+  /// Simulates every block through the end of block b's window.
   void simulate_through(std::size_t b) const;
+  /// Block r's keyframes: the simulation advanced over it.
+  std::unique_ptr<Block> simulate_block(std::size_t r) const;
+  /// The queried movers' bounds over block r's time span (leaf i: queried_[i]), and the block's travel.
+  void bound_block(Block& block, std::span<Box> bounds) const;
   std::size_t block_at(double t) const;
   /// Keyframe k (0..keyframes_) of dynamic body `row`.
   const Pose& keyframe(int row, long k) const;
@@ -200,8 +210,10 @@ class MoverTimeline {
   long block_keyframes_ = 1;  ///< keyframes per block (a block holds block_keyframes_ + 1, sharing its ends)
   std::size_t worst_case_bytes_ = 0;
 
-  // Filled on demand: blocks_[b] is written once, under simulate_mutex_, before ready_ passes b.
+  // Filled on demand, a window at a time: blocks_[b] and windows_[b / kWindowBlocks] are written once, under
+  // simulate_mutex_, before ready_ passes b.
   mutable std::vector<std::unique_ptr<const Block>> blocks_;
+  mutable std::vector<std::unique_ptr<const BoxIndex>> windows_;
   mutable std::atomic<std::size_t> ready_{0};
   mutable std::mutex simulate_mutex_;
   mutable std::unique_ptr<Simulation> simulation_;  ///< null once every block is built

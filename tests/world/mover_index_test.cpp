@@ -222,7 +222,8 @@ TEST(WorldMoverIndex, BodiesAtRestAreStoredOnceAndTheBudgetHoldsTheWorstCase) {
   const auto t = arena->movers_until(30.0);
   EXPECT_EQ(t->stats().blocks_simulated, 0u);  // nothing until a query reaches it
   (void)t->pose(250, 1.0);
-  EXPECT_EQ(t->stats().blocks_simulated, 5u);  // the blocks up to 1 s (4 a second), not one more
+  // The windows up to 1 s (4 blocks a second, 4 blocks a window: 1 s is the first block of the second), not one more.
+  EXPECT_EQ(t->stats().blocks_simulated, 2 * MoverTimeline::kWindowBlocks);
   t->simulate_all();
   const TimelineStats s = t->stats();
   std::printf("%zu of %zu body-blocks at rest, %.1f MiB held of a worst case of %.1f MiB, simulated in %.3f s\n",
