@@ -77,13 +77,16 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
   std::iota(order.begin(), order.end(), 0);
   std::vector<std::pair<int, int>> ranges;
   cluster(order, boxes, 0, static_cast<int>(order.size()), kClusterSize, ranges);
-  cluster_count_ = padded(static_cast<int>(ranges.size()));
+  const int clusters = static_cast<int>(ranges.size());
+  cluster_count_ = (clusters + kGroupSize - 1) / kGroupSize * kGroupSize;
+  group_count_ = padded(cluster_count_ / kGroupSize);
   slot_count_ = 0;
   for (const auto& [b, e] : ranges) slot_count_ += padded(e - b);
 
-  // Layout (Level): the clusters' lo x, y, z, hi x, y, z, then each frame's boxes' likewise; an empty slot is an
-  // inverted box, which no query meets.
-  floats_.assign(6 * (std::size_t(cluster_count_) + std::size_t(frames) * std::size_t(slot_count_)), 0.0f);
+  // Layout (Level): the groups' lo x, y, z, hi x, y, z, the clusters' likewise, then each frame's boxes'; an
+  // empty slot is an inverted box, which no query meets.
+  floats_.assign(6 * (std::size_t(group_count_) + std::size_t(cluster_count_) + std::size_t(frames) * std::size_t(slot_count_)),
+                 0.0f);
   ints_.assign(2 * std::size_t(cluster_count_) + std::size_t(slot_count_), -1);
   const auto put = [&](std::size_t offset, int count, int i, const Box* b) {
     for (int a = 0; a < 3; ++a) {
@@ -93,7 +96,10 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
           b ? up(b->hi[a] - origin_[std::size_t(a)]) : -std::numeric_limits<float>::infinity();
     }
   };
-  const std::size_t box_level = 6 * std::size_t(cluster_count_);
+  const std::size_t cluster_level = 6 * std::size_t(group_count_);
+  const std::size_t box_level = cluster_level + 6 * std::size_t(cluster_count_);
+  const Box none{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  std::vector<Box> group_bounds(std::size_t(group_count_), none);
   std::int32_t* first = ints_.data();
   std::int32_t* count = first + cluster_count_;
   std::int32_t* id = count + cluster_count_;
@@ -101,8 +107,8 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
   for (int c = 0; c < cluster_count_; ++c) {
     first[c] = next;
     count[c] = 0;
-    if (c >= static_cast<int>(ranges.size())) {
-      put(0, cluster_count_, c, nullptr);
+    if (c >= clusters) {
+      put(cluster_level, cluster_count_, c, nullptr);
       continue;
     }
     const auto [b, e] = ranges[std::size_t(c)];
@@ -119,9 +125,16 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
         bounds.hi = bounds.hi.cwiseMax(box->hi);
       }
     }
-    put(0, cluster_count_, c, &bounds);
+    put(cluster_level, cluster_count_, c, &bounds);
+    Box& group = group_bounds[std::size_t(c / kGroupSize)];
+    group.lo = group.lo.cwiseMin(bounds.lo);
+    group.hi = group.hi.cwiseMax(bounds.hi);
     count[c] = padded(e - b);
     next += count[c];
+  }
+  for (int g = 0; g < group_count_; ++g) {
+    const Box& bounds = group_bounds[std::size_t(g)];
+    put(0, group_count_, g, bounds.lo.x() <= bounds.hi.x() ? &bounds : nullptr);
   }
 }
 

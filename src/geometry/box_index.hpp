@@ -8,9 +8,11 @@
 // queries of the window's next frames then find the cluster level (and the memory it lives in) where the first
 // one left it.
 //
-// Two flat levels instead of a deep tree: the boxes in clusters of at most 16 that lie near each other (the
-// cells of median splits along the widest spread), and the clusters' bounds. Each level's bounds lie side by
-// side, one coordinate of every box in a row, so a query measures four boxes with one instruction each (SSE2,
+// Three flat levels instead of a deep tree: the boxes in clusters of at most 16 that lie near each other (the
+// cells of median splits along the widest spread), the clusters' bounds, and the bounds of groups of eight
+// neighbouring clusters (the cells a few splits up), so that a query near nothing is over at the top. Each
+// level's bounds lie side by side, one coordinate of every box in a row, so a query measures four boxes with
+// one instruction each (SSE2,
 // or plain loops elsewhere: the same floats) in straight-line code that reads memory in order: no chain of
 // dependent loads from node to node, which costs a cache miss a level when a window's index is cold. Bounds are
 // floats relative to the boxes' lowest corner, rounded outwards, and every query widens its bound by a slack
@@ -62,7 +64,9 @@ class BoxIndex {
 
  private:
   static constexpr int kClusterSize = 16;
-  static constexpr int kMaxClusters = int(kMaxBoxes / (kClusterSize / 2)) + 4;
+  static constexpr int kGroupSize = 8;  ///< clusters a group
+  static constexpr int kMaxClusters = int(kMaxBoxes / (kClusterSize / 2)) + kGroupSize;
+  static constexpr int kMaxGroups = kMaxClusters / kGroupSize + 4;
 
   /// One level's bounds, side by side: lo[axis][i], hi[axis][i], padded to a multiple of four with boxes that
   /// contain nothing (the pointers of a query into floats_).
@@ -75,9 +79,11 @@ class BoxIndex {
     const float* f = floats_.data() + offset;
     return {{f, f + count, f + 2 * count}, {f + 3 * count, f + 4 * count, f + 5 * count}};
   }
-  Level clusters() const { return level(0, cluster_count_); }
+  Level groups() const { return level(0, group_count_); }
+  Level clusters() const { return level(6 * std::size_t(group_count_), cluster_count_); }
   Level boxes(int frame) const {
-    return level(6 * (std::size_t(cluster_count_) + std::size_t(frame) * std::size_t(slot_count_)), slot_count_);
+    return level(6 * (std::size_t(group_count_) + std::size_t(cluster_count_) + std::size_t(frame) * std::size_t(slot_count_)),
+                 slot_count_);
   }
   const std::int32_t* first() const { return ints_.data(); }                       // per cluster, its first slot
   const std::int32_t* count() const { return ints_.data() + cluster_count_; }      // per cluster, its slots (x 4)
@@ -101,9 +107,10 @@ class BoxIndex {
     return static_cast<float>(b * b * (1.0 + 1e-6));
   }
 
-  std::vector<float> floats_;        // the clusters' level, then each frame's boxes' level
+  std::vector<float> floats_;        // the groups' level, the clusters' level, then each frame's boxes' level
   std::vector<std::int32_t> ints_;   // per cluster its first slot, per cluster its slot count, per slot its box
-  int cluster_count_ = 0;            // padded to a multiple of four
+  int group_count_ = 0;              // padded to a multiple of four
+  int cluster_count_ = 0;            // kGroupSize a group: padded to a multiple of it
   int slot_count_ = 0;               // every cluster's boxes, each cluster padded to a multiple of four
   std::array<double, 3> origin_{};
   double extent_ = 0.0;              // m, the largest coordinate relative to the origin
@@ -120,17 +127,20 @@ void BoxIndex::overlapping(int frame, const Box& query, Visit&& visit) const {
     lo[a] = static_cast<float>(query.lo[a] - origin_[a] - s);
     hi[a] = static_cast<float>(query.hi[a] - origin_[a] + s);
   }
-  const Level cl = clusters(), bx = boxes(frame);
+  const Level gr = groups(), cl = clusters(), bx = boxes(frame);
   const std::int32_t *firsts = first(), *counts = count(), *ids = id();
-  alignas(16) std::int32_t hit[kMaxClusters];
-  overlaps(cl, 0, cluster_count_, lo, hi, hit);
-  alignas(16) std::int32_t in[kClusterSize];
-  for (int c = 0; c < cluster_count_; ++c) {
-    if (!hit[c]) continue;
-    const int from = firsts[c], n = counts[c];
-    overlaps(bx, from, n, lo, hi, in);
-    for (int k = 0; k < n; ++k) {
-      if (in[k] && ids[from + k] >= 0) visit(int(ids[from + k]));
+  alignas(16) std::int32_t group_hit[kMaxGroups], hit[kGroupSize], in[kClusterSize];
+  overlaps(gr, 0, group_count_, lo, hi, group_hit);
+  for (int g = 0; g < group_count_; ++g) {
+    if (!group_hit[g]) continue;
+    overlaps(cl, g * kGroupSize, kGroupSize, lo, hi, hit);
+    for (int j = 0; j < kGroupSize; ++j) {
+      if (!hit[j]) continue;
+      const int c = g * kGroupSize + j, from = firsts[c], n = counts[c];
+      overlaps(bx, from, n, lo, hi, in);
+      for (int k = 0; k < n; ++k) {
+        if (in[k] && ids[from + k] >= 0) visit(int(ids[from + k]));
+      }
     }
   }
 }
@@ -147,9 +157,17 @@ void BoxIndex::nearest(int frame, const Vec3& p, double bound, Visit&& visit) co
   // The clusters within the bound, taken nearest first: by then the bound has pruned most of them, so each
   // round picks the nearest pending one and drops those beyond the bound instead of sorting them all. Branch
   // free where the outcome is a coin toss (is this box within the bound?).
-  alignas(16) float cd2[kMaxClusters];
-  std::int32_t pending[kMaxClusters];
-  int m = within(clusters(), 0, cluster_count_, q, limit, cd2, pending);
+  alignas(16) float gd2[kMaxGroups], cd2[kMaxClusters];
+  std::int32_t near_groups[kMaxGroups], pending[kMaxClusters];
+  const int g = within(groups(), 0, group_count_, q, limit, gd2, near_groups);
+  int m = 0;
+  const Level cl = clusters();
+  for (int j = 0; j < g; ++j) {
+    const int first_cluster = near_groups[j] * kGroupSize;
+    std::int32_t in[kGroupSize];
+    const int k = within(cl, first_cluster, kGroupSize, q, limit, cd2 + first_cluster, in);
+    for (int i = 0; i < k; ++i) pending[m++] = first_cluster + in[i];
+  }
   alignas(16) float bd2[kClusterSize];
   while (m > 0) {
     int at = 0, kept = 0;

@@ -68,7 +68,6 @@ struct MoverTimeline::Block {
   std::vector<std::uint32_t> start;   ///< per dynamic body: index in poses of its keyframe `first`
   std::vector<std::uint8_t> resting;  ///< per dynamic body: 1 when one pose holds for the whole block
   std::vector<Pose> poses;
-  double travel = 0.0;                ///< m, the most any point of a dynamic body moves over the block
 
   const Pose& at(int row, long k) const {
     return poses[start[std::size_t(row)] + (resting[std::size_t(row)] ? 0 : std::size_t(k - first))];
@@ -156,6 +155,7 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
     // Only the scripted movers' bounds are kept; nothing is simulated.
     worst_case_bytes_ = estimate(l.keyframes, l.blocks, 0, queried_.size());
     blocks_.resize(l.blocks);
+    travel_.resize(l.blocks);
     windows_.resize((l.blocks + kWindowBlocks - 1) / kWindowBlocks);
     return;
   }
@@ -172,6 +172,7 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
                                max_bytes / 1048576.0, std::max(fits, 0), rate_hz_));
   }
   blocks_.resize(l.blocks);
+  travel_.resize(l.blocks);
   windows_.resize((l.blocks + kWindowBlocks - 1) / kWindowBlocks);
   if (dynamic_ > 0) simulation_ = std::make_unique<Simulation>(spec, meshes, movers_, dynamic_index_, dynamic_);
 }
@@ -204,7 +205,7 @@ void MoverTimeline::simulate_through(std::size_t b) const {
     auto block = simulate_block(r);
     const std::size_t frame = r % kWindowBlocks;
     frames.resize((frame + 1) * queried_.size());
-    bound_block(*block, std::span<Box>(frames).subspan(frame * queried_.size()));
+    travel_[r] = bound_block(*block, std::span<Box>(frames).subspan(frame * queried_.size()));
     bytes_.fetch_add(block->bytes(), std::memory_order_relaxed);
     blocks_[r] = std::move(block);
     if (frame + 1 == kWindowBlocks || r + 1 == blocks_.size()) {
@@ -250,7 +251,8 @@ std::unique_ptr<MoverTimeline::Block> MoverTimeline::simulate_block(std::size_t 
   return block;
 }
 
-void MoverTimeline::bound_block(Block& block, std::span<Box> bounds) const {
+double MoverTimeline::bound_block(const Block& block, std::span<Box> bounds) const {
+  double block_travel = 0.0;
   const long n = block.last - block.first + 1;
   const double t_first = static_cast<double>(block.first * stride_) / rate_hz_;
   const double t_last = static_cast<double>(block.last * stride_) / rate_hz_;
@@ -276,12 +278,13 @@ void MoverTimeline::bound_block(Block& block, std::span<Box> bounds) const {
         box.lo = box.lo.cwiseMin(at.position), box.hi = box.hi.cwiseMax(at.position);
         if (k > block.first) travel += point_travel(block.at(row, k - 1), at, reach_[m]);
       }
-      block.travel = std::max(block.travel, travel);
+      block_travel = std::max(block_travel, travel);
     }
     box.lo.array() -= widen;
     box.hi.array() += widen;
     bounds[leaf] = box;
   }
+  return block_travel;
 }
 
 const Pose& MoverTimeline::keyframe(int row, long k) const {
@@ -329,7 +332,9 @@ double MoverTimeline::travel_bound(int m, double t0, double t1) const {
 double MoverTimeline::max_travel(double t0, double t1) const {
   double travel = scripted_speed_ * (t1 - t0);
   if (with_dynamic_ && dynamic_ > 0) {
-    for (std::size_t b = block_at(t0), last = block_at(t1); b <= last; ++b) travel += block(b).travel;
+    const std::size_t last = block_at(t1);
+    if (last >= ready_.load(std::memory_order_acquire)) simulate_through(last);
+    for (std::size_t b = block_at(t0); b <= last; ++b) travel += travel_[b];
   }
   return travel;
 }

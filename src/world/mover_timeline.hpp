@@ -180,8 +180,9 @@ class MoverTimeline {
   void simulate_through(std::size_t b) const;
   /// Block r's keyframes: the simulation advanced over it.
   std::unique_ptr<Block> simulate_block(std::size_t r) const;
-  /// The queried movers' bounds over block r's time span (leaf i: queried_[i]), and the block's travel.
-  void bound_block(Block& block, std::span<Box> bounds) const;
+  /// The queried movers' bounds over a block's time span (leaf i: queried_[i]); returns the most any point of a
+  /// dynamic body moves over it (m).
+  double bound_block(const Block& block, std::span<Box> bounds) const;
   std::size_t block_at(double t) const;
   /// Keyframe k (0..keyframes_) of dynamic body `row`.
   const Pose& keyframe(int row, long k) const;
@@ -214,6 +215,7 @@ class MoverTimeline {
   // simulate_mutex_, before ready_ passes b.
   mutable std::vector<std::unique_ptr<const Block>> blocks_;
   mutable std::vector<std::unique_ptr<const BoxIndex>> windows_;
+  mutable std::vector<double> travel_;  ///< per block: the most any point of a dynamic body moves over it, m
   mutable std::atomic<std::size_t> ready_{0};
   mutable std::mutex simulate_mutex_;
   mutable std::unique_ptr<Simulation> simulation_;  ///< null once every block is built
