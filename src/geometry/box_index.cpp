@@ -64,6 +64,8 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
   for (const Box& b : all) lo = lo.cwiseMin(b.lo), hi = hi.cwiseMax(b.hi);
   for (int a = 0; a < 3; ++a) origin_[std::size_t(a)] = lo[a];
   extent_ = (hi - lo).maxCoeff();
+  // Steps of the boxes' level: the extent in 65000 of them (room for rounding outwards below 65535).
+  unit_ = std::max(extent_, 1e-9) / 65000.0;
 
   // Clusters of the boxes' unions over the frames: they bound every frame's.
   std::vector<Box> boxes(all.begin(), all.begin() + std::ptrdiff_t(size_));
@@ -83,10 +85,10 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
   slot_count_ = 0;
   for (const auto& [b, e] : ranges) slot_count_ += padded(e - b);
 
-  // Layout (Level): the groups' lo x, y, z, hi x, y, z, the clusters' likewise, then each frame's boxes'; an
-  // empty slot is an inverted box, which no query meets.
-  floats_.assign(6 * (std::size_t(group_count_) + std::size_t(cluster_count_) + std::size_t(frames) * std::size_t(slot_count_)),
-                 0.0f);
+  // Layout (Level): the groups' lo x, y, z, hi x, y, z, the clusters' likewise; each frame's boxes' likewise in
+  // steps. An empty slot is an inverted box, which no query meets.
+  floats_.assign(6 * (std::size_t(group_count_) + std::size_t(cluster_count_)), 0.0f);
+  steps_.assign(6 * std::size_t(frames) * std::size_t(slot_count_), 0);
   ints_.assign(2 * std::size_t(cluster_count_) + std::size_t(slot_count_), -1);
   const auto put = [&](std::size_t offset, int count, int i, const Box* b) {
     for (int a = 0; a < 3; ++a) {
@@ -97,7 +99,14 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
     }
   };
   const std::size_t cluster_level = 6 * std::size_t(group_count_);
-  const std::size_t box_level = cluster_level + 6 * std::size_t(cluster_count_);
+  const auto put_steps = [&](std::size_t offset, int i, const Box* b) {
+    for (int a = 0; a < 3; ++a) {
+      const double l = b ? std::floor((b->lo[a] - origin_[std::size_t(a)]) / unit_) - 1.0 : 65535.0;
+      const double h = b ? std::ceil((b->hi[a] - origin_[std::size_t(a)]) / unit_) + 1.0 : 0.0;
+      steps_[offset + std::size_t(a * slot_count_ + i)] = static_cast<std::uint16_t>(std::clamp(l, 0.0, 65535.0));
+      steps_[offset + std::size_t((3 + a) * slot_count_ + i)] = static_cast<std::uint16_t>(std::clamp(h, 0.0, 65535.0));
+    }
+  };
   const Box none{Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
   std::vector<Box> group_bounds(std::size_t(group_count_), none);
   std::int32_t* first = ints_.data();
@@ -116,8 +125,7 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
     for (int k = 0; k < padded(e - b); ++k) {
       const Box* box = k < e - b ? &boxes[std::size_t(order[std::size_t(b + k)])] : nullptr;
       for (std::size_t f = 0; f < std::size_t(frames); ++f) {
-        put(box_level + 6 * f * std::size_t(slot_count_), slot_count_, next + k,
-            box ? &all[f * size_ + std::size_t(order[std::size_t(b + k)])] : nullptr);
+        put_steps(6 * f * std::size_t(slot_count_), next + k, box ? &all[f * size_ + std::size_t(order[std::size_t(b + k)])] : nullptr);
       }
       if (box) {
         id[next + k] = order[std::size_t(b + k)];
@@ -138,17 +146,32 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
   }
 }
 
-int BoxIndex::within(const Level& level, int begin, int n, const float q[3], float limit, float* d2, std::int32_t* out) {
+namespace {
+
+#if defined(__SSE2__)
+// Four consecutive bounds as floats: floats as they are, steps widened (exactly: they are below 2^16).
+__m128 load4(const float* p) { return _mm_loadu_ps(p); }
+__m128 load4(const std::uint16_t* p) {
+  const __m128i v = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+  return _mm_cvtepi32_ps(_mm_unpacklo_epi16(v, _mm_setzero_si128()));
+}
+#endif
+
+}  // namespace
+
+template <class T>
+int BoxIndex::within(const Level<T>& level, int begin, int n, const float q[3], float limit, float* d2, std::int32_t* out) {
   int count = 0;
 #if defined(__SSE2__)
   const __m128 qx = _mm_set1_ps(q[0]), qy = _mm_set1_ps(q[1]), qz = _mm_set1_ps(q[2]), zero = _mm_setzero_ps();
   const __m128 bound = _mm_set1_ps(limit);
+  const T *lx = level.lo[0] + begin, *ly = level.lo[1] + begin, *lz = level.lo[2] + begin;
+  const T *hx = level.hi[0] + begin, *hy = level.hi[1] + begin, *hz = level.hi[2] + begin;
   for (int k = 0; k < n; k += 4) {
-    const int i = begin + k;
     // Per axis max(lo - q, q - hi, 0): the gap outside the box.
-    const __m128 x = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[0] + i), qx), _mm_sub_ps(qx, _mm_loadu_ps(level.hi[0] + i))), zero);
-    const __m128 y = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[1] + i), qy), _mm_sub_ps(qy, _mm_loadu_ps(level.hi[1] + i))), zero);
-    const __m128 z = _mm_max_ps(_mm_max_ps(_mm_sub_ps(_mm_loadu_ps(level.lo[2] + i), qz), _mm_sub_ps(qz, _mm_loadu_ps(level.hi[2] + i))), zero);
+    const __m128 x = _mm_max_ps(_mm_max_ps(_mm_sub_ps(load4(lx + k), qx), _mm_sub_ps(qx, load4(hx + k))), zero);
+    const __m128 y = _mm_max_ps(_mm_max_ps(_mm_sub_ps(load4(ly + k), qy), _mm_sub_ps(qy, load4(hy + k))), zero);
+    const __m128 z = _mm_max_ps(_mm_max_ps(_mm_sub_ps(load4(lz + k), qz), _mm_sub_ps(qz, load4(hz + k))), zero);
     const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z));
     _mm_storeu_ps(d2 + k, d);
     for (int bits = _mm_movemask_ps(_mm_cmple_ps(d, bound)); bits != 0; bits &= bits - 1) {
@@ -161,7 +184,9 @@ int BoxIndex::within(const Level& level, int begin, int n, const float q[3], flo
   for (int k = 0; k < n; ++k) {
     const int i = begin + k;
     float e[3];
-    for (int a = 0; a < 3; ++a) e[a] = max(max(level.lo[a][i] - q[a], q[a] - level.hi[a][i]), 0.0f);
+    for (int a = 0; a < 3; ++a) {
+      e[a] = max(max(static_cast<float>(level.lo[a][i]) - q[a], q[a] - static_cast<float>(level.hi[a][i])), 0.0f);
+    }
     d2[k] = (e[0] * e[0] + e[1] * e[1]) + e[2] * e[2];
     if (d2[k] <= limit) out[count++] = k;
   }
@@ -169,13 +194,21 @@ int BoxIndex::within(const Level& level, int begin, int n, const float q[3], flo
   return count;
 }
 
-void BoxIndex::overlaps(const Level& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out) {
+template <class T>
+void BoxIndex::overlaps(const Level<T>& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out) {
   // Boxes meet when on every axis neither lies wholly beyond the other.
   for (int i = begin; i < begin + n; ++i, ++out) {
     bool meets = true;
-    for (int a = 0; a < 3; ++a) meets &= !(hi[a] < level.lo[a][i]) & !(lo[a] > level.hi[a][i]);
+    for (int a = 0; a < 3; ++a) {
+      meets &= !(hi[a] < static_cast<float>(level.lo[a][i])) & !(lo[a] > static_cast<float>(level.hi[a][i]));
+    }
     *out = meets ? 1 : 0;
   }
 }
+
+template int BoxIndex::within(const Level<float>&, int, int, const float[3], float, float*, std::int32_t*);
+template int BoxIndex::within(const Level<std::uint16_t>&, int, int, const float[3], float, float*, std::int32_t*);
+template void BoxIndex::overlaps(const Level<float>&, int, int, const float[3], const float[3], std::int32_t*);
+template void BoxIndex::overlaps(const Level<std::uint16_t>&, int, int, const float[3], const float[3], std::int32_t*);
 
 }  // namespace peg3d
