@@ -321,18 +321,30 @@ TEST(Sim, AnAgentAHairOutsideTheMoversReachIsNotHit) {
   EXPECT_EQ(r.collisions, 0);
 }
 
+// An episode on the patrol map (spheres and movers) reset from its second scenario: pure pursuit against flee,
+// collisions penalized (the game goes on through them).
+struct PatrolChase {
+  static GameConfig chase() {
+    GameConfig c = preset("peg3d");
+    c.pursuer.policy = PolicyKind::kPurePursuit;
+    c.evader.policy = PolicyKind::kFlee;
+    c.collision = CollisionMode::kPenalize;
+    return c;
+  }
+  std::shared_ptr<const world::Arena> arena =
+      world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/patrol.yaml"));
+  GameConfig c = chase();
+  Sim sim{arena, c};
+  SimState st{sim};
+  Lineup l = testing::lineup_for(c, arena->map().scenarios[1]);
+  PatrolChase() { reset(sim, st, arena->map().scenarios[1], 3); }
+};
+
 TEST(Sim, AgentsSenseMoversWhereTheyAreNow) {
   // Every step of an episode on the patrol map: the distance an agent senses (its field, arena faces left
   // out) is within one voxel diagonal of the exact distance to the nearest sphere or mover at that instant.
-  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/patrol.yaml"));
-  GameConfig c = preset("peg3d");
-  c.pursuer.policy = PolicyKind::kPurePursuit;
-  c.evader.policy = PolicyKind::kFlee;
-  c.collision = CollisionMode::kPenalize;
-  const Sim sim(arena, c);
-  SimState st(sim);
-  Lineup l = testing::lineup_for(c, arena->map().scenarios[1]);
-  reset(sim, st, arena->map().scenarios[1], 3);
+  PatrolChase game;
+  auto& [arena, c, sim, st, l] = game;
   const double diagonal = std::sqrt(3.0) * arena->resolution();
   const double cap = arena->max_distance();
   int near_movers = 0, steps = 0;
@@ -361,15 +373,8 @@ TEST(Sim, AgentsSenseMoversWhereTheyAreNow) {
 TEST(Sim, WithinItsReachTheProbeSensesWhatTheAgentWould) {
   // The guard's look-ahead asks for the obstacle nearest to a point within a reach. Within it, the answer is
   // the full one to the bit; beyond it, the answer lies beyond it too (the guard cannot use it either way).
-  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/patrol.yaml"));
-  GameConfig c = preset("peg3d");
-  c.pursuer.policy = PolicyKind::kPurePursuit;
-  c.evader.policy = PolicyKind::kFlee;
-  c.collision = CollisionMode::kPenalize;
-  const Sim sim(arena, c);
-  SimState st(sim);
-  Lineup l = testing::lineup_for(c, arena->map().scenarios[1]);
-  reset(sim, st, arena->map().scenarios[1], 3);
+  PatrolChase game;
+  auto& [arena, c, sim, st, l] = game;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1.5, 1.5);
   int within = 0, beyond = 0;
