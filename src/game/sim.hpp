@@ -92,6 +92,7 @@ struct AgentState {
     double time = -1.0;
     double distance = 0.0;
   } mover_clearance;
+  int nearest_mover = -1;             ///< the timeline's nearest mover at the last view (-1: none), its next hint
   // Totals over the run so far.
   double path = 0.0;                  ///< m travelled
   double total_reward = 0.0;          ///< undiscounted sum of its rewards

@@ -4,12 +4,13 @@
 
 namespace peg3d::game {
 
-ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p, double reach) {
+ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p, double reach, int* mover) {
   const world::NearestObstacle n = st.moving_field ? st.moving_field->nearest(p) : sim.arena().nearest_shape(p);
   if (const world::MoverTimeline* movers = sim.movers(); movers != nullptr && !st.moving_field) {
     // Moving obstacles where they are now, exactly: those nearer than the field's obstacle and within reach.
     const double cap = std::min(n.distance, reach);
-    world::MoverPoint m = movers->nearest(p, st.time, cap);
+    world::MoverPoint m = movers->nearest(p, st.time, cap, mover ? *mover : -1);
+    if (mover) *mover = m.mover;
     if (st.push) {
       // Push mode: the run's own dynamic bodies where they are now.
       const world::MoverPoint d = st.push->nearest(p, m.mover >= 0 ? m.distance : cap);
@@ -34,7 +35,7 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.dt = sim.config().dt;
   v.time = st.time;
   v.arena = sim.arena().bounds();
-  v.field = sense_obstacle(sim, st, a.kinematics.position);
+  v.field = sense_obstacle(sim, st, a.kinematics.position, std::numeric_limits<double>::infinity(), &a.nearest_mover);
   // Exactly sensed, the field's distance bounds every mover's from below (sense_obstacle): kept for the step.
   const bool exact = sim.movers() != nullptr && !st.moving_field;
   a.mover_clearance = {a.kinematics.position, exact ? st.time : -1.0, v.field.distance};

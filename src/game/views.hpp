@@ -13,8 +13,10 @@ namespace peg3d::game {
 /// The map's obstacle nearest to p at the state's time: its shapes only (whether the arena's faces count is the
 /// agent's observation setting, not the map's) and, on a map with movers, the nearer of them and the field.
 /// Movers are looked for within `reach` (m) only: beyond it the answer is the field's (ObstacleProbe::nearest).
+/// With `mover`: it holds a hint, a mover likely to be the nearest (or -1; MoverTimeline::nearest), and gets the
+/// timeline's answer (or -1), the next query's hint near here.
 ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& p,
-                             double reach = std::numeric_limits<double>::infinity());
+                             double reach = std::numeric_limits<double>::infinity(), int* mover = nullptr);
 
 /// The guard's look ahead senses as the agent does.
 class StateProbe final : public ObstacleProbe {

@@ -371,13 +371,17 @@ void MoverTimeline::nearer(int m, const Vec3& p, double t, MoverPoint& best) con
   offer_nearer(m, movers_[std::size_t(m)].shape, reach_[std::size_t(m)], pose(m, t), p, best);
 }
 
-MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap) const {
+MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap, int hint) const {
   if (!indexed(t, t)) return nearest_scan(p, t, cap);
   MoverPoint best;
   best.distance = cap;
+  // The hint first (a mover the queries look at), then every other one the index does not rule out: each mover
+  // is offered once, and offer_nearer's answer does not depend on the order.
+  if (hint >= 0 && hint < count() && (with_dynamic_ || movers_[std::size_t(hint)].kinematic())) nearer(hint, p, t, best);
   const std::size_t b = block_at(t);
-  window(b).nearest(static_cast<int>(b % kWindowBlocks), p, cap, [&](int leaf) {
-    nearer(queried_[std::size_t(leaf)], p, t, best);
+  window(b).nearest(static_cast<int>(b % kWindowBlocks), p, best.distance, [&](int leaf) {
+    const int m = queried_[std::size_t(leaf)];
+    if (m != hint) nearer(m, p, t, best);
     return best.distance;
   });
   return best;

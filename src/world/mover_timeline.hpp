@@ -117,8 +117,9 @@ class MoverTimeline {
   Pose pose(int m, double t) const;
 
   /// The movers' point nearest to p at time t, if any lies within `cap` m (the nearest, the lowest index among
-  /// equally near ones). No allocation.
-  MoverPoint nearest(const Vec3& p, double t, double cap) const;
+  /// equally near ones). `hint`: a mover likely to be the answer (the last one near here, or -1), measured first
+  /// so that the search starts with a tight bound; the answer does not depend on it. No allocation.
+  MoverPoint nearest(const Vec3& p, double t, double cap, int hint = -1) const;
 
   /// The first contact, during the step [t0, t0 + dt], of a sphere of `radius` moving from `from` to `to` at
   /// constant velocity with any mover (the earliest, the lowest index among equally early ones); nullopt when

@@ -93,6 +93,10 @@ TEST(WorldMoverIndex, IndexedQueriesGiveTheAnswersOfAVisitOfEveryMover) {
     const MoverPoint a = t->nearest(p, time, cap), b = t->nearest_scan(p, time, cap);
     ASSERT_TRUE(same(a, b)) << "query " << q << ": mover " << a.mover << " at " << a.distance << " against "
                             << b.mover << " at " << b.distance;
+    // A hint (the answer, any mover, none, none that exists) changes where the search starts, not its answer.
+    for (const int hint : {b.mover, int(q % t->count()), -1, t->count()}) {
+      ASSERT_TRUE(same(t->nearest(p, time, cap, hint), b)) << "query " << q << " with hint " << hint;
+    }
     near += a.mover >= 0;
     // Agents' moves from a standstill to 3 m, some from inside a mover's path.
     const Vec3 to = p + Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * (q % 5 == 0 ? 0.0 : 6.0);
@@ -203,6 +207,7 @@ TEST(WorldMoverIndex, OfEquallyNearOrEquallyEarlyMoversTheLowestIndexWins) {
       const MoverPoint a = t->nearest(p, 0.2 * q, 30.0);
       ASSERT_TRUE(same(a, t->nearest_scan(p, 0.2 * q, 30.0))) << k << " " << q;
       ASSERT_NE(a.mover, 21 + 2 * k) << k << " " << q;  // of the mirrored pair, never the higher index
+      ASSERT_TRUE(same(t->nearest(p, 0.2 * q, 30.0, 21 + 2 * k), a)) << k << " " << q;  // not even as the hint
     }
   }
   for (int q = 0; q < 100; ++q) {
