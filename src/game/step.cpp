@@ -98,11 +98,11 @@ void begin(SimState& st, std::span<const Steering> commands) {
 // Constrain: each active agent's heading for the step, its command through the constraint layer (bounded
 // steering, motion space, obstacle guard), all from the state at t.
 void constrain(const Sim& sim, SimState& st) {
-  const StateProbe probe(sim, st);
   for (int i = 0; i < st.agent_count(); ++i) {
     const StepProfile::Scope profiled(StepProfile::kConstraints);
     const AgentState& a = st.agents[std::size_t(i)];
     if (!a.active) continue;
+    const StateProbe probe(sim, st, a.nearest_mover);
     const AgentState& o = st.agents[std::size_t(a.opponent)];
     st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;

@@ -18,15 +18,19 @@ namespace peg3d::game {
 ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& p,
                              double reach = std::numeric_limits<double>::infinity(), int* mover = nullptr);
 
-/// The guard's look ahead senses as the agent does.
+/// The guard's look ahead senses as the agent does, starting from the mover its view found nearest (`hint`).
 class StateProbe final : public ObstacleProbe {
  public:
-  StateProbe(const Sim& sim, const SimState& state) : sim_(sim), state_(state) {}
-  ObstacleSense nearest(const Vec3& p, double reach) const override { return sense_obstacle(sim_, state_, p, reach); }
+  StateProbe(const Sim& sim, const SimState& state, int hint) : sim_(sim), state_(state), hint_(hint) {}
+  ObstacleSense nearest(const Vec3& p, double reach) const override {
+    int hint = hint_;
+    return sense_obstacle(sim_, state_, p, reach, &hint);
+  }
 
  private:
   const Sim& sim_;
   const SimState& state_;
+  int hint_;
 };
 
 /// Rebuilds agent i's view from its position and its opponent's state (its `opponent` must be set).

@@ -1,6 +1,6 @@
 // The box index (geometry/box_index.hpp) against a visit of every box: the same overlaps and the same nearest
 // box, on random boxes and queries (far from the origin too), duplicates, sizes that leave clusters partly empty,
-// the most boxes an index holds, and an index of one box.
+// the most boxes an index holds, an index of one box, and boxes that move from frame to frame.
 #include "geometry/box_index.hpp"
 
 #include <gtest/gtest.h>
@@ -83,6 +83,55 @@ TEST(GeometryBoxIndex, NearestFindsTheNearestBoxWithinTheBoundAsAVisitOfEveryBox
       EXPECT_EQ(best, expected) << "query " << q;
       EXPECT_EQ(best_d, expected_d);
       EXPECT_LE(visits, 64) << "nearer boxes first: the bound prunes the rest";
+    }
+  }
+}
+
+TEST(GeometryBoxIndex, EachFrameIsAnsweredFromItsOwnBoxes) {
+  // Boxes that move from frame to frame (as a mover's bounds do over a window's blocks), some far: a query of a
+  // frame reports what a visit of that frame's boxes does, never a box only another frame has near.
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> at(-2.0, 32.0), step(-3.0, 3.0);
+  constexpr int kFrames = 4, kBoxes = 500;
+  std::vector<Box> boxes = random_boxes(rng, kBoxes, 30.0);
+  for (int f = 1; f < kFrames; ++f) {
+    for (int i = 0; i < kBoxes; ++i) {
+      const Box& b = boxes[std::size_t((f - 1) * kBoxes + i)];
+      const Vec3 d = i % 50 == 0 ? Vec3(12.0, 0.0, 0.0) : Vec3(step(rng), step(rng), step(rng));
+      boxes.push_back({b.lo + d, b.hi + d});
+    }
+  }
+  const BoxIndex index(boxes, kFrames);
+  EXPECT_EQ(index.size(), std::size_t(kBoxes));
+  for (int q = 0; q < 2000; ++q) {
+    const int f = q % kFrames;
+    const std::span<const Box> frame(boxes.data() + std::size_t(f) * kBoxes, kBoxes);
+    const Vec3 p(at(rng), at(rng), at(rng));
+    int best = -1;
+    double best_d = 3.0;
+    index.nearest(f, p, best_d, [&](int i) {
+      const double d = box_distance(frame[std::size_t(i)], p);
+      if (d < best_d || (best >= 0 && d == best_d && i < best)) best = i, best_d = d;
+      return best_d;
+    });
+    int expected = -1;
+    double expected_d = 3.0;
+    for (int i = 0; i < kBoxes; ++i) {
+      const double d = box_distance(frame[std::size_t(i)], p);
+      if (d < expected_d) expected = i, expected_d = d;
+    }
+    ASSERT_EQ(best, expected) << "query " << q << " of frame " << f;
+    const Box query{p, p + Vec3(1.0, 0.5, 2.0)};
+    std::vector<int> found, within;
+    index.overlapping(f, query, [&](int i) { found.push_back(i); });
+    for (int i = 0; i < kBoxes; ++i) {
+      if (meets(frame[std::size_t(i)], query)) within.push_back(i);
+    }
+    std::sort(found.begin(), found.end());
+    ASSERT_TRUE(std::includes(found.begin(), found.end(), within.begin(), within.end())) << "query " << q;
+    for (const int i : found) {
+      const Box& b = frame[std::size_t(i)];
+      ASSERT_TRUE(meets({b.lo.array() - 3 * 50.0 / 65000, b.hi.array() + 3 * 50.0 / 65000}, query)) << "query " << q;
     }
   }
 }
