@@ -56,6 +56,34 @@ TEST(GeometryBoxIndex, OverlapsAreThoseOfAVisitOfEveryBox) {
   }
 }
 
+TEST(GeometryBoxIndex, IndexesOfOneClusterOverlapAsAVisitOfEveryBox) {
+  // Up to 16 boxes make one cluster. Queries around the boxes, so that many meet some and many meet none (in
+  // the test above, boxes spread over 30 m rarely meet a query when there are few).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> shift(-1.0, 1.0), half(0.05, 1.0);
+  for (const int n : {1, 3, 16}) {
+    const std::vector<Box> boxes = random_boxes(rng, n, 30.0);
+    const BoxIndex index(boxes);
+    int met = 0;
+    for (int j = 0; j < 200; ++j) {
+      const Vec3 c = boxes[std::size_t(j % n)].center() + Vec3(shift(rng), shift(rng), shift(rng));
+      const Vec3 h(half(rng), half(rng), half(rng));
+      const Box q{c - h, c + h};
+      std::vector<int> found, expected;
+      index.overlapping(q, [&](int i) { found.push_back(i); });
+      for (int i = 0; i < n; ++i) {
+        if (meets(boxes[std::size_t(i)], q)) expected.push_back(i);
+      }
+      std::sort(found.begin(), found.end());
+      EXPECT_TRUE(std::includes(found.begin(), found.end(), expected.begin(), expected.end()));
+      EXPECT_LE(found.size(), expected.size() + 1) << "at most a box that misses by a step";
+      met += !expected.empty();
+    }
+    EXPECT_GT(met, 20) << n << " boxes: the queries must meet boxes to test anything";
+    EXPECT_LT(met, 180) << n << " boxes: and miss some";
+  }
+}
+
 TEST(GeometryBoxIndex, NearestFindsTheNearestBoxWithinTheBoundAsAVisitOfEveryBox) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> at(-2.0, 32.0);
