@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <limits>
 #include <random>
+#include <span>
 #include <vector>
 
 namespace peg3d {
@@ -27,6 +28,37 @@ std::vector<Box> random_boxes(std::mt19937_64& rng, int n, double spread, const 
 
 bool meets(const Box& b, const Box& q) { return (b.lo.array() <= q.hi.array()).all() && (q.lo.array() <= b.hi.array()).all(); }
 
+// Checks what the index reports meeting q in `frame` (whose boxes are `boxes`) against a visit of every box: none
+// missed, none reported twice, and every one within 3 steps of the query (bounds are kept in steps of a 65000th
+// of the index's extent, `extent` m or less, rounded outwards by a step: a box that misses by a few steps may be
+// reported). `met`, when given, counts the queries that meet a box.
+::testing::AssertionResult overlaps_as_a_visit(const BoxIndex& index, int frame, std::span<const Box> boxes,
+                                               const Box& q, double extent, int* met = nullptr,
+                                               std::size_t* extra = nullptr) {
+  std::vector<int> found, expected;
+  index.overlapping(frame, q, [&](int i) { found.push_back(i); });
+  for (int i = 0; i < int(boxes.size()); ++i) {
+    if (meets(boxes[std::size_t(i)], q)) expected.push_back(i);
+  }
+  if (met) *met += !expected.empty();
+  if (extra) *extra = found.size() - std::min(found.size(), expected.size());
+  std::sort(found.begin(), found.end());
+  if (std::adjacent_find(found.begin(), found.end()) != found.end()) {
+    return ::testing::AssertionFailure() << "a box reported twice";
+  }
+  if (!std::includes(found.begin(), found.end(), expected.begin(), expected.end())) {
+    return ::testing::AssertionFailure() << "a box that meets the query is missing";
+  }
+  const double step = 3 * extent / 65000;
+  for (const int i : found) {
+    const Box& b = boxes[std::size_t(i)];
+    if (!meets({b.lo.array() - step, b.hi.array() + step}, q)) {
+      return ::testing::AssertionFailure() << "box " << i << " is far from the query";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(GeometryBoxIndex, OverlapsAreThoseOfAVisitOfEveryBox) {
   std::mt19937_64 rng(7);
   for (const int n : {1, 3, 17, 33, 1000, int(BoxIndex::kMaxBoxes)}) {
@@ -36,22 +68,9 @@ TEST(GeometryBoxIndex, OverlapsAreThoseOfAVisitOfEveryBox) {
     if (n == 1000) std::fill(boxes.begin(), boxes.begin() + 200, boxes[0]);  // many copies of one box
     const BoxIndex index(boxes);
     EXPECT_EQ(index.size(), std::size_t(n));
+    // A box that misses by a few steps may be reported (about 1.5 mm here), never one dropped.
     for (const Box& q : random_boxes(rng, 300, 32.0, offset)) {
-      std::vector<int> found, expected;
-      index.overlapping(q, [&](int i) { found.push_back(i); });
-      for (int i = 0; i < n; ++i) {
-        if (meets(boxes[std::size_t(i)], q)) expected.push_back(i);
-      }
-      std::sort(found.begin(), found.end());
-      EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end()) << "a box reported twice";
-      // Bounds kept in steps of a 65000th of the extent (rounded outwards by a step) may add a box that misses by
-      // a few steps (about 1.5 mm here), never drop one.
-      EXPECT_TRUE(std::includes(found.begin(), found.end(), expected.begin(), expected.end()));
-      for (const int i : found) {
-        const Box& b = boxes[std::size_t(i)];
-        EXPECT_TRUE(meets({b.lo.array() - 3 * 32.0 / 65000, b.hi.array() + 3 * 32.0 / 65000}, q))
-            << "box " << i << " is far from the query";
-      }
+      EXPECT_TRUE(overlaps_as_a_visit(index, 0, boxes, q, 32.0));
     }
   }
 }
@@ -68,16 +87,9 @@ TEST(GeometryBoxIndex, IndexesOfOneClusterOverlapAsAVisitOfEveryBox) {
     for (int j = 0; j < 200; ++j) {
       const Vec3 c = boxes[std::size_t(j % n)].center() + Vec3(shift(rng), shift(rng), shift(rng));
       const Vec3 h(half(rng), half(rng), half(rng));
-      const Box q{c - h, c + h};
-      std::vector<int> found, expected;
-      index.overlapping(q, [&](int i) { found.push_back(i); });
-      for (int i = 0; i < n; ++i) {
-        if (meets(boxes[std::size_t(i)], q)) expected.push_back(i);
-      }
-      std::sort(found.begin(), found.end());
-      EXPECT_TRUE(std::includes(found.begin(), found.end(), expected.begin(), expected.end()));
-      EXPECT_LE(found.size(), expected.size() + 1) << "at most a box that misses by a step";
-      met += !expected.empty();
+      std::size_t extra = 0;
+      EXPECT_TRUE(overlaps_as_a_visit(index, 0, boxes, {c - h, c + h}, 32.0, &met, &extra));
+      EXPECT_LE(extra, 1u) << "at most a box that misses by a step";
     }
     EXPECT_GT(met, 20) << n << " boxes: the queries must meet boxes to test anything";
     EXPECT_LT(met, 180) << n << " boxes: and miss some";
@@ -149,18 +161,7 @@ TEST(GeometryBoxIndex, EachFrameIsAnsweredFromItsOwnBoxes) {
       if (d < expected_d) expected = i, expected_d = d;
     }
     ASSERT_EQ(best, expected) << "query " << q << " of frame " << f;
-    const Box query{p, p + Vec3(1.0, 0.5, 2.0)};
-    std::vector<int> found, within;
-    index.overlapping(f, query, [&](int i) { found.push_back(i); });
-    for (int i = 0; i < kBoxes; ++i) {
-      if (meets(frame[std::size_t(i)], query)) within.push_back(i);
-    }
-    std::sort(found.begin(), found.end());
-    ASSERT_TRUE(std::includes(found.begin(), found.end(), within.begin(), within.end())) << "query " << q;
-    for (const int i : found) {
-      const Box& b = frame[std::size_t(i)];
-      ASSERT_TRUE(meets({b.lo.array() - 3 * 50.0 / 65000, b.hi.array() + 3 * 50.0 / 65000}, query)) << "query " << q;
-    }
+    ASSERT_TRUE(overlaps_as_a_visit(index, f, frame, {p, p + Vec3(1.0, 0.5, 2.0)}, 50.0)) << "query " << q;
   }
 }
 
