@@ -4,8 +4,11 @@
 // bodies that push and are never pushed, dynamic bodies as rigid bodies, stepped at the map's physics rate.
 // Two users: the shared timeline (world/mover_timeline.hpp) steps one without agents, once per map; push mode
 // (world/push_world.hpp) gives every run one of its own with the agents in it as kinematic spheres. Both build
-// it the same way, so that a push-mode run whose agents touch nothing moves every body exactly as the shared
-// timeline does.
+// it the same way but for one solver setting: push mode separates overlapping bodies by split impulse, which
+// moves positions without adding velocity, so that a hit leaves at the speed restitution gives whatever the
+// phase of the substep it lands in; the shared timeline keeps Bullet's default (shallow overlaps corrected
+// through velocity), so its motion is what it always was. Bodies no agent touches therefore move in push mode
+// as in a world without agents, not as in the shared timeline.
 //
 // In push mode the bodies carry collision groups by what an agent's touch means (DynamicMotion::Touch): an
 // agent's kinematic sphere collides with pushable bodies only, and pushes them as Bullet resolves the contact
