@@ -231,12 +231,22 @@ void SweepSession::complete() {
   if (journal) journal->remove();
 }
 
+void SweepSession::discard() {
+  if (!journal || !started_journal) return;
+  journal->remove();
+  std::error_code ec;
+  if (!made_out.empty() && std::filesystem::is_empty(made_out, ec)) std::filesystem::remove(made_out, ec);
+}
+
 SweepSession open_sweep(const SweepOptions& o, std::size_t runs, std::size_t episodes_per_run,
                         const nlohmann::json& setup) {
   SweepSession s;
   s.control.group = g_group.get();
   s.control.stop = stop_check();
   if (s.root()) {
+    std::error_code ec;
+    if (!std::filesystem::exists(o.out, ec)) s.made_out = o.out;
+    s.started_journal = !o.resume;
     s.journal = open_journal(o, runs, setup);
     const std::size_t left = runs - s.journal->recorded();
     s.progress = std::make_unique<sweep::ProgressReporter>(left, left * episodes_per_run, stderr, o.plain_progress);

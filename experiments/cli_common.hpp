@@ -115,6 +115,13 @@ struct SweepSession {
   bool root() const;
   /// Removes the journal: every result file is written.
   void complete();
+  /// After an input error during the runs (a policy's command refused by step(), say): removes a journal this
+  /// process started, and the output folder when open_journal made it and nothing else is in it, so that a
+  /// sweep that failed on its input leaves nothing behind. A resumed journal stays: its runs are still good.
+  void discard();
+
+  bool started_journal = false;  ///< the journal is new (not --resume)
+  std::filesystem::path made_out;  ///< the output folder open_sweep made (empty: it existed)
 };
 
 /// Opens a sweep of `runs` runs of `episodes_per_run` episodes each: on the root the journal (open_journal)
@@ -143,6 +150,10 @@ auto run_stoppable(SweepSession& session, Sweep&& sweep) {
   } catch (const sweep::SweepInterrupted&) {
     detail::end_sweep();
     session.progress->finish();
+    throw;
+  } catch (const InputError& e) {
+    session.discard();  // on the root, which keeps the journal; a rank failing elsewhere ends them all
+    detail::fail_in_sweep(e);  // with several ranks, does not return
     throw;
   } catch (const std::exception& e) {
     detail::fail_in_sweep(e);  // with several ranks, does not return

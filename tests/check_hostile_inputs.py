@@ -112,6 +112,11 @@ def main():
         "huge_string.json": json.dumps({"format": "peg3d-policy", "version": 1, "role": "x" * 1000000}),
         "nan.json": '{"format": "peg3d-policy", "version": NaN}',
         "empty.json": "",
+        # Loads (every weight finite), but the network overflows to NaN on its first input: step() refuses it.
+        "overflowing_mlp.json": json.dumps({
+            "format": "peg3d-mlp", "version": 1, "role": "pursuer", "inputs": 20, "action_bound": 0.4,
+            "input_mean": [0.0] * 20, "input_std": [0.01] * 20,
+            "layers": [{"weights": [[1e308 if i % 2 == 0 else -1e308 for i in range(20)]] * 2, "bias": [0.0, 0.0]}]}),
     }
     for name, text in cases.items():
         with open(os.path.join(policies, name), "w") as f:

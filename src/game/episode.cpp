@@ -124,6 +124,19 @@ void Trace::record(const SimState& st, bool after_step) {
   }
 }
 
+const StepEvents& step_naming_file(const Sim& sim, SimState& st, std::span<const Steering> commands,
+                                   std::span<Policy* const> policies) {
+  try {
+    return step(sim, st, commands);
+  } catch (const CommandError& e) {
+    if (e.agent() >= 0 && static_cast<std::size_t>(e.agent()) < policies.size()) {
+      const Policy* p = policies[std::size_t(e.agent())];
+      if (p != nullptr && !p->file().empty()) throw e.played_by(p->file());
+    }
+    throw;
+  }
+}
+
 EpisodeResult play(const Sim& sim, SimState& st, const world::Scenario& scenario, std::span<Policy* const> policies,
                    bool learning, std::uint64_t seed, Trace* trace) {
   reset(sim, st, scenario, seed);
@@ -139,7 +152,7 @@ EpisodeResult play(const Sim& sim, SimState& st, const world::Scenario& scenario
     for (int i = 0; i < n; ++i) {
       if (st.agents[std::size_t(i)].active) commands[std::size_t(i)] = policies[std::size_t(i)]->act(observe(st, i));
     }
-    const StepEvents& ev = step(sim, st, commands);
+    const StepEvents& ev = step_naming_file(sim, st, commands, policies);
     if (learning) {
       for (int i = 0; i < n; ++i) {
         const AgentEvents& e = ev.agents[std::size_t(i)];

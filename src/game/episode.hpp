@@ -106,6 +106,11 @@ struct Trace {
 /// count): "pursuer" alone, else "pursuer0", "pursuer1", ...).
 std::string agent_label(const Trace& trace, int i);
 
+/// step(), with a CommandError for an agent whose policy (policies[i] drives agent i) was read from a file
+/// naming that file (CommandError::played_by).
+const StepEvents& step_naming_file(const Sim& sim, SimState& state, std::span<const Steering> commands,
+                                   std::span<Policy* const> policies);
+
 /// Plays one episode of `scenario`. policies[i] drives agent i (pursuers first, then evaders, in the
 /// scenario's order); distinct agents need distinct policy objects (they may share a FACL model). With
 /// `learning`, policies explore and learn after every step. `trace`, when given, receives every instant

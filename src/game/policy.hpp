@@ -3,6 +3,8 @@
 // agent learns, learn() with the reward of that step and what it sees after it. Policies never touch the
 // world or the other agent's state beyond the view they are given.
 
+#include <filesystem>
+
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
 #include "geometry/kinematics.hpp"
@@ -43,6 +45,14 @@ class Policy {
     (void)next;
     (void)terminal;
   }
+
+  /// The policy file this player plays, when it was read from one, so that errors can name it; empty for a
+  /// policy made in code.
+  const std::filesystem::path& file() const { return file_; }
+  void set_file(std::filesystem::path file) { file_ = std::move(file); }
+
+ private:
+  std::filesystem::path file_;
 };
 
 }  // namespace peg3d::game

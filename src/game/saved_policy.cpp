@@ -18,13 +18,20 @@ std::string hash_of(const std::string& canonical) {
 }  // namespace
 
 std::unique_ptr<Policy> SavedPolicy::make() const {
-  if (facl) return std::make_unique<FaclPolicy>(facl);
-  return std::make_unique<MlpPolicy>(mlp);
+  std::unique_ptr<Policy> player;
+  if (facl) {
+    player = std::make_unique<FaclPolicy>(facl);
+  } else {
+    player = std::make_unique<MlpPolicy>(mlp);
+  }
+  player->set_file(file);
+  return player;
 }
 
 std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role) {
   const PolicyDocument d = read_policy_document(file);
   auto p = std::make_shared<SavedPolicy>();
+  p->file = file;
   if (is_mlp_document(d.doc)) {
     p->mlp = mlp_from_json(d.doc, file, role, d.text);
     p->content_hash = hash_of(d.doc.dump());

@@ -20,6 +20,7 @@ struct SavedPolicy {
   std::shared_ptr<const MlpModel> mlp;    ///< set for an MLP file
   /// "fnv1a64:..." of the model's canonical JSON (a FACL model's as policy_to_json writes it, an MLP's document)
   std::string content_hash;
+  std::filesystem::path file;  ///< where it was read from (its players carry it, for messages)
 
   /// "facl" or "mlp": the name results give the policy's kind.
   const char* kind_name() const { return facl ? "facl" : "mlp"; }

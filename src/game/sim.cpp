@@ -10,6 +10,34 @@
 
 namespace peg3d::game {
 
+CommandError::CommandError(int step, int agent, std::string who, std::string detail, std::filesystem::path file)
+    : InputError(file, 0, "",
+                 fmt::format("step {}: {}{}{}; nothing was stepped", step, who,
+                             who.empty() ? "" : (file.empty() ? ": " : ", played by this policy file: "), detail)),
+      step_(step),
+      agent_(agent),
+      who_(std::move(who)),
+      detail_(std::move(detail)) {}
+
+CommandError CommandError::played_by(const std::filesystem::path& file) const {
+  return CommandError(step_, agent_, who_, detail_, file);
+}
+
+void check_commands(const SimState& st, std::span<const Steering> commands) {
+  const int n = st.agent_count();
+  if (static_cast<int>(commands.size()) != n) {
+    throw CommandError(st.step + 1, -1, "", fmt::format("{} steering commands for {} agents", commands.size(), n));
+  }
+  for (int i = 0; i < n; ++i) {
+    const Steering& u = commands[std::size_t(i)];
+    if (std::isfinite(u.d_alpha) && std::isfinite(u.d_theta)) continue;
+    const AgentState& a = st.agents[std::size_t(i)];
+    if (!a.active) continue;  // ignored by the step
+    throw CommandError(st.step + 1, i, fmt::format("agent {} ({} {})", i, to_string(a.role), a.rank),
+                       fmt::format("steering command ({}, {}) rad is not finite", u.d_alpha, u.d_theta));
+  }
+}
+
 const char* to_string(Outcome o) {
   switch (o) {
     case Outcome::kCapture: return "capture";

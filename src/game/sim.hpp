@@ -18,6 +18,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/error.hpp"
@@ -222,9 +223,34 @@ class Sim {
 /// StartError like Sim::check_scenario.
 void reset(const Sim& sim, SimState& state, const world::Scenario& scenario, std::uint64_t seed);
 
+/// A step's commands that step() refuses: their count is not the state's agent count, or an agent in the game
+/// was given a command that is not finite (NaN or infinity: a caller's bug, or a policy whose network
+/// overflowed). what() names the step, the agent (index, role and rank) and the command, e.g.
+/// "step 18: agent 0 (pursuer 0): steering command (nan, 0) rad is not finite; nothing was stepped". An
+/// InputError: the commands come from the caller or from a policy file, and the programs exit 2 on it.
+class CommandError : public InputError {
+ public:
+  /// `who` names the agent ("agent 0 (pursuer 0)"; empty for a wrong count), `detail` the problem.
+  CommandError(int step, int agent, std::string who, std::string detail, std::filesystem::path file = {});
+  int step() const noexcept { return step_; }    ///< the step it would have been (1 = the first)
+  int agent() const noexcept { return agent_; }  ///< the agent's index; -1 for a wrong count
+  /// The same error, naming the policy file that played the agent: "FILE: step 18: agent 0 (pursuer 0),
+  /// played by this policy file: ...".
+  CommandError played_by(const std::filesystem::path& file) const;
+
+ private:
+  int step_ = 0, agent_ = -1;
+  std::string who_, detail_;
+};
+
+/// Throws CommandError unless `commands` could be stepped from `state`: one per agent, finite for every agent
+/// still in the game (the entries of agents out of it are ignored). step() calls it first, in every build.
+void check_commands(const SimState& state, std::span<const Steering> commands);
+
 /// Advances `state` by one sample of dt. `commands` has one steering command per agent (entries of agents
 /// out of the game are ignored); the command is a requested heading change that the constraint layer
-/// bounds. Returns the state's StepEvents. The state must not be done. Allocates nothing.
+/// bounds. Returns the state's StepEvents. Throws CommandError (check_commands), leaving the state as it
+/// was, when the commands cannot be stepped. The state must not be done. Allocates nothing.
 const StepEvents& step(const Sim& sim, SimState& state, std::span<const Steering> commands);
 
 /// What agent i may use to decide now: its view as the last reset() or step() left it.

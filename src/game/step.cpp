@@ -389,7 +389,7 @@ void end(const Sim& sim, SimState& st) {
 
 const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> commands) {
   assert(!st.done);
-  assert(static_cast<int>(commands.size()) == st.agent_count());
+  check_commands(st, commands);  // before anything changes: a refused step leaves the state as it was
   begin(st, commands);
   constrain(sim, st);
   move(sim, st);

@@ -12,7 +12,10 @@
 
 #include "core/random.hpp"
 #include "game/observation_vector.hpp"
+#include "game/episode.hpp"
 #include "game/policy_io.hpp"
+#include "game/sim.hpp"
+#include "test_arena.hpp"
 
 namespace peg3d::game {
 namespace {
@@ -137,6 +140,42 @@ TEST(SavedPolicy, AddSavedGivesEachAgentItsOwnPlayer) {
   ASSERT_EQ(lineup.size(), 3);
   EXPECT_NE(&lineup[0], &lineup[1]);
   EXPECT_NE(&lineup[1], &lineup[2]);
+}
+
+// An MLP file whose weights are finite but huge (alternating +-1e308) loads, and its network then gives NaN
+// (inf - inf in a sum): play() stops at the first such step with the step's CommandError, naming the file.
+TEST(SavedPolicy, AnOverflowingNetworkIsStoppedAtItsFirstStepNamingItsFile) {
+  const auto file = temp("overflowing_mlp.json");
+  nlohmann::json w = nlohmann::json::array();
+  for (int j = 0; j < 2; ++j) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int i = 0; i < kObservationBase; ++i) row.push_back(i % 2 ? -1e308 : 1e308);
+    w.push_back(row);
+  }
+  const nlohmann::json doc{{"format", "peg3d-mlp"}, {"version", 1}, {"role", "pursuer"}, {"inputs", 20},
+                           {"action_bound", 0.4}, {"input_mean", std::vector<double>(20, 0.0)},
+                           {"input_std", std::vector<double>(20, 0.01)}, {"layers", {{{"weights", w}, {"bias", {0.0, 0.0}}}}}};
+  std::ofstream(file) << doc.dump();
+  const auto saved = load_saved_policy(file, Role::kPursuer);
+  const auto s = testing::scenario("chase", {5, 5, 5}, {20, 25, 12});
+  GameConfig c = preset("peg3d");
+  c.evader.policy = PolicyKind::kFlee;
+  const Sim sim(testing::make_arena(Vec3(35, 35, 20), {}, {s}), c);
+  Lineup lineup;
+  add_saved(lineup, *saved, 1);
+  add_configured(lineup, c, Role::kEvader, 1, 3);
+  SimState state(sim);
+  try {
+    play(sim, state, s, lineup.policies(), false, 3);
+    ADD_FAILURE() << "the episode was played to its end";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.step(), 1);
+    EXPECT_EQ(e.agent(), 0);
+    EXPECT_EQ(e.file(), file);
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind(file.string() + ": step 1: agent 0 (pursuer 0), played by this policy file: steering command (", 0), 0u) << what;
+  }
+  EXPECT_EQ(state.step, 0);
 }
 
 }  // namespace

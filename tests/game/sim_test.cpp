@@ -3,6 +3,7 @@
 #include "game/sim.hpp"
 
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <random>
 #include <regex>
@@ -78,6 +79,117 @@ TEST(Sim, ExternalCommandsReproduceThePolicysEpisode) {
   EXPECT_EQ(scripted.steps, original.steps);
   EXPECT_EQ(scripted.pursuer_return, original.pursuer_return);
   EXPECT_EQ(scripted.final_distance, original.final_distance);
+}
+
+// Everything a step can change, as bits: two states that agree here step on alike.
+std::vector<double> snapshot(const SimState& st) {
+  std::vector<double> x{st.time, double(st.step), double(st.free_evaders), double(st.done), double(st.collisions)};
+  for (const AgentState& a : st.agents) {
+    const KinematicState& k = a.kinematics;
+    x.insert(x.end(), {k.position.x(), k.position.y(), k.position.z(), k.heading.alpha, k.heading.theta, a.path,
+                       a.total_reward, double(a.steps), double(a.active), double(a.opponent),
+                       a.view.percept.target_distance});
+  }
+  return x;
+}
+
+// A command that is not finite, for an agent in the game, is refused at step()'s entry in every build (this
+// suite runs in Release): CommandError names the step and the agent, and nothing is stepped. The state then
+// steps on exactly as one that was never given the bad command.
+TEST(Sim, StepRefusesANonFiniteCommandNamingTheStepAndTheAgent) {
+  const auto s = team("2v1", {{5, 10, 10}, {5, 30, 10}}, {{20, 20, 10}});
+  const Sim sim(make_arena(kSize, {}, {s}), stationary_evaders());
+  SimState state(sim), twin(sim);
+  reset(sim, state, s, 3);
+  reset(sim, twin, s, 3);
+  const std::vector<Steering> good{{0.05, -0.02}, {-0.1, 0.03}, {0.0, 0.0}};
+  for (int k = 0; k < 5; ++k) step(sim, state, good), step(sim, twin, good);
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const char* names[] = {"pursuer 0", "pursuer 1", "evader 0"};
+  for (int i = 0; i < 3; ++i) {
+    for (const double bad : {nan, inf, -inf}) {
+      for (const int component : {0, 1}) {
+        std::vector<Steering> commands = good;
+        (component == 0 ? commands[std::size_t(i)].d_alpha : commands[std::size_t(i)].d_theta) = bad;
+        const std::vector<double> before = snapshot(state);
+        try {
+          step(sim, state, commands);
+          ADD_FAILURE() << "agent " << i << " given " << bad << " was stepped";
+        } catch (const CommandError& e) {
+          EXPECT_EQ(e.step(), 6);
+          EXPECT_EQ(e.agent(), i);
+          const std::string what = e.what();
+          EXPECT_NE(what.find("step 6: agent " + std::to_string(i) + " (" + names[i] + "): steering command ("),
+                    std::string::npos) << what;
+          EXPECT_NE(what.find("not finite; nothing was stepped"), std::string::npos) << what;
+        }
+        EXPECT_EQ(snapshot(state), before);
+      }
+    }
+  }
+  for (int k = 0; k < 20; ++k) step(sim, state, good), step(sim, twin, good);
+  EXPECT_EQ(snapshot(state), snapshot(twin));
+}
+
+TEST(Sim, StepRefusesACommandCountThatIsNotTheAgentCount) {
+  const auto s = team("2v1", {{5, 10, 10}, {5, 30, 10}}, {{20, 20, 10}});
+  const Sim sim(make_arena(kSize, {}, {s}), stationary_evaders());
+  SimState state(sim);
+  reset(sim, state, s, 3);
+  for (const std::size_t n : {0u, 2u, 4u}) {
+    const std::vector<Steering> commands(n);
+    try {
+      step(sim, state, commands);
+      ADD_FAILURE() << n << " commands were stepped";
+    } catch (const CommandError& e) {
+      EXPECT_EQ(e.agent(), -1);
+      EXPECT_EQ(std::string(e.what()), "step 1: " + std::to_string(n) + " steering commands for 3 agents; nothing was stepped");
+    }
+    EXPECT_EQ(state.step, 0);
+  }
+}
+
+// An agent out of the game (a captured evader) takes no command: whatever its entry holds is ignored.
+TEST(Sim, TheCommandsOfAgentsOutOfTheGameAreIgnoredEvenWhenNotFinite) {
+  // As in EveryEvaderCanBeCapturedByAnyPursuerAndLeavesTheGame: P0 captures E0 (agent 2) at step 82.
+  const auto s = team("2v2", {{5, 10, 10}, {5, 30, 10}}, {{15, 10, 10}, {25, 30, 10}});
+  const Sim sim(make_arena(kSize, {}, {s}), stationary_evaders());
+  SimState state(sim);
+  reset(sim, state, s, 1);
+  PurePursuit chase;
+  std::vector<Steering> commands(4);
+  while (state.agents[2].active) {
+    for (int i = 0; i < 2; ++i) commands[std::size_t(i)] = chase.act(observe(state, i));
+    step(sim, state, commands);
+  }
+  EXPECT_EQ(state.step, 82);
+  commands[2] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()};
+  for (int i = 0; i < 2; ++i) commands[std::size_t(i)] = chase.act(observe(state, i));
+  step(sim, state, commands);
+  EXPECT_EQ(state.step, 83);
+}
+
+// A policy whose output is not finite (a network that overflowed) ends play() with the step's CommandError.
+TEST(Sim, APolicyThatEmitsNaNEndsTheEpisodeWithACommandError) {
+  struct Overflowing final : Policy {
+    int calls = 0;
+    Steering act(const AgentView&) override {
+      return {++calls < 12 ? 0.0 : std::numeric_limits<double>::quiet_NaN(), 0.0};
+    }
+  };
+  const auto s = scenario("chase", {5, 5, 5}, {20, 25, 12});
+  const Sim sim(make_arena(kSize, {}, {s}), stationary_evaders());
+  SimState state(sim);
+  Overflowing bad;
+  FleeLineOfSight flee;
+  Policy* policies[] = {&bad, &flee};
+  try {
+    play(sim, state, s, policies, false, 5);
+    ADD_FAILURE() << "the episode ended normally";
+  } catch (const CommandError& e) {
+    EXPECT_EQ(e.step(), 12);
+    EXPECT_EQ(e.agent(), 0);
+  }
 }
 
 TEST(Sim, ResetIsAFunctionOfTheScenarioAndTheSeedOnly) {
