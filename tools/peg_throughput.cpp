@@ -37,6 +37,7 @@ namespace {
 struct Pass {
   double seconds = 0.0;
   long long steps = 0, agent_steps = 0, episodes = 0;
+  long long contact_give_ups = 0;  // mover contact searches that reached their bound (game::StepEvents)
   StepProfile profile;  // summed over threads (empty unless recorded)
 };
 
@@ -55,7 +56,9 @@ Pass run_pass(const game::Sim& sim, long long steps, int threads, bool profiled)
     const long long share = steps / threads + (t < steps % threads ? 1 : 0);
     for (std::uint64_t episode = 0; mine.steps < share; ++episode) {
       const world::Scenario& s = scenarios[episode % scenarios.size()];
-      const int n = game::play(sim, st, s, lineup.policies(), true, derive_seed(3, {std::uint64_t(t), episode})).steps;
+      const game::EpisodeResult r = game::play(sim, st, s, lineup.policies(), true, derive_seed(3, {std::uint64_t(t), episode}));
+      const int n = r.steps;
+      mine.contact_give_ups += r.contact_give_ups;
       mine.steps += n;
       mine.agent_steps += static_cast<long long>(n) * s.agents();
       ++mine.episodes;
@@ -71,6 +74,7 @@ Pass run_pass(const game::Sim& sim, long long steps, int threads, bool profiled)
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const Pass& p : per) {
     total.steps += p.steps, total.agent_steps += p.agent_steps, total.episodes += p.episodes;
+    total.contact_give_ups += p.contact_give_ups;
     for (int k = 0; k < StepProfile::kPartCount; ++k) total.profile.ticks[std::size_t(k)] += p.profile.ticks[std::size_t(k)];
   }
   return total;
@@ -174,6 +178,7 @@ int main(int argc, char** argv) {
         {"env_steps_per_s", double(headline.steps) / headline.seconds},
         {"ns_per_step", headline.seconds * 1e9 / double(headline.steps)},
         {"agent_steps_per_s", double(headline.agent_steps) / headline.seconds},
+        {"contact_give_ups", headline.contact_give_ups},
         {"world_build_s", build_s},
         {"world_cache", stats.cache_status}};
     if (const world::MoverTimeline* movers = sim.movers()) {

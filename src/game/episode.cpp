@@ -16,6 +16,7 @@ EpisodeResult summarize(const SimState& st) {
   r.steps = st.step;
   r.duration = st.time;
   r.collisions = st.collisions;
+  r.contact_give_ups = st.contact_give_ups;
   r.first_collision = st.first_collision;
   r.pursuers = st.pursuers;
   r.evaders = st.evaders();

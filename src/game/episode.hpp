@@ -26,6 +26,7 @@ struct EpisodeResult {
   double pursuer_path = 0.0;    ///< m travelled, mean per pursuer
   double evader_path = 0.0;     ///< m travelled, mean per evader
   int collisions = 0;           ///< collision events of all agents
+  int contact_give_ups = 0;     ///< mover contact searches that gave up and answered conservatively (StepEvents)
   std::optional<CollisionEvent> first_collision;
   double pursuer_return = 0.0;  ///< undiscounted sum of rewards, mean per pursuer
   double evader_return = 0.0;   ///< likewise per evader

@@ -43,6 +43,7 @@ void clear_for(SimState& st, int n, int pursuers, const GameConfig& g) {
   st.outcome = Outcome::kTimeout;
   st.first_collision.reset();
   st.collisions = 0;
+  st.contact_give_ups = st.events.contact_give_ups = 0;
   // A margin above d_s^2 so that rounding can never skip a pair whose distance is <= d_s.
   st.scratch.capture_reach2 = g.capture_distance * g.capture_distance * (1.0 + 1e-9) + 1e-12;
   while (st.collider.agent_count() < n) st.collider.add_agent(1.0);

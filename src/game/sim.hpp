@@ -131,6 +131,10 @@ struct StepEvents {
   std::vector<CollisionEvent> collisions;  ///< in the order detected (agents in index order); up to 3 per agent
   std::vector<CaptureEvent> captures;      ///< in evader index order
   std::vector<PushEvent> pushes;           ///< push mode: each agent's pushes, agents in index order
+  /// Mover contact searches that reached their bound (world::MoverTimeline::kMaxAdvancementSteps) and answered
+  /// a contact where the agent was last proved apart (world::MoverContact::gave_up): a collision that may not
+  /// be one, never one missed. 0 in practice; peg-throughput reports the total.
+  int contact_give_ups = 0;
   bool terminal = false;   ///< the game ended: every evader captured or a terminating collision
   bool truncated = false;  ///< the time limit ended it (not a terminal state of the game: learners bootstrap)
 };
@@ -153,6 +157,7 @@ class SimState {
   Outcome outcome = Outcome::kTimeout;  ///< valid once done
   std::optional<CollisionEvent> first_collision;
   int collisions = 0;              ///< collision events so far
+  int contact_give_ups = 0;        ///< StepEvents::contact_give_ups so far
   Rng rng;                         ///< the run's engine (random initial headings)
   world::CollisionWorld collider;  ///< per-run collision scratch over the Sim's arena (agent i is body i)
   /// With mover_sensing = octree on a map with movers: the octree and EDT that follow the movers (rebuilt by

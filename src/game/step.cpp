@@ -45,6 +45,11 @@ void record_collision(SimState& st, const CollisionEvent& e) {
   if (!st.first_collision) st.first_collision = e;
 }
 
+void count_give_up(SimState& st) {
+  ++st.events.contact_give_ups;
+  ++st.contact_give_ups;
+}
+
 world::Contact contact_of(int agent, const world::MoverContact& m) {
   world::Contact c;
   c.agent = agent;
@@ -82,6 +87,7 @@ void begin(SimState& st, std::span<const Steering> commands) {
   ev.collisions.clear();
   ev.captures.clear();
   ev.pushes.clear();
+  ev.contact_give_ups = 0;
   ev.terminal = ev.truncated = false;
   for (int i = 0; i < st.agent_count(); ++i) {
     const AgentState& a = st.agents[std::size_t(i)];
@@ -150,6 +156,7 @@ void mover_contacts(const Sim& sim, SimState& st, int i, const Vec3& from, const
   const auto& c = a.mover_clearance;
   const bool clear = c.time == st.time && c.at == from && movers.clear_of_contact(c.distance, from, to, radius, st.time, dt);
   const auto m = clear ? std::nullopt : movers.first_contact(from, to, radius, st.time, dt);
+  if (m && m->gave_up) count_give_up(st);
   if (m && (!hit || m->fraction < hit->fraction)) {
     k.position = stopped_at(from, to, m->fraction);
     st.collider.place_agent(a.body, k.position);
@@ -162,6 +169,7 @@ void mover_contacts(const Sim& sim, SimState& st, int i, const Vec3& from, const
   if (hit->fraction >= 1.0 || clear) return;  // clear: the sphere anywhere on its segment during the step
   const double rest = 1.0 - hit->fraction;
   if (auto late = movers.first_contact(k.position, k.position, radius, st.time + hit->fraction * dt, rest * dt)) {
+    if (late->gave_up) count_give_up(st);
     late->fraction = hit->fraction + late->fraction * rest;
     record_collision(st, event_of(st, i, contact_of(i, *late), dt));
   }

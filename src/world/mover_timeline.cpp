@@ -441,26 +441,36 @@ void MoverTimeline::contact_with(int m, const Vec3& from, const Vec3& to, double
   if ((from - p0.position).norm() - spec.shape.bounding_radius() - radius > closing + kContactTolerance) return;
   // Conservative advancement: at s (fraction of the step) the gap g(s) can shrink by at most closing * ds, so
   // advancing by g / closing never skips a contact, however fast the two move.
+  const auto found = [&](double s, const Pose& at, const Vec3& c, double signed_gap, bool gave_up) {
+    const TouchPoint tp = touch_point(spec.shape, at, c, radius);
+    MoverContact contact;
+    contact.mover = m;
+    contact.fraction = s;
+    contact.point = tp.point;
+    contact.normal = tp.normal;
+    contact.penetration = s == 0.0 ? std::max(0.0, -signed_gap) : 0.0;
+    contact.gave_up = gave_up;
+    best = contact;
+  };
   double s = 0.0;
-  for (int iteration = 0; iteration < 100000 && s <= 1.0; ++iteration) {
+  for (int iteration = 0; iteration < kMaxAdvancementSteps; ++iteration) {
     const Vec3 c = from + s * (to - from);
     const Pose at = pose(m, t0 + s * dt);
     const double signed_gap = signed_distance(spec.shape, at, c) - radius;
     if (signed_gap <= kContactTolerance) {
-      if (best && best->fraction <= s) return;
-      const TouchPoint tp = touch_point(spec.shape, at, c, radius);
-      MoverContact contact;
-      contact.mover = m;
-      contact.fraction = s;
-      contact.point = tp.point;
-      contact.normal = tp.normal;
-      contact.penetration = s == 0.0 ? std::max(0.0, -signed_gap) : 0.0;
-      best = contact;
+      if (!best || s < best->fraction) found(s, at, c, signed_gap, false);
       return;
     }
     if (closing <= 0.0) return;  // neither moves: the gap stays
-    s += signed_gap / closing;
-    if (best && s >= best->fraction) return;  // cannot beat a contact already found
+    const double next = s + signed_gap / closing;
+    if (next > 1.0) return;                         // free to the end of the step
+    if (best && next >= best->fraction) return;     // cannot beat a contact already found
+    if (iteration + 1 == kMaxAdvancementSteps) {
+      // Out of steps before an answer: a contact where the sphere was last measured apart, never a miss.
+      found(s, at, c, signed_gap, true);
+      return;
+    }
+    s = next;
   }
 }
 

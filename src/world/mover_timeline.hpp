@@ -67,6 +67,9 @@ struct MoverContact {
   Vec3 point = Vec3::Zero();     ///< m, on the mover's surface
   Vec3 normal = Vec3::UnitZ();   ///< unit, from the mover towards the agent
   double penetration = 0.0;      ///< m, when already overlapping at the start of the step
+  /// The search reached its bound (MoverTimeline::kMaxAdvancementSteps) before it could tell: the contact is
+  /// assumed at the last fraction it proved free, where the sphere still stood apart from the mover.
+  bool gave_up = false;
 };
 
 /// What a timeline holds and what it cost, for peg-map check and the performance pages.
@@ -86,6 +89,10 @@ class MoverTimeline {
  public:
   /// Contacts closer than this count as touching (m): it bounds conservative advancement's work.
   static constexpr double kContactTolerance = 1e-4;
+  /// The most advancement steps a contact search takes with one mover. A search that reaches it without an
+  /// answer (an agent skimming a mover that moves fast, by a hair more than the tolerance) answers a contact at
+  /// the last fraction it proved free (MoverContact::gave_up): never a missed one.
+  static constexpr int kMaxAdvancementSteps = 100000;
   /// Most bytes a timeline may need in the worst case (every dynamic body moving for the whole duration).
   static constexpr std::size_t kMaxBytes = std::size_t{256} << 20;
   /// Length of a block, s (its keyframes are the nearest whole number at the keyframe rate, at least one).
@@ -123,7 +130,8 @@ class MoverTimeline {
 
   /// The first contact, during the step [t0, t0 + dt], of a sphere of `radius` moving from `from` to `to` at
   /// constant velocity with any mover (the earliest, the lowest index among equally early ones); nullopt when
-  /// it touches none. No allocation.
+  /// it touches none. A search that reaches kMaxAdvancementSteps answers conservatively (MoverContact::gave_up).
+  /// No allocation.
   std::optional<MoverContact> first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
                                             double dt) const;
 

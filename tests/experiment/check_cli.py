@@ -8,7 +8,8 @@
   an obstacle, a scenario name that climbs out of --out, a configuration file with an unknown key, a policy
   that cannot play its role;
 - figures are drawn into an --out path with spaces and quotes (no shell in between);
-- the programs carry no path into the source tree and run from a copy of build/bin and build/share.
+- the programs carry no path into the source tree and run from a copy of build/bin and build/share;
+- peg-throughput reports the mover contact searches that gave up (a ball orbiting a standing evader a hair away).
 
 usage: check_cli.py BUILD_BIN_DIR SOURCE_DIR WORK_DIR
 """
@@ -192,6 +193,20 @@ def main():
         check(r.returncode == 2, f"{what}: status {r.returncode}, expected 2 ({r.stderr[-500:]})")
         check(r.stderr.startswith("error:") and named in r.stderr, f"{what}: message names {named!r}: {r.stderr[:300]!r}")
         check(not os.path.exists(bad), f"{what}: nothing written")
+
+    # peg-throughput counts the mover contact searches that gave up: a ball orbits a standing evader in 0.01 s,
+    # 1.5e-4 m from its sphere (radius 0.25), so no search can finish within its bound; each answers a collision.
+    write(os.path.join(maps, "orbit.yaml"),
+          "arena: {size: [35, 35, 20]}\nmovers:\n  - kind: sphere\n    radius: 1.0\n"
+          "    orbit: {center: [12, 12, 10], radius: 1.25015, period: 0.01}\n"
+          "start:\n  pursuer: {position: [30, 30, 10]}\n  evader: {position: [12, 12, 10]}\n")
+    r = run([os.path.join(bin_dir, "peg-throughput"), "--map", os.path.join(maps, "orbit.yaml"), "--steps", "20",
+             "--no-breakdown", "--no-cache", "--set", "evader.speed=0", "--set", "evader.guard.enabled=false"])
+    check(r.returncode == 0, f"peg-throughput on orbit.yaml: status {r.returncode}: {r.stderr[-500:]}")
+    if r.returncode == 0:
+        t = json.loads(r.stdout)
+        check(t["contact_give_ups"] == t["episodes"] == 20,
+              f"peg-throughput reports one give-up per one-step episode: {t['contact_give_ups']} in {t['episodes']}")
 
     # Figures into a folder whose name a shell would split and unquote.
     odd = os.path.join(work, "it's a \"folder\" $HOME")

@@ -433,6 +433,39 @@ TEST(Sim, AnAgentAHairOutsideTheMoversReachIsNotHit) {
   EXPECT_EQ(r.collisions, 0);
 }
 
+// A ball orbiting a standing evader fast (a turn in 0.01 s, 785 m/s), its surface 1.5e-4 m from the evader's
+// sphere: the contact search cannot finish within its bound (MoverTimeline::kMaxAdvancementSteps). It answers a
+// contact, never none: a collision, counted in the step's events and the episode's result.
+TEST(Sim, AContactSearchThatGivesUpIsACollisionCountedInTheStepsEvents) {
+  world::MapSpec m;
+  m.name = "orbit";
+  m.bounds = {Vec3::Zero(), Vec3(35, 35, 20)};
+  m.resolution = 0.25;
+  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  const Vec3 evader(12, 12, 10);
+  const GameConfig c = standing_evader();
+  world::MoverSpec mover;
+  mover.shape = {Shape::Kind::kSphere, 1.0, 1.0, Vec3::Ones()};
+  mover.motion = world::MoverSpec::Motion::kOrbit;
+  mover.orbit = {evader, 1.0 + c.evader.radius + 1.5e-4, 0.01, Vec3::UnitZ(), 0.0};
+  m.movers.push_back(mover);
+  m.scenarios.push_back(scenario("orbit", {30, 30, 10}, evader));
+  const auto arena = world::Arena::build(m);
+  const Sim sim(arena, c);
+  SimState state(sim);
+  reset(sim, state, arena->map().scenarios[0], 1);
+  const std::vector<Steering> still(2);
+  const StepEvents& ev = step(sim, state, still);
+  EXPECT_EQ(ev.contact_give_ups, 1);
+  ASSERT_EQ(ev.collisions.size(), 1u);
+  EXPECT_EQ(ev.collisions[0].agent, 1);
+  EXPECT_EQ(ev.collisions[0].kind, world::ObstacleKind::kMover);
+  EXPECT_GT(ev.collisions[0].fraction, 0.0);
+  EXPECT_LT(ev.collisions[0].fraction, 1.0);
+  EXPECT_EQ(state.contact_give_ups, 1);
+  EXPECT_EQ(summarize(state).contact_give_ups, 1);
+}
+
 // An episode on the patrol map (spheres and movers) reset from its second scenario: pure pursuit against flee,
 // collisions penalized (the game goes on through them).
 struct PatrolChase {

@@ -181,6 +181,39 @@ TEST(WorldMovers, AStandingSphereIsHitWhenTheMoverReachesItAndMissedByAHair) {
   EXPECT_NEAR(0.4 + head_on->fraction * 0.1, 0.4 + (14.0 - 10.0 - 1.25) / 40.0, 1e-5);
 }
 
+// An agent running in lockstep beside a mover at 300 m/s, a hair (1.5e-4 m) more than the contact tolerance
+// apart: conservative advancement creeps by gap / closing = 1.5e-4 / 60 of the step, and would need 400 000
+// steps to finish. At its bound it answers a contact where it last measured the agent apart (gave_up), never
+// "no contact"; the same pair at 30 m/s needs 40 000 steps and finds, rightly, none.
+TEST(WorldMovers, AContactSearchThatReachesItsBoundAnswersAContactWhereTheAgentWasApart) {
+  for (const double speed : {300.0, 30.0}) {
+    MapSpec spec = testing::empty_spec(Vec3(40, 10, 10), 0.5);
+    spec.movers.push_back(path_mover({Vec3(2, 5, 5), Vec3(38, 5, 5)}, speed, false));
+    const auto t = testing::build(spec)->movers_until(1.0);
+    const double dt = 0.1, r = 0.25, gap = 1.5e-4;
+    const Vec3 from(2, 5 + 1.0 + r + gap, 5), to = from + Vec3(speed * dt, 0, 0);
+    const auto c = t->first_contact(from, to, r, 0.0, dt);
+    const auto scan = t->first_contact_scan(from, to, r, 0.0, dt);
+    if (speed == 30.0) {
+      EXPECT_FALSE(c.has_value());
+      EXPECT_FALSE(scan.has_value());
+      continue;
+    }
+    ASSERT_TRUE(c.has_value());
+    EXPECT_TRUE(c->gave_up);
+    EXPECT_EQ(c->mover, 0);
+    // About kMaxAdvancementSteps steps of gap / closing into the step (closing: both travel 30 m).
+    EXPECT_NEAR(c->fraction, MoverTimeline::kMaxAdvancementSteps * gap / (2 * speed * dt), 1e-3);
+    // There the agent stands apart from the mover, beyond the tolerance.
+    const Vec3 at = from + c->fraction * (to - from);
+    EXPECT_GT((at - t->pose(0, c->fraction * dt).position).norm() - 1.0 - r, MoverTimeline::kContactTolerance);
+    EXPECT_NEAR(c->normal.y(), 1.0, 1e-9);
+    ASSERT_TRUE(scan.has_value());
+    EXPECT_TRUE(scan->gave_up);
+    EXPECT_EQ(scan->fraction, c->fraction);
+  }
+}
+
 TEST(WorldMovers, NearestPointIsExactForEveryShape) {
   MapSpec spec = testing::empty_spec(Vec3(20, 20, 20), 0.5);
   MoverSpec box = path_mover({Vec3(5, 5, 5), Vec3(15, 5, 5)}, 1.0, false);
