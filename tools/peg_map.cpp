@@ -161,6 +161,17 @@ int main(int argc, char** argv) {
         fmt::print("motion     {:g} s, {} dynamic bodies at {} keyframes/s in {} blocks; worst case {} (budget {})\n",
                    timeline->duration(), t.dynamic_bodies, t.keyframe_hz, t.blocks, mib(double(t.worst_case_bytes)),
                    mib(double(peg3d::world::MoverTimeline::kMaxBytes)));
+        if (t.dynamic_bodies > 0 && t.keyframe_hz_chosen) {
+          if (timeline->keyframe_stride() == 1) {
+            fmt::print("keyframes  every substep ({}/s): the map sets no physics.keyframe_hz, and every substep fits\n",
+                       t.keyframe_hz);
+          } else {
+            fmt::print("keyframes  {}/s (one every {} substeps), chosen: the map sets no physics.keyframe_hz, and "
+                       "every substep would need up to {}; the highest rate dividing rate_hz = {} within the budget\n",
+                       t.keyframe_hz, timeline->keyframe_stride(), mib(double(t.every_substep_bytes)),
+                       timeline->rate_hz());
+          }
+        }
         if (motion) {
           fmt::print("simulated  in {:.3f} s, {} held; {} body-blocks at rest stored once, {} moving\n",
                      t.simulate_seconds, mib(double(t.bytes)), t.resting_entries, t.moving_entries);

@@ -110,10 +110,9 @@ Problem check_physics(const PhysicsSpec& physics) {
   if (physics.rate_hz < 1 || physics.rate_hz > 100000) {
     return {"rate_hz", fmt::format("must lie in [1, 100000], got {}", physics.rate_hz)};
   }
-  if (physics.keyframe_hz < 0 || physics.keyframe_hz > physics.rate_hz ||
-      (physics.keyframe_hz > 0 && physics.rate_hz % physics.keyframe_hz != 0)) {
+  if (const std::optional<int> k = physics.keyframe_hz; k && (*k < 0 || *k > physics.rate_hz || (*k > 0 && physics.rate_hz % *k != 0))) {
     return {"keyframe_hz", fmt::format("must be 0 (every substep) or divide rate_hz = {} into whole substeps, got {}",
-                                       physics.rate_hz, physics.keyframe_hz)};
+                                       physics.rate_hz, *k)};
   }
   return finite("gravity", physics.gravity);
 }

@@ -102,8 +102,9 @@ struct PhysicsSpec {
   int rate_hz = 240;                 ///< physics substeps per second; the game step must be a whole number of them
   /// Poses of the dynamic bodies kept per second for the game (world/mover_timeline.hpp), between which their
   /// motion is interpolated; 0: every substep (rate_hz, the exact simulated motion). rate_hz must be a whole
-  /// multiple of it.
-  int keyframe_hz = 0;
+  /// multiple of it. Unset (the default): the timeline picks the highest rate dividing rate_hz, down to
+  /// MoverTimeline::kMinChosenKeyframeHz, whose worst case fits its budget (every substep whenever that fits).
+  std::optional<int> keyframe_hz;
   bool faces_are_physical = true;    ///< the arena's six faces are static planes for dynamic bodies
   int line = 0;                      ///< line of `physics` in the map file (0: unknown)
 };

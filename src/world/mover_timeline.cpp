@@ -48,12 +48,13 @@ struct Layout {
   std::size_t blocks = 1;
 };
 
-Layout layout_of(const PhysicsSpec& physics, double duration) {
+// `stride` substeps a keyframe at `rate_hz`.
+Layout layout_of(int rate_hz, int stride, double duration) {
   Layout l;
-  l.stride = physics.keyframe_hz > 0 ? physics.rate_hz / physics.keyframe_hz : 1;
-  l.substeps = static_cast<long>(std::ceil(duration * physics.rate_hz - 1e-9));
+  l.stride = stride;
+  l.substeps = static_cast<long>(std::ceil(duration * rate_hz - 1e-9));
   l.keyframes = (l.substeps + l.stride - 1) / l.stride;
-  const double per_s = static_cast<double>(physics.rate_hz) / l.stride;
+  const double per_s = static_cast<double>(rate_hz) / l.stride;
   l.block_keyframes = std::max(1L, std::lround(MoverTimeline::kBlockSeconds * per_s));
   l.blocks = static_cast<std::size_t>(std::max(1L, (l.keyframes + l.block_keyframes - 1) / l.block_keyframes));
   return l;
@@ -123,18 +124,41 @@ std::size_t MoverTimeline::estimate(long keyframes, std::size_t blocks, std::siz
   return poses + blocks * per_block;
 }
 
-std::size_t MoverTimeline::worst_case_bytes(const MapSpec& spec, double duration) {
-  const Layout l = layout_of(spec.physics, duration);
+std::size_t MoverTimeline::worst_case_bytes(const MapSpec& spec, double duration, int stride) {
+  const Layout l = layout_of(spec.physics.rate_hz, stride, duration);
   std::size_t dynamic = 0;
   for (const MoverSpec& m : spec.movers) dynamic += !m.kinematic();
   return estimate(l.keyframes, l.blocks, dynamic, spec.movers.size());
 }
 
+std::size_t MoverTimeline::worst_case_bytes(const MapSpec& spec, double duration) {
+  const std::optional<int> k = spec.physics.keyframe_hz;
+  return worst_case_bytes(spec, duration, k && *k > 0 ? spec.physics.rate_hz / *k : 1);
+}
+
+MoverTimeline::Rate MoverTimeline::keyframe_rate(const MapSpec& spec, double duration, std::size_t max_bytes) {
+  const int rate = spec.physics.rate_hz;
+  if (const std::optional<int> k = spec.physics.keyframe_hz) return {*k > 0 ? rate / *k : 1, false};
+  // Strides in increasing order are rates in decreasing order: the first that fits is the highest.
+  int lowest = 1;
+  for (int stride = 1; stride <= rate; ++stride) {
+    if (rate % stride != 0) continue;
+    if (stride > 1 && rate / stride < kMinChosenKeyframeHz) break;
+    lowest = stride;
+    if (worst_case_bytes(spec, duration, stride) <= max_bytes) return {stride, true};
+  }
+  return {lowest, true};  // fits at no rate the timeline may choose: refused by the constructor
+}
+
 MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
                              std::size_t max_bytes, bool with_dynamic)
     : movers_(spec.movers), with_dynamic_(with_dynamic), rate_hz_(spec.physics.rate_hz) {
-  const Layout l = layout_of(spec.physics, duration);
+  // Chosen from the map's dynamic bodies whether or not this timeline keeps them, so that push mode's timeline
+  // of the scripted movers has the layout of the shared one.
+  const Rate rate = keyframe_rate(spec, duration, max_bytes);
+  const Layout l = layout_of(rate_hz_, rate.stride, duration);
   stride_ = l.stride;
+  keyframe_rate_chosen_ = rate.chosen;
   keyframes_per_s_ = static_cast<double>(rate_hz_) / stride_;
   keyframes_ = l.keyframes;
   block_keyframes_ = l.block_keyframes;
@@ -160,6 +184,16 @@ MoverTimeline::MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh
     return;
   }
   worst_case_bytes_ = estimate(l.keyframes, l.blocks, std::size_t(dynamic_), movers_.size());
+  every_substep_bytes_ = worst_case_bytes(spec, duration, 1);
+  if (worst_case_bytes_ > max_bytes && rate.chosen) {
+    throw MapError(spec.source, spec.physics.line, "physics.keyframe_hz",
+                   fmt::format("{} dynamic bodies over {:g} s need up to {:.0f} MiB for their motion (every body "
+                               "moving all the time) even at {:g} keyframes/s, the lowest rate chosen when the map "
+                               "sets none, more than the budget of {:.0f} MiB: set a lower physics.keyframe_hz "
+                               "(dividing rate_hz = {}), fewer bodies or a shorter game",
+                               dynamic_, duration, worst_case_bytes_ / 1048576.0, keyframes_per_s_,
+                               max_bytes / 1048576.0, rate_hz_));
+  }
   if (worst_case_bytes_ > max_bytes) {
     const double per_keyframe_hz = static_cast<double>(worst_case_bytes_) / keyframes_per_s_;
     const int fits = static_cast<int>(std::floor(static_cast<double>(max_bytes) / per_keyframe_hz));
@@ -498,6 +532,8 @@ TimelineStats MoverTimeline::stats() const {
   TimelineStats s;
   s.dynamic_bodies = dynamic_;
   s.keyframe_hz = static_cast<int>(std::lround(keyframes_per_s_));
+  s.keyframe_hz_chosen = keyframe_rate_chosen_;
+  s.every_substep_bytes = every_substep_bytes_;
   s.blocks = blocks_.size();
   s.blocks_simulated = ready_.load(std::memory_order_relaxed);
   s.worst_case_bytes = worst_case_bytes_;

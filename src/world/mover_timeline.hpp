@@ -76,6 +76,8 @@ struct MoverContact {
 struct TimelineStats {
   int dynamic_bodies = 0;
   int keyframe_hz = 0;                ///< keyframes per second of the dynamic bodies
+  bool keyframe_hz_chosen = false;    ///< the map set no physics.keyframe_hz: the timeline chose it
+  std::size_t every_substep_bytes = 0;  ///< the budget's estimate had every substep been kept
   std::size_t blocks = 0;             ///< blocks of the whole duration
   std::size_t blocks_simulated = 0;   ///< blocks built so far
   std::size_t worst_case_bytes = 0;   ///< the budget's estimate: every body moving all the time
@@ -99,10 +101,15 @@ class MoverTimeline {
   static constexpr double kBlockSeconds = 0.25;
   /// Blocks a window: one index serves the blocks of a window, each block a frame of its own (BoxIndex).
   static constexpr std::size_t kWindowBlocks = 4;
+  /// The lowest keyframe rate (1/s) the timeline chooses for a map that sets no physics.keyframe_hz: sparser
+  /// keyframes would draw the bodies' flight too coarsely to pass for their motion (a map may still ask for one).
+  static constexpr int kMinChosenKeyframeHz = 10;
 
   /// The map's movers from 0 to at least `duration` s. `meshes` are the map's placed terrain meshes, in
   /// spec.meshes' order, kept by reference until every block is simulated (the Arena owns them). Throws MapError
-  /// (naming physics.keyframe_hz and the estimate) when the worst case exceeds `max_bytes`. Simulates nothing.
+  /// (naming physics.keyframe_hz and the estimate) when the worst case exceeds `max_bytes`; a map that sets no
+  /// keyframe rate gets the highest one that fits (keyframe_rate()), and is refused only when none from
+  /// kMinChosenKeyframeHz up does. Simulates nothing.
   /// Without `with_dynamic` the dynamic bodies are left out: never simulated, in no query (pose() gives their
   /// start), for push mode, where each run moves them in a world of its own.
   MoverTimeline(const MapSpec& spec, const std::vector<TriangleMesh>& meshes, double duration,
@@ -165,8 +172,20 @@ class MoverTimeline {
   bool clear_of_contact(double clearance, const Vec3& from, const Vec3& to, double radius, double t0,
                         double dt) const;
 
-  /// The worst-case bytes of a map's timeline over `duration` s (what the budget is checked against).
+  /// The worst-case bytes of a map's timeline over `duration` s (what the budget is checked against), at the
+  /// map's keyframe rate (every substep when it sets none), or keeping every `stride`-th substep.
   static std::size_t worst_case_bytes(const MapSpec& spec, double duration);
+  static std::size_t worst_case_bytes(const MapSpec& spec, double duration, int stride);
+
+  /// Substeps per keyframe of a map's timeline over `duration` s, and whether the timeline chose it: the map's
+  /// physics.keyframe_hz; or, when it sets none, the smallest stride dividing rate_hz (the highest rate) whose
+  /// worst case fits `max_bytes`, keeping at least kMinChosenKeyframeHz keyframes a second (when none fits,
+  /// the stride of that lowest rate, which the constructor refuses).
+  struct Rate {
+    int stride = 1;
+    bool chosen = false;
+  };
+  static Rate keyframe_rate(const MapSpec& spec, double duration, std::size_t max_bytes = kMaxBytes);
 
   /// What it holds now. Thread-safe.
   TimelineStats stats() const;
@@ -215,6 +234,8 @@ class MoverTimeline {
   double duration_ = 0.0;
   int rate_hz_ = 240;
   int stride_ = 1;            ///< substeps per keyframe
+  bool keyframe_rate_chosen_ = false;  ///< stride_ chosen by keyframe_rate(), the map setting none
+  std::size_t every_substep_bytes_ = 0;
   double keyframes_per_s_ = 240.0;
   long keyframes_ = 0;        ///< index of the last keyframe (keyframes 0..keyframes_)
   long block_keyframes_ = 1;  ///< keyframes per block (a block holds block_keyframes_ + 1, sharing its ends)

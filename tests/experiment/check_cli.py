@@ -9,7 +9,8 @@
   that cannot play its role;
 - figures are drawn into an --out path with spaces and quotes (no shell in between);
 - the programs carry no path into the source tree and run from a copy of build/bin and build/share;
-- peg-throughput reports the mover contact searches that gave up (a ball orbiting a standing evader a hair away).
+- peg-throughput reports the mover contact searches that gave up (a ball orbiting a standing evader a hair away);
+- peg-map check says which keyframe rate it chose for a map that sets none.
 
 usage: check_cli.py BUILD_BIN_DIR SOURCE_DIR WORK_DIR
 """
@@ -207,6 +208,22 @@ def main():
         t = json.loads(r.stdout)
         check(t["contact_give_ups"] == t["episodes"] == 20,
               f"peg-throughput reports one give-up per one-step episode: {t['contact_give_ups']} in {t['episodes']}")
+
+    # A map that sets no keyframe rate runs at the highest that fits the motion budget, and peg-map check says
+    # which; the same map asking for every substep is refused as before. 200 bodies over the default game:
+    # every substep would need about 304 MiB of the 256.
+    balls = "".join(f"  - {{kind: sphere, radius: 0.3, dynamic: {{position: [{2 + k % 15 * 2.2:.2f}, "
+                    f"{2 + k // 15 * 2.2:.2f}, 0.3], mass: 2}}}}\n" for k in range(200))
+    head = "arena: {size: [35, 35, 20]}\nstart: {pursuer: {position: [1, 1, 19]}, evader: {position: [34, 34, 19]}}\n"
+    write(os.path.join(maps, "bodies_200.yaml"), head + "movers:\n" + balls)
+    write(os.path.join(maps, "bodies_200_every.yaml"), head + "physics: {keyframe_hz: 0}\nmovers:\n" + balls)
+    peg_map = os.path.join(bin_dir, "peg-map")
+    r = run([peg_map, "check", os.path.join(maps, "bodies_200.yaml"), "--no-cache"])
+    check(r.returncode == 0 and "keyframes  120/s (one every 2 substeps), chosen: the map sets no physics.keyframe_hz"
+          in r.stdout, f"peg-map check chooses 120 keyframes/s: status {r.returncode}: {r.stdout[-600:]}{r.stderr[-300:]}")
+    r = run([peg_map, "check", os.path.join(maps, "bodies_200_every.yaml"), "--no-cache"])
+    check(r.returncode == 2 and "bodies_200_every.yaml:3: physics.keyframe_hz:" in r.stderr,
+          f"a map that asks for every substep over the budget is refused: {r.returncode}: {r.stderr[:300]}")
 
     # Figures into a folder whose name a shell would split and unquote.
     odd = os.path.join(work, "it's a \"folder\" $HOME")

@@ -255,6 +255,57 @@ TEST(WorldMoverIndex, BodiesAtRestAreStoredOnceAndTheBudgetHoldsTheWorstCase) {
   EXPECT_NO_THROW((void)testing::build(spec)->movers_until(100.0));
 }
 
+// A map that sets no keyframe rate runs: the timeline keeps every substep when that fits its budget, else the
+// highest rate dividing rate_hz that does (the next higher one would not), and its poses are those of a map
+// that asks for that rate. Below kMinChosenKeyframeHz it refuses, naming physics.keyframe_hz.
+TEST(WorldMoverIndex, AMapThatSetsNoKeyframeRateGetsTheHighestThatFits) {
+  MapSpec spec = crowded();
+  spec.physics.keyframe_hz.reset();
+  const auto arena = testing::build(spec);
+  const double duration = 6.0;
+  const std::size_t every = MoverTimeline::worst_case_bytes(spec, duration, 1);
+  for (const double share : {1.0, 0.6, 0.3, 0.13}) {
+    const auto budget = static_cast<std::size_t>(share * double(every));
+    const MoverTimeline t(arena->map(), arena->meshes(), duration, budget);
+    const int stride = t.keyframe_stride();
+    EXPECT_TRUE(t.stats().keyframe_hz_chosen);
+    EXPECT_EQ(spec.physics.rate_hz % stride, 0) << share;
+    EXPECT_LE(MoverTimeline::worst_case_bytes(spec, duration, stride), budget) << share;
+    for (int finer = stride - 1; finer >= 1; --finer) {
+      if (spec.physics.rate_hz % finer == 0) {
+        EXPECT_GT(MoverTimeline::worst_case_bytes(spec, duration, finer), budget) << share << ": " << finer << " fits";
+      }
+    }
+    if (share == 1.0) {
+      EXPECT_EQ(stride, 1);
+    } else {
+      EXPECT_GT(stride, 1);
+    }
+    // The same motion as the map that asks for the chosen rate, to the bit.
+    MapSpec asked = spec;
+    asked.physics.keyframe_hz = spec.physics.rate_hz / stride;
+    const auto asked_arena = testing::build(asked);
+    const MoverTimeline u(asked_arena->map(), asked_arena->meshes(), duration);
+    EXPECT_FALSE(u.stats().keyframe_hz_chosen);
+    for (int m = 200; m < 300; m += 7) {
+      for (const double at : {0.3, 1.77, 5.9}) {
+        const Pose a = t.pose(m, at), b = u.pose(m, at);
+        ASSERT_EQ(0, std::memcmp(a.position.data(), b.position.data(), 3 * sizeof(double))) << m << " at " << at;
+      }
+    }
+  }
+  // 10 keyframes a second would need more than this: refused, as a map that asks for a rate over budget is.
+  const std::size_t lowest = MoverTimeline::worst_case_bytes(spec, duration, spec.physics.rate_hz / MoverTimeline::kMinChosenKeyframeHz);
+  try {
+    MoverTimeline(arena->map(), arena->meshes(), duration, lowest - 1);
+    FAIL() << "a timeline over its budget at every rate it may choose was accepted";
+  } catch (const MapError& e) {
+    EXPECT_EQ(e.field(), "physics.keyframe_hz");
+    EXPECT_NE(std::string(e.what()).find("even at 10 keyframes/s"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(MoverTimeline(arena->map(), arena->meshes(), duration, lowest).keyframe_stride(), 24);
+}
+
 TEST(WorldMoverIndex, ThinnedKeyframesAreTheSimulatedPosesOfThoseInstants) {
   const auto every = testing::build(crowded())->movers_until(4.0);
   const auto thinned = testing::build(crowded(30))->movers_until(4.0);  // every 8th substep of 240
