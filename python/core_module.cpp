@@ -102,19 +102,9 @@ PYBIND11_MODULE(_core, m) {
         py::gil_scoped_release unlocked;
         b.reset(seed);
       }, py::arg("seed") = py::none())
-      .def("check_actions", [](const env::Batch& b, py::array_t<double, py::array::c_style | py::array::forcecast> a) {
-        if (a.ndim() != 3 || a.shape(0) != b.games() || a.shape(1) != b.agents() || a.shape(2) != 2) {
-          throw py::value_error("actions must have the shape (games, agents, 2)");
-        }
-        return b.check_actions(a.data());
-      })
       .def("step", [](env::Batch& b, py::array_t<double, py::array::c_style | py::array::forcecast> a) {
         if (a.ndim() != 3 || a.shape(0) != b.games() || a.shape(1) != b.agents() || a.shape(2) != 2) {
           throw py::value_error("actions must have the shape (games, agents, 2)");
-        }
-        if (const auto bad = b.check_actions(a.data())) {
-          throw py::value_error("game " + std::to_string(bad->first) + ", " + b.agent_names()[std::size_t(bad->second)] +
-                                ": the action is not finite");
         }
         {
           py::gil_scoped_release unlocked;

@@ -99,7 +99,8 @@ def check_seed(seed):
 
 
 def check_action(name, a, shape):
-    """An action as a float64 array of `shape`, or ValueError naming the agent (or role)."""
+    """An action as a float64 array of `shape`, or ValueError naming the agent (or role). Whether its values can
+    be stepped (finite) is the C++ step's check: it raises peg3d.InputError, a ValueError, and steps nothing."""
     try:
         x = np.asarray(a)
     except Exception as e:  # noqa: BLE001 - anything numpy cannot read is a bad action
@@ -108,6 +109,4 @@ def check_action(name, a, shape):
         raise ValueError(f"{name}: the action's dtype is {x.dtype}, not floating point")
     if x.shape != shape:
         raise ValueError(f"{name}: the action's shape is {x.shape}, not {shape}")
-    if not np.all(np.isfinite(x)):
-        raise ValueError(f"{name}: the action is not finite")
     return x.astype(np.float64, copy=False)

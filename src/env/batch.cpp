@@ -244,19 +244,6 @@ void Batch::reset(std::optional<std::uint64_t> seed) {
   }
 }
 
-std::optional<std::pair<int, int>> Batch::check_actions(const double* actions) const {
-  for (int g = 0; g < settings_.games; ++g) {
-    const game::SimState& st = games_[std::size_t(g)].state;
-    if (st.done) continue;  // reset by the step: its actions are ignored
-    for (int i = 0; i < agents_; ++i) {
-      if (controlled(i) || !st.agents[std::size_t(i)].active) continue;
-      const double* a = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
-      if (!std::isfinite(a[0]) || !std::isfinite(a[1])) return std::pair{g, i};
-    }
-  }
-  return std::nullopt;
-}
-
 void Batch::step_game(int g, const double* actions) {
   Game& game = games_[std::size_t(g)];
   reset_flags_[std::size_t(g)] = 0;
@@ -277,7 +264,7 @@ void Batch::step_game(int g, const double* actions) {
       u = {x[0], x[1]};
     }
   }
-  const game::StepEvents& ev = game::step(*sim_, game.state, game.commands);
+  const game::StepEvents& ev = step_or_name(g);
   if (game.trace) game.trace->record(game.state, true);
   const std::size_t base = std::size_t(g) * std::size_t(agents_);
   for (int i = 0; i < agents_; ++i) {
@@ -304,7 +291,33 @@ void Batch::run_on_threads(void (Batch::*work)(int, const double*), const double
   });
 }
 
-void Batch::step(const double* actions) { run_on_threads(&Batch::step_game, actions); }
+const game::StepEvents& Batch::step_or_name(int g) {
+  Game& game = games_[std::size_t(g)];
+  try {
+    return game::step(*sim_, game.state, game.commands);
+  } catch (const game::CommandError& e) {
+    const game::Policy* p = e.agent() >= 0 ? game.policies[std::size_t(e.agent())].get() : nullptr;
+    throw (p != nullptr && !p->file().empty() ? e.played_by(p->file()) : e).in_game(g);
+  }
+}
+
+void Batch::step(const double* actions) {
+  // The caller's actions, by the game's own check, before anything acts or steps.
+  for (int g = 0; g < settings_.games; ++g) {
+    const game::SimState& st = games_[std::size_t(g)].state;
+    if (st.done) continue;  // reset by this step: its actions are ignored
+    for (int i = 0; i < agents_; ++i) {
+      if (controlled(i)) continue;
+      const double* x = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
+      try {
+        game::check_command(st, i, {x[0], x[1]});
+      } catch (const game::CommandError& e) {
+        throw e.in_game(g);
+      }
+    }
+  }
+  run_on_threads(&Batch::step_game, actions);
+}
 
 void Batch::write_outputs(int g) {
   const game::SimState& st = games_[std::size_t(g)].state;

@@ -88,11 +88,12 @@ class Batch {
   /// Starts a new episode in every game; with a seed, first re-seeds the batch (episodes count from 0 again).
   void reset(std::optional<std::uint64_t> seed = std::nullopt);
   /// Steps every game once. `actions` holds games x agents x 2 doubles (d_alpha, d_theta), rad; entries of
-  /// C++-played agents and of agents out of the game are ignored. Non-finite values of the others must have
-  /// been refused by the caller (check_actions). Games whose episode ended are reset instead (autoreset).
+  /// C++-played agents and of agents out of the game are ignored. Games whose episode ended are reset instead
+  /// (autoreset). Throws game::CommandError naming the game (CommandError::game) when a command cannot be
+  /// stepped: an action of the caller's is checked (game::check_command) before any policy acts or any game
+  /// steps, so the batch is left as it was; a C++-played policy's command is refused by its game's step()
+  /// (naming the policy's file), and the games of other threads may have stepped: build a new batch then.
   void step(const double* actions);
-  /// The first (game, agent) whose action the step would use and that is not finite; nullopt when all are.
-  std::optional<std::pair<int, int>> check_actions(const double* actions) const;
 
   // The buffers, games x agents (x observation_size), rewritten by reset() and step().
   float* observations() { return observations_.data(); }
@@ -128,6 +129,8 @@ class Batch {
   const world::Scenario& scenario_for(int game, long long episode) const;
   void start_episode(int g);
   void step_game(int g, const double* actions);
+  /// game::step of game g, a refused command's error naming the game (and a C++-played policy's file).
+  const game::StepEvents& step_or_name(int g);
   void write_outputs(int g);
   void build_policies(int g);
   void run_on_threads(void (Batch::*work)(int, const double*), const double* actions);

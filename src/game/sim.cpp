@@ -10,17 +10,32 @@
 
 namespace peg3d::game {
 
-CommandError::CommandError(int step, int agent, std::string who, std::string detail, std::filesystem::path file)
+CommandError::CommandError(int step, int agent, std::string who, std::string detail)
+    : CommandError(step, agent, -1, std::move(who), std::move(detail), {}) {}
+
+CommandError::CommandError(int step, int agent, int game, std::string who, std::string detail, std::filesystem::path file)
     : InputError(file, 0, "",
-                 fmt::format("step {}: {}{}{}; nothing was stepped", step, who,
-                             who.empty() ? "" : (file.empty() ? ": " : ", played by this policy file: "), detail)),
+                 fmt::format("{}step {}: {}{}{}; nothing was stepped", game >= 0 ? fmt::format("game {}: ", game) : "",
+                             step, who, who.empty() ? "" : (file.empty() ? ": " : ", played by this policy file: "),
+                             detail)),
       step_(step),
       agent_(agent),
+      game_(game),
       who_(std::move(who)),
       detail_(std::move(detail)) {}
 
 CommandError CommandError::played_by(const std::filesystem::path& file) const {
-  return CommandError(step_, agent_, who_, detail_, file);
+  return CommandError(step_, agent_, game_, who_, detail_, file);
+}
+
+CommandError CommandError::in_game(int game) const { return CommandError(step_, agent_, game, who_, detail_, file()); }
+
+void check_command(const SimState& st, int i, const Steering& u) {
+  if (std::isfinite(u.d_alpha) && std::isfinite(u.d_theta)) return;
+  const AgentState& a = st.agents[std::size_t(i)];
+  if (!a.active) return;  // ignored by the step
+  throw CommandError(st.step + 1, i, fmt::format("agent {} ({} {})", i, to_string(a.role), a.rank),
+                     fmt::format("steering command ({}, {}) rad is not finite", u.d_alpha, u.d_theta));
 }
 
 void check_commands(const SimState& st, std::span<const Steering> commands) {
@@ -28,14 +43,7 @@ void check_commands(const SimState& st, std::span<const Steering> commands) {
   if (static_cast<int>(commands.size()) != n) {
     throw CommandError(st.step + 1, -1, "", fmt::format("{} steering commands for {} agents", commands.size(), n));
   }
-  for (int i = 0; i < n; ++i) {
-    const Steering& u = commands[std::size_t(i)];
-    if (std::isfinite(u.d_alpha) && std::isfinite(u.d_theta)) continue;
-    const AgentState& a = st.agents[std::size_t(i)];
-    if (!a.active) continue;  // ignored by the step
-    throw CommandError(st.step + 1, i, fmt::format("agent {} ({} {})", i, to_string(a.role), a.rank),
-                       fmt::format("steering command ({}, {}) rad is not finite", u.d_alpha, u.d_theta));
-  }
+  for (int i = 0; i < n; ++i) check_command(st, i, commands[std::size_t(i)]);
 }
 
 const char* to_string(Outcome o) {

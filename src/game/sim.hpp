@@ -236,20 +236,27 @@ void reset(const Sim& sim, SimState& state, const world::Scenario& scenario, std
 class CommandError : public InputError {
  public:
   /// `who` names the agent ("agent 0 (pursuer 0)"; empty for a wrong count), `detail` the problem.
-  CommandError(int step, int agent, std::string who, std::string detail, std::filesystem::path file = {});
+  CommandError(int step, int agent, std::string who, std::string detail);
   int step() const noexcept { return step_; }    ///< the step it would have been (1 = the first)
   int agent() const noexcept { return agent_; }  ///< the agent's index; -1 for a wrong count
+  int game() const noexcept { return game_; }    ///< the game of a batch (env::Batch); -1 outside one
   /// The same error, naming the policy file that played the agent: "FILE: step 18: agent 0 (pursuer 0),
   /// played by this policy file: ...".
   CommandError played_by(const std::filesystem::path& file) const;
+  /// The same error, naming the game of a batch it happened in: "game 3: step 18: ...".
+  CommandError in_game(int game) const;
 
  private:
-  int step_ = 0, agent_ = -1;
+  CommandError(int step, int agent, int game, std::string who, std::string detail, std::filesystem::path file);
+  int step_ = 0, agent_ = -1, game_ = -1;
   std::string who_, detail_;
 };
 
-/// Throws CommandError unless `commands` could be stepped from `state`: one per agent, finite for every agent
-/// still in the game (the entries of agents out of it are ignored). step() calls it first, in every build.
+/// Throws CommandError unless agent i of `state` can be given `command`: finite, or the agent is out of the
+/// game (then the command is ignored).
+void check_command(const SimState& state, int i, const Steering& command);
+/// Throws CommandError unless `commands` could be stepped from `state`: one per agent, each passing
+/// check_command. step() calls it first, in every build.
 void check_commands(const SimState& state, std::span<const Steering> commands);
 
 /// Advances `state` by one sample of dt. `commands` has one steering command per agent (entries of agents

@@ -1,5 +1,5 @@
 """Bad input raises peg3d.InputError (a ValueError) with the C++ message; bad actions raise ValueError naming
-the agent and step nothing."""
+the agent and step nothing (an action that is not finite: the C++ step's own CommandError, a peg3d.InputError)."""
 
 import numpy as np
 import pytest
@@ -33,20 +33,24 @@ def test_input_errors_carry_the_message_with_file_and_field(tmp_path):
 
 
 @pytest.mark.parametrize("bad, message", [
-    (np.zeros(3), "shape"),
-    (np.zeros((1, 2)), "shape"),
-    (np.zeros(2, dtype=np.int64), "dtype"),
-    (np.array([np.nan, 0.0]), "not finite"),
-    (np.array([0.0, np.inf]), "not finite"),
-    ("left", "dtype"),
+    (np.zeros(3), "pursuer_0: the action's shape"),
+    (np.zeros((1, 2)), "pursuer_0: the action's shape"),
+    (np.zeros(2, dtype=np.int64), "pursuer_0: the action's dtype"),
+    ("left", "pursuer_0: the action's dtype"),
+    # Not finite: the C++ step's own check (game::CommandError), not a copy of it here.
+    (np.array([np.nan, 0.0]), "game 0: step 1: agent 0 (pursuer 0): steering command (nan, 0) rad is not finite"),
+    (np.array([0.0, np.inf]), "game 0: step 1: agent 0 (pursuer 0): steering command (0, inf) rad is not finite"),
 ])
 def test_a_bad_action_names_the_agent_and_steps_nothing(env, bad, message):
     env.reset(seed=0)
     before = env._batch.game_info(0)["step"]
-    with pytest.raises(ValueError, match="pursuer_0") as e:
+    with pytest.raises(ValueError) as e:
         env.step({"pursuer_0": bad})
     assert message in str(e.value)
     assert env._batch.game_info(0)["step"] == before
+    # The same step with a good action goes on as if the bad one had never come.
+    env.step({"pursuer_0": np.zeros(2)})
+    assert env._batch.game_info(0)["step"] == before + 1
 
 
 def test_unknown_and_missing_agents_are_refused(env):
@@ -75,7 +79,9 @@ def test_vector_actions_are_checked_per_role():
         v.step({"pursuer": np.zeros((2, 1, 2))})
     bad = np.zeros((3, 1, 2))
     bad[1, 0, 0] = np.nan
-    with pytest.raises(ValueError, match="pursuer"):
+    before = [v._batch.game_info(g)["step"] for g in range(3)]
+    with pytest.raises(peg3d.InputError, match=r"game 1: step 1: agent 0 \(pursuer 0\): .* not finite"):
         v.step({"pursuer": bad})
+    assert [v._batch.game_info(g)["step"] for g in range(3)] == before  # no game of the batch stepped
     with pytest.raises(ValueError, match="referee"):
         v.step({"referee": np.zeros((3, 1, 2))})

@@ -1,0 +1,583 @@
+// The batch of games (env/batch.hpp): its buffers against each game's SimState, the ends of episodes where
+// geometry puts them, next-step autoreset, agents played on the C++ side, and results that do not depend on
+// the thread count.
+#include "env/batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/hash.hpp"
+#include "core/random.hpp"
+#include "game/episode.hpp"
+#include "game/observation_vector.hpp"
+#include "game/policy_factory.hpp"
+#include "game/saved_policy.hpp"
+#include "test_arena.hpp"
+
+namespace peg3d::env {
+namespace {
+
+using game::Role;
+using testing::team;
+
+const Vec3 kSize(35, 35, 20);
+const world::SphereObstacle kRock{{12, 20, 10}, 1.5};
+constexpr int kLimitSteps = 100;  // time_limit 10 s at dt 0.1 s
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Three 2 v 2 starts (agents 0, 1 pursuers; 2, 3 evaders) whose ends follow from geometry when the pursuers fly
+// straight (zero commands from their chase headings, each facing its nearest evader) at standing evaders.
+// Nobody's nearest opponent changes before the first end.
+enum Start { kCapture, kCrash, kTimeout };
+std::vector<world::Scenario> starts() {
+  return {// P0 10 m from E0: captured when 10 - 0.11 k <= 1; P1 20 m from E1, 9 m short at the time limit.
+          team("capture", {{5, 10, 10}, {5, 30, 10}}, {{15, 10, 10}, {25, 30, 10}}),
+          // The rock lies between P0 and E0; the others are 25 m apart.
+          team("crash", {{5, 20, 10}, {5, 2, 10}}, {{25, 20, 10}, {30, 2, 10}}),
+          // Every evader over 32 m from every pursuer: only the time limit ends the game.
+          team("timeout", {{3, 3, 3}, {32, 3, 3}}, {{3, 32, 17}, {32, 32, 17}})};
+}
+
+std::shared_ptr<const world::Arena> arena() {
+  static const auto a = testing::make_arena(kSize, {kRock}, starts(), 0.5);
+  return a;
+}
+
+// Pursuers at peg3d's 1.1 m/s without the obstacle guard (so P0 can hit the rock); standing evaders.
+game::GameConfig standing_evaders() {
+  game::GameConfig c = game::preset("peg3d");
+  c.time_limit = 0.1 * kLimitSteps;
+  c.pursuer.guard.enabled = false;
+  c.evader.speed = 0.0;
+  return c;
+}
+double pursuer_step() { return standing_evaders().pursuer.speed * standing_evaders().dt; }  // m per step
+
+// The steps at which the first episode of each start ends, from the geometry above.
+int capture_step() { return int(std::ceil((10.0 - standing_evaders().capture_distance) / pursuer_step())); }
+int crash_step() {
+  const double gap = kRock.center.x() - kRock.radius - standing_evaders().pursuer.radius - 5.0;  // m
+  return int(std::ceil(gap / pursuer_step()));
+}
+
+BatchSettings settings(int games, int threads = 1, std::uint64_t seed = 11) {
+  BatchSettings s;
+  s.games = games;
+  s.threads = threads;
+  s.seed = seed;
+  return s;
+}
+
+// Flat views of a batch's buffers.
+struct Buffers {
+  Batch& b;
+  std::size_t at(int g, int i) const { return std::size_t(g) * std::size_t(b.agents()) + std::size_t(i); }
+  float reward(int g, int i) const { return b.rewards()[at(g, i)]; }
+  float term(int g, int i, int t) const { return b.reward_terms()[3 * at(g, i) + std::size_t(t)]; }
+  bool terminated(int g, int i) const { return b.terminated()[at(g, i)] != 0; }
+  bool truncated(int g, int i) const { return b.truncated()[at(g, i)] != 0; }
+  bool acted(int g, int i) const { return b.acted()[at(g, i)] != 0; }
+  bool active(int g, int i) const { return b.active()[at(g, i)] != 0; }
+  bool collided(int g, int i) const { return b.collided()[at(g, i)] != 0; }
+  bool captured(int g, int i) const { return b.captured()[at(g, i)] != 0; }
+  bool reset(int g) const { return b.reset_flags()[std::size_t(g)] != 0; }
+  std::vector<float> observation(int g, int i) const {
+    const float* o = b.observations() + at(g, i) * std::size_t(b.observation_size());
+    return {o, o + b.observation_size()};
+  }
+};
+
+// What batch.hpp says agent i's observation is: its view's 20 entries, then up to k other opponents (its own
+// opponent left out) and up to k teammates still in the game, nearest first, as (offset, 1), zeros after.
+std::vector<float> expected_observation(const game::SimState& st, int i, int k) {
+  std::vector<float> o(std::size_t(game::kObservationBase));
+  game::observation_base(game::observe(st, i), o.data());
+  const game::AgentState& me = st.agents[std::size_t(i)];
+  for (const bool opponents : {true, false}) {
+    std::vector<std::pair<double, Vec3>> near;
+    for (int j = 0; j < st.agent_count(); ++j) {
+      const game::AgentState& other = st.agents[std::size_t(j)];
+      const bool opponent = other.role != me.role;
+      if (j == i || !other.active || opponent != opponents || j == me.opponent) continue;
+      const Vec3 d = other.kinematics.position - me.kinematics.position;
+      near.emplace_back(d.norm(), d);
+    }
+    std::stable_sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (int n = 0; n < k; ++n) {
+      const bool there = n < int(near.size());
+      const Vec3 d = there ? near[std::size_t(n)].second : Vec3::Zero();
+      o.insert(o.end(), {float(d.x()), float(d.y()), float(d.z()), there ? 1.0f : 0.0f});
+    }
+  }
+  return o;
+}
+
+std::vector<Vec3> positions(const game::SimState& st) {
+  std::vector<Vec3> p;
+  for (const game::AgentState& a : st.agents) p.push_back(a.kinematics.position);
+  return p;
+}
+std::vector<Vec3> start_positions(const world::Scenario& s) {
+  std::vector<Vec3> p;
+  for (int i = 0; i < s.agents(); ++i) p.push_back(s.start(i).position);
+  return p;
+}
+
+// The buffers of a game the last step (or reset) started afresh: nothing happened to anyone, everyone is in.
+void expect_fresh(const Batch& batch, Buffers& buf, int g) {
+  EXPECT_TRUE(buf.reset(g));
+  for (int i = 0; i < batch.agents(); ++i) {
+    SCOPED_TRACE(::testing::Message() << "game " << g << ", agent " << i);
+    EXPECT_EQ(buf.reward(g, i), 0.0f);
+    for (int t = 0; t < 3; ++t) EXPECT_EQ(buf.term(g, i, t), 0.0f);
+    EXPECT_FALSE(buf.terminated(g, i));
+    EXPECT_FALSE(buf.truncated(g, i));
+    EXPECT_FALSE(buf.acted(g, i));
+    EXPECT_FALSE(buf.collided(g, i));
+    EXPECT_FALSE(buf.captured(g, i));
+    EXPECT_TRUE(buf.active(g, i));
+    EXPECT_EQ(buf.observation(g, i), expected_observation(batch.state(g), i, 2));
+  }
+}
+
+TEST(EnvBatch, ResetFillsEveryBufferFromEachGamesStart) {
+  Batch batch(arena(), standing_evaders(), settings(3, 2));
+  Buffers buf{batch};
+  ASSERT_EQ(batch.agents(), 4);
+  EXPECT_EQ(batch.pursuers(), 2);
+  EXPECT_EQ(batch.observation_size(), game::kObservationBase + 2 * 2 * 4);
+  EXPECT_EQ(batch.agent_names(), (std::vector<std::string>{"pursuer_0", "pursuer_1", "evader_0", "evader_1"}));
+  for (int g = 0; g < 3; ++g) {
+    EXPECT_EQ(batch.state(g).step, 0);
+    expect_fresh(batch, buf, g);
+  }
+}
+
+TEST(EnvBatch, NeighbourSlotsHoldTheNearestOtherAgentsFirstThenZeros) {
+  // P0 plays E0 (15 m; E2 19 m, E1 22 m away); its teammates are P2 (3 m) and P1 (10 m): nearest first is not
+  // index order.
+  const auto three = testing::make_arena(
+      kSize, {}, {team("3v3", {{5, 5, 5}, {5, 15, 5}, {8, 5, 5}}, {{20, 5, 5}, {5, 27, 5}, {24, 5, 5}})}, 0.5);
+  for (const int k : {1, 3}) {
+    SCOPED_TRACE(::testing::Message() << k << " neighbours");
+    BatchSettings s = settings(1);
+    s.neighbours = k;
+    Batch batch(three, standing_evaders(), s);
+    ASSERT_EQ(batch.observation_size(), game::kObservationBase + 2 * k * 4);
+    ASSERT_EQ(batch.state(0).agents[0].opponent, 3);
+    const std::vector<float> o = Buffers{batch}.observation(0, 0);
+    const std::vector<float> opponents(o.begin() + game::kObservationBase, o.begin() + game::kObservationBase + 4 * k);
+    const std::vector<float> teammates(o.begin() + game::kObservationBase + 4 * k, o.end());
+    if (k == 1) {
+      EXPECT_EQ(opponents, (std::vector<float>{19, 0, 0, 1}));
+      EXPECT_EQ(teammates, (std::vector<float>{3, 0, 0, 1}));
+    } else {
+      EXPECT_EQ(opponents, (std::vector<float>{19, 0, 0, 1, 0, 22, 0, 1, 0, 0, 0, 0}));
+      EXPECT_EQ(teammates, (std::vector<float>{3, 0, 0, 1, 0, 10, 0, 1, 0, 0, 0, 0}));
+    }
+  }
+}
+
+TEST(EnvBatch, EachStepWritesItsGamesEventsIntoTheBuffers) {
+  // Every buffer entry of every step against what the game's own state says the step did; the three starts
+  // make sure that captures, crashes, the time limit and agents out of the game all occur.
+  Batch batch(arena(), standing_evaders(), settings(3, 2));
+  Buffers buf{batch};
+  const std::vector<double> zero(std::size_t(3 * 4 * 2), 0.0);
+  int captured = 0, collided = 0, terminated = 0, truncated = 0, idle = 0, out = 0;
+  for (int k = 1; k <= kLimitSteps + 2; ++k) {
+    batch.step(zero.data());
+    for (int g = 0; g < 3; ++g) {
+      if (buf.reset(g)) continue;  // the autoreset test's business
+      const game::SimState& st = batch.state(g);
+      const game::StepEvents& ev = st.events;
+      for (int i = 0; i < 4; ++i) {
+        SCOPED_TRACE(::testing::Message() << "step " << k << ", game " << g << ", agent " << i);
+        const game::AgentEvents& e = ev.agents[std::size_t(i)];
+        EXPECT_EQ(buf.reward(g, i), float(e.reward.total));
+        EXPECT_EQ(buf.term(g, i, 0), float(e.reward.obstacle));
+        EXPECT_EQ(buf.term(g, i, 1), float(e.reward.target));
+        EXPECT_EQ(buf.term(g, i, 2), float(e.reward.success));
+        EXPECT_EQ(buf.acted(g, i), e.acted);
+        EXPECT_EQ(buf.collided(g, i), e.collided);
+        EXPECT_EQ(buf.captured(g, i), e.captured);
+        // Ended for it: its own end (its capture) or the game's; cut by the time limit otherwise.
+        EXPECT_EQ(buf.terminated(g, i), e.acted && (e.terminal || ev.terminal));
+        EXPECT_EQ(buf.truncated(g, i), e.acted && !e.terminal && !ev.terminal && ev.truncated);
+        EXPECT_EQ(buf.active(g, i), st.agents[std::size_t(i)].active && !st.done);
+        EXPECT_EQ(buf.observation(g, i), expected_observation(st, i, 2));
+        captured += buf.captured(g, i), collided += buf.collided(g, i), terminated += buf.terminated(g, i);
+        truncated += buf.truncated(g, i), idle += !buf.acted(g, i), out += !buf.active(g, i);
+      }
+    }
+  }
+  EXPECT_GT(captured, 0);
+  EXPECT_GT(collided, 0);
+  EXPECT_GT(terminated, 0);
+  EXPECT_GT(truncated, 0);
+  EXPECT_GT(idle, 0);
+  EXPECT_GT(out, 0);
+}
+
+TEST(EnvBatch, FlagsMarkTheCaptureTheCrashAndTheTimeLimitAtTheirSteps) {
+  // Game g's first episode plays start g: capture, crash, timeout. Expected flags per step from the geometry.
+  ASSERT_EQ(capture_step(), 82);
+  ASSERT_EQ(crash_step(), 48);
+  Batch batch(arena(), standing_evaders(), settings(3, 3));
+  Buffers buf{batch};
+  const std::vector<double> zero(std::size_t(3 * 4 * 2), 0.0);
+  const double gamma_s = standing_evaders().pursuer.reward.gamma_s;
+  for (int k = 1; k <= kLimitSteps; ++k) {
+    batch.step(zero.data());
+    SCOPED_TRACE(::testing::Message() << "step " << k);
+    // capture: E0 (agent 2) is caught at capture_step and out of the game after; the limit cuts the others.
+    for (int i = 0; i < 4; ++i) {
+      const bool e0 = i == 2;
+      EXPECT_EQ(buf.captured(kCapture, i), e0 && k == capture_step()) << "agent " << i;
+      EXPECT_EQ(buf.terminated(kCapture, i), e0 && k == capture_step()) << "agent " << i;
+      EXPECT_EQ(buf.acted(kCapture, i), !e0 || k <= capture_step()) << "agent " << i;
+      EXPECT_EQ(buf.active(kCapture, i), !(e0 && k >= capture_step()) && k < kLimitSteps) << "agent " << i;
+      EXPECT_EQ(buf.truncated(kCapture, i), !e0 && k == kLimitSteps) << "agent " << i;
+      EXPECT_FALSE(buf.collided(kCapture, i)) << "agent " << i;
+    }
+    // The capture's term: +gamma_s for the capturer P0, -gamma_s for E0 (individual capture reward).
+    EXPECT_EQ(buf.term(kCapture, 0, 2), k == capture_step() ? float(gamma_s) : 0.0f);
+    EXPECT_EQ(buf.term(kCapture, 2, 2), k == capture_step() ? -float(gamma_s) : 0.0f);
+    EXPECT_EQ(buf.term(kCapture, 1, 2), 0.0f);
+    // crash: P0 hits the rock at crash_step, which ends the game for everyone.
+    if (k <= crash_step()) {
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(buf.collided(kCrash, i), i == 0 && k == crash_step()) << "agent " << i;
+        EXPECT_EQ(buf.terminated(kCrash, i), k == crash_step()) << "agent " << i;
+        EXPECT_EQ(buf.active(kCrash, i), k < crash_step()) << "agent " << i;
+        EXPECT_TRUE(buf.acted(kCrash, i)) << "agent " << i;
+        EXPECT_FALSE(buf.truncated(kCrash, i)) << "agent " << i;
+        EXPECT_FALSE(buf.captured(kCrash, i)) << "agent " << i;
+      }
+    }
+    // timeout: nothing but the time limit.
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_EQ(buf.truncated(kTimeout, i), k == kLimitSteps) << "agent " << i;
+      EXPECT_EQ(buf.active(kTimeout, i), k < kLimitSteps) << "agent " << i;
+      EXPECT_TRUE(buf.acted(kTimeout, i)) << "agent " << i;
+      EXPECT_FALSE(buf.terminated(kTimeout, i) || buf.collided(kTimeout, i) || buf.captured(kTimeout, i)) << "agent " << i;
+    }
+    EXPECT_FALSE(buf.reset(kCapture) || buf.reset(kTimeout));
+  }
+}
+
+TEST(EnvBatch, AnEndedGameIsResetByTheNextStepWhichIgnoresItsActions) {
+  const std::uint64_t seed = 11;
+  Batch batch(arena(), standing_evaders(), settings(3, 2, seed));
+  Buffers buf{batch};
+  std::vector<double> actions(std::size_t(3 * 4 * 2), 0.0);
+  for (int k = 0; k < crash_step(); ++k) batch.step(actions.data());
+  ASSERT_TRUE(batch.state(kCrash).done);
+  ASSERT_FALSE(batch.state(kCapture).done || batch.state(kTimeout).done);
+  // Actions the step would refuse, for the crashed game only: it is reset, so they are never read.
+  std::fill(actions.begin() + 8 * kCrash, actions.begin() + 8 * (kCrash + 1), kNaN);
+  ASSERT_NO_THROW(batch.step(actions.data()));
+
+  expect_fresh(batch, buf, kCrash);
+  EXPECT_EQ(batch.episode(kCrash), 1);
+  // Its second episode starts as a fresh state does from the scenario and seed that episode 1 of game 1 gets.
+  const world::Scenario& next = arena()->map().scenarios[(kCrash + 1) % 3];
+  game::SimState fresh(batch.sim());
+  game::reset(batch.sim(), fresh, next, derive_seed(seed, {std::uint64_t(kCrash), 1}));
+  EXPECT_EQ(positions(batch.state(kCrash)), positions(fresh));
+  EXPECT_EQ(batch.state(kCrash).step, 0);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(buf.observation(kCrash, i), expected_observation(fresh, i, 2)) << "agent " << i;
+  // The others were stepped.
+  for (const int g : {kCapture, kTimeout}) {
+    EXPECT_FALSE(buf.reset(g)) << "game " << g;
+    EXPECT_EQ(batch.state(g).step, crash_step() + 1) << "game " << g;
+    EXPECT_EQ(batch.episode(g), 0) << "game " << g;
+    EXPECT_TRUE(buf.acted(g, 0)) << "game " << g;
+  }
+}
+
+TEST(EnvBatch, EachEpisodeStartsFromTheScenarioOfItsGameAndNumber) {
+  // No scenario named: episode e of game g plays scenario (g + e) mod 3. Named: every episode plays it.
+  const auto& all = arena()->map().scenarios;
+  for (const std::string named : {"", "timeout"}) {
+    SCOPED_TRACE("scenario '" + named + "'");
+    BatchSettings s = settings(4, 2);
+    s.scenario = named;
+    Batch batch(arena(), standing_evaders(), s);
+    Buffers buf{batch};
+    const auto expected_start = [&](int g) {
+      const std::size_t index = named.empty() ? std::size_t((g + batch.episode(g)) % 3) : std::size_t(kTimeout);
+      return start_positions(all[index]);
+    };
+    for (int g = 0; g < 4; ++g) EXPECT_EQ(positions(batch.state(g)), expected_start(g)) << "game " << g;
+    const std::vector<double> zero(std::size_t(4 * 4 * 2), 0.0);
+    int restarts = 0;
+    for (int k = 0; k < 2 * kLimitSteps + 2; ++k) {
+      batch.step(zero.data());
+      for (int g = 0; g < 4; ++g) {
+        if (!buf.reset(g)) continue;
+        ++restarts;
+        EXPECT_EQ(positions(batch.state(g)), expected_start(g)) << "game " << g << ", episode " << batch.episode(g);
+      }
+    }
+    EXPECT_GE(restarts, 4);  // every game started a second episode
+  }
+}
+
+// The caller's actions for step k: different for every game, agent and step, within the steering bound.
+std::vector<double> varied_actions(int games, int agents, int k) {
+  std::vector<double> a(std::size_t(games * agents * 2));
+  for (int g = 0; g < games; ++g) {
+    for (int i = 0; i < agents; ++i) {
+      double* x = a.data() + 2 * (g * agents + i);
+      x[0] = 0.02 * (i + 1) * (g + 1) * (k % 2 == 0 ? 1 : -1);
+      x[1] = 0.01 * std::sin(0.3 * k + i);
+    }
+  }
+  return a;
+}
+
+TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
+  // evader_0 flees on the C++ side; the caller steers the others. Each game must follow, bit for bit, a state
+  // stepped here with the same commands and a flee policy of its own for evader_0.
+  game::GameConfig c = standing_evaders();
+  c.evader.speed = 1.0;
+  c.initial_heading = game::InitialHeading::kRandom;  // from each game's episode seed
+  BatchSettings s = settings(2, 2, 21);
+  s.scenario = "timeout";
+  s.controllers = {{"evader_0", "flee"}};
+  Batch batch(arena(), c, s);
+  EXPECT_TRUE(batch.controlled(2));
+  EXPECT_FALSE(batch.controlled(0) || batch.controlled(1) || batch.controlled(3));
+  game::AgentConfig flee_config = batch.sim().config().agent(Role::kEvader, 0);
+  flee_config.policy = game::PolicyKind::kFlee;
+  std::vector<std::unique_ptr<game::SimState>> refs;
+  std::vector<std::unique_ptr<game::Policy>> flee;
+  for (int g = 0; g < 2; ++g) {
+    refs.push_back(std::make_unique<game::SimState>(batch.sim()));
+    game::reset(batch.sim(), *refs.back(), arena()->map().scenarios[kTimeout], derive_seed(21, {std::uint64_t(g), 0}));
+    flee.push_back(game::make_policy(flee_config, Role::kEvader, 0));
+    flee.back()->begin_episode(game::observe(*refs.back(), 2), false);
+  }
+  int turns = 0;
+  for (int k = 1; k <= 40; ++k) {
+    std::vector<double> actions = varied_actions(2, 4, k);
+    for (int g = 0; g < 2; ++g) actions[std::size_t(8 * g + 4)] = actions[std::size_t(8 * g + 5)] = kNaN;  // never read
+    std::vector<double> refused = actions;
+    refused[8 + 7] = kNaN;  // game 1's evader_1 is the caller's: refused before anything acts or steps
+    const std::vector<Vec3> before0 = positions(batch.state(0)), before1 = positions(batch.state(1));
+    try {
+      batch.step(refused.data());
+      FAIL() << "a NaN of the caller's was stepped";
+    } catch (const game::CommandError& e) {
+      EXPECT_EQ(e.game(), 1);
+      EXPECT_EQ(e.agent(), 3);
+      EXPECT_EQ(e.step(), k);
+    }
+    ASSERT_EQ(positions(batch.state(0)), before0);
+    ASSERT_EQ(positions(batch.state(1)), before1);
+    batch.step(actions.data());
+    for (int g = 0; g < 2; ++g) {
+      game::SimState& ref = *refs[std::size_t(g)];
+      std::vector<Steering> commands(4);
+      for (const int i : {0, 1, 3}) {
+        commands[std::size_t(i)] = {actions[std::size_t(8 * g + 2 * i)], actions[std::size_t(8 * g + 2 * i + 1)]};
+      }
+      commands[2] = flee[std::size_t(g)]->act(game::observe(ref, 2));
+      turns += commands[2].d_alpha != 0.0 || commands[2].d_theta != 0.0;
+      game::step(batch.sim(), ref, commands);
+      ASSERT_FALSE(ref.done);
+      ASSERT_EQ(positions(batch.state(g)), positions(ref)) << "step " << k << ", game " << g;
+    }
+  }
+  EXPECT_GT(turns, 0);  // flee steered: a batch that flew evader_0 straight would differ
+}
+
+TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
+  // An MLP file for both pursuers and a FACL file for both evaders: each game's first episode is play()'s with
+  // greedy players of those files, from the game's episode seed.
+  const std::string dir = std::string(PEG3D_TEST_DATA_DIR) + "/policies/";
+  game::GameConfig c = standing_evaders();
+  c.initial_heading = game::InitialHeading::kRandom;  // from each game's episode seed
+  BatchSettings s = settings(2, 2, 31);
+  s.scenario = "capture";
+  s.controllers = {{"pursuer", dir + "ppo_pursuer.json"}, {"evader", dir + "robust_evader.json"}};
+  Batch batch(arena(), c, s);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(batch.controlled(i)) << "agent " << i;
+  const auto mlp = game::load_saved_policy(dir + "ppo_pursuer.json", Role::kPursuer);
+  const auto facl = game::load_saved_policy(dir + "robust_evader.json", Role::kEvader);
+  ASSERT_TRUE(mlp->mlp && facl->facl);
+  // A FACL file brings its agent configuration (speed, guard, observation); an MLP plays with the game's.
+  EXPECT_TRUE(batch.sim().config().agent(Role::kEvader, 0) == *facl->config());
+  EXPECT_TRUE(batch.sim().config().agent(Role::kEvader, 1) == *facl->config());
+  EXPECT_TRUE(batch.sim().config().agent(Role::kPursuer, 1) == c.pursuer);
+  std::vector<game::Trace> traces(2);
+  for (int g = 0; g < 2; ++g) {
+    game::SimState ref(batch.sim());
+    const auto p0 = mlp->make(), p1 = mlp->make(), e0 = facl->make(), e1 = facl->make();
+    game::Policy* policies[] = {p0.get(), p1.get(), e0.get(), e1.get()};
+    game::play(batch.sim(), ref, arena()->map().scenarios[kCapture], policies, false,
+               derive_seed(31, {std::uint64_t(g), 0}), &traces[std::size_t(g)]);
+    ASSERT_GT(traces[std::size_t(g)].frame_count(), 20);
+  }
+  const std::vector<double> ignored(std::size_t(2 * 4 * 2), kNaN);
+  for (int k = 1; k < traces[0].frame_count() || k < traces[1].frame_count(); ++k) {
+    batch.step(ignored.data());
+    for (int g = 0; g < 2; ++g) {
+      const game::Trace& t = traces[std::size_t(g)];
+      if (k >= t.frame_count()) continue;  // its episode is over
+      for (int i = 0; i < 4; ++i) {
+        ASSERT_EQ(batch.state(g).agents[std::size_t(i)].kinematics.position, t.at(k, i).state.position)
+            << "step " << k << ", game " << g << ", agent " << i;
+      }
+    }
+  }
+}
+
+// A C++-played MLP whose network overflows (finite weights of +-1e308: inf - inf inside its sum) is refused by
+// its game's step, the error naming the game, the agent and the policy file.
+TEST(EnvBatch, APlayedPolicyWhoseCommandIsRefusedNamesItsFileAndGame) {
+  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "overflowing_mlp.json";
+  {
+    std::ofstream out(file);
+    out << R"({"format": "peg3d-mlp", "version": 1, "role": "evader", "inputs": 20, "action_bound": 0.4,)"
+        << R"("input_mean": [0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0], "input_std": [)";
+    for (int i = 0; i < 20; ++i) out << (i ? ", " : "") << "0.01";
+    out << R"(], "layers": [{"bias": [0, 0], "weights": [)";
+    for (int j = 0; j < 2; ++j) {
+      out << (j ? ", [" : "[");
+      for (int i = 0; i < 20; ++i) out << (i ? ", " : "") << (i % 2 ? "-1e308" : "1e308");
+      out << "]";
+    }
+    out << "]}]}";
+  }
+  BatchSettings s = settings(3, 1, 5);
+  s.scenario = "timeout";
+  s.controllers = {{"evader_1", file.string()}};
+  Batch batch(arena(), standing_evaders(), s);
+  const std::vector<double> actions(std::size_t(3 * 4 * 2), 0.0);
+  try {
+    batch.step(actions.data());
+    FAIL() << "the overflowing network's command was stepped";
+  } catch (const game::CommandError& e) {
+    EXPECT_EQ(e.game(), 0);
+    EXPECT_EQ(e.agent(), 3);
+    EXPECT_EQ(e.file(), file);
+    EXPECT_NE(std::string(e.what()).find("game 0: step 1: agent 3 (evader 1), played by this policy file: steering command ("),
+              std::string::npos) << e.what();
+  }
+  EXPECT_EQ(batch.state(0).step, 0);
+}
+
+TEST(EnvBatch, ResetWithASeedStartsOverAsANewBatchOfThatSeed) {
+  game::GameConfig c = standing_evaders();
+  c.initial_heading = game::InitialHeading::kRandom;
+  Batch used(arena(), c, settings(3, 2, 7));
+  for (int k = 1; k <= 60; ++k) used.step(varied_actions(3, 4, k).data());
+  used.reset(8);
+  Batch fresh(arena(), c, settings(3, 2, 8));
+  Buffers a{used}, b{fresh};
+  for (int g = 0; g < 3; ++g) {
+    EXPECT_EQ(used.episode(g), 0) << "game " << g;
+    EXPECT_EQ(positions(used.state(g)), positions(fresh.state(g))) << "game " << g;
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(a.observation(g, i), b.observation(g, i)) << "game " << g << ", agent " << i;
+    expect_fresh(used, a, g);
+  }
+}
+
+// Every buffer and every game's episode number, hashed after reset() and after each of `steps` steps of
+// random actions: 13 games over the three starts from random headings, episodes of 3 s (many autoresets),
+// evader_1 a random policy seeded per game on the C++ side.
+struct HashedRun {
+  std::uint64_t hash = 0;
+  int restarts = 0;                       // autoresets
+  std::size_t blocks_before = 0, blocks_after = 0;  // the movers' timeline: blocks simulated (maps with movers)
+};
+HashedRun hashed_run(std::shared_ptr<const world::Arena> a, int threads, int steps) {
+  game::GameConfig c = standing_evaders();
+  c.time_limit = 3.0;
+  c.evader.speed = 1.0;
+  c.initial_heading = game::InitialHeading::kRandom;
+  BatchSettings s = settings(13, threads, 41);
+  s.controllers = {{"evader_1", "random"}};
+  Batch batch(std::move(a), c, s);
+  const std::size_t n = std::size_t(batch.games()) * std::size_t(batch.agents());
+  HashedRun run;
+  const auto blocks = [&] { return batch.sim().movers() ? batch.sim().movers()->stats().blocks_simulated : 0; };
+  run.blocks_before = blocks();
+  Fnv1a h;
+  const auto add = [&] {
+    h.add(batch.observations(), n * std::size_t(batch.observation_size()) * sizeof(float));
+    h.add(batch.rewards(), n * sizeof(float));
+    h.add(batch.reward_terms(), 3 * n * sizeof(float));
+    for (const std::uint8_t* flags : {batch.terminated(), batch.truncated(), batch.acted(), batch.active(),
+                                      batch.collided(), batch.captured()}) {
+      h.add(flags, n);
+    }
+    h.add(batch.reset_flags(), std::size_t(batch.games()));
+    for (int g = 0; g < batch.games(); ++g) h.add_value(batch.episode(g));
+  };
+  add();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> turn(-batch.action_bound(Role::kPursuer), batch.action_bound(Role::kPursuer));
+  std::vector<double> actions(2 * n);
+  for (int k = 0; k < steps; ++k) {
+    for (double& x : actions) x = turn(rng);
+    batch.step(actions.data());
+    add();
+    for (int g = 0; g < batch.games(); ++g) run.restarts += batch.reset_flags()[g];
+  }
+  run.hash = h.value();
+  run.blocks_after = blocks();
+  return run;
+}
+
+TEST(EnvBatch, BuffersDoNotDependOnTheThreadCount) {
+  const HashedRun one = hashed_run(arena(), 1, 150);
+  EXPECT_GE(one.restarts, 13 * 4);  // every game played several episodes
+  for (const int threads : {2, 3, 7}) EXPECT_EQ(hashed_run(arena(), threads, 150).hash, one.hash) << threads << " threads";
+}
+
+// The test arena with movers: a box patrolling through the middle and a ball that Bullet drops to the floor.
+// Built afresh for every batch, so that the batch's threads simulate the movers' timeline as they reach it.
+std::shared_ptr<const world::Arena> arena_with_movers() {
+  world::MapSpec m;
+  m.name = "movers";
+  m.bounds = {Vec3::Zero(), kSize};
+  m.resolution = 0.5;
+  m.max_distance = 5.0;
+  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  m.spheres = {kRock};
+  world::MoverSpec box;
+  box.shape = {Shape::Kind::kBox, 1.0, 1.0, Vec3(2, 2, 2)};
+  box.motion = world::MoverSpec::Motion::kPath;
+  box.path = {{Vec3(4, 17.5, 5), Vec3(31, 17.5, 5)}, 1.5, false};
+  world::MoverSpec ball;
+  ball.shape = {Shape::Kind::kSphere, 1.0, 1.0, Vec3::Ones()};
+  ball.motion = world::MoverSpec::Motion::kDynamic;
+  ball.start = Vec3(20, 25, 15);
+  m.movers = {box, ball};
+  m.scenarios = starts();
+  return world::Arena::build(m);
+}
+
+TEST(EnvBatch, BuffersDoNotDependOnTheThreadCountOnAMapWithMovers) {
+  const HashedRun one = hashed_run(arena_with_movers(), 1, 60);
+  const HashedRun three = hashed_run(arena_with_movers(), 3, 60);
+  EXPECT_EQ(three.hash, one.hash);
+  // Most of the timeline was simulated by the steps, on the batch's threads (reset() needs its first window).
+  EXPECT_GT(three.blocks_after, 2 * three.blocks_before);
+}
+
+}  // namespace
+}  // namespace peg3d::env
