@@ -14,6 +14,7 @@
 //   -> (optionally) swept collision between agents -> captures -> new observations -> rewards.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -255,9 +256,17 @@ class CommandError : public InputError {
 /// Throws CommandError unless agent i of `state` can be given `command`: finite, or the agent is out of the
 /// game (then the command is ignored).
 void check_command(const SimState& state, int i, const Steering& command);
+/// Throws CommandError for `count` commands given to `state`, whose agent count is another.
+[[noreturn]] void check_command_count(const SimState& state, std::size_t count);
 /// Throws CommandError unless `commands` could be stepped from `state`: one per agent, each passing
-/// check_command. step() calls it first, in every build.
-void check_commands(const SimState& state, std::span<const Steering> commands);
+/// check_command. step() calls it first, in every build: inline, so that finite commands cost a compare each.
+inline void check_commands(const SimState& state, std::span<const Steering> commands) {
+  if (commands.size() != state.agents.size()) check_command_count(state, commands.size());
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const Steering& u = commands[i];
+    if (!(std::isfinite(u.d_alpha) && std::isfinite(u.d_theta))) check_command(state, static_cast<int>(i), u);
+  }
+}
 
 /// Advances `state` by one sample of dt. `commands` has one steering command per agent (entries of agents
 /// out of the game are ignored); the command is a requested heading change that the constraint layer
