@@ -302,18 +302,20 @@ const game::StepEvents& Batch::step_or_name(int g) {
 }
 
 void Batch::step(const double* actions) {
-  // The caller's actions, by the game's own check, before anything acts or steps.
-  for (int g = 0; g < settings_.games; ++g) {
+  // The caller's actions, by the game's own check, before anything acts or steps. A scan of the flat array
+  // passes finite values without touching the games' states; only a value that is not finite is put to the
+  // game (which ignores it for an agent out of the game, a C++-played agent, or a game this step resets).
+  const std::size_t count = std::size_t(settings_.games) * std::size_t(agents_);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double* x = actions + 2 * k;
+    if (std::isfinite(x[0]) && std::isfinite(x[1])) [[likely]] continue;
+    const int g = static_cast<int>(k / std::size_t(agents_)), i = static_cast<int>(k % std::size_t(agents_));
     const game::SimState& st = games_[std::size_t(g)].state;
-    if (st.done) continue;  // reset by this step: its actions are ignored
-    for (int i = 0; i < agents_; ++i) {
-      if (controlled(i)) continue;
-      const double* x = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
-      try {
-        game::check_command(st, i, {x[0], x[1]});
-      } catch (const game::CommandError& e) {
-        throw e.in_game(g);
-      }
+    if (st.done || controlled(i)) continue;
+    try {
+      game::check_command(st, i, {x[0], x[1]});
+    } catch (const game::CommandError& e) {
+      throw e.in_game(g);
     }
   }
   run_on_threads(&Batch::step_game, actions);
