@@ -133,6 +133,17 @@ std::vector<Vec3> start_positions(const world::Scenario& s) {
   return p;
 }
 
+// The CommandError a step of `actions` raises (a test failure, and an error naming nothing, when it steps).
+game::CommandError refusal(Batch& batch, const std::vector<double>& actions) {
+  try {
+    batch.step(actions.data());
+  } catch (const game::CommandError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "the step was taken";
+  return game::CommandError(0, -1, "", "");
+}
+
 // The buffers of a game the last step (or reset) started afresh: nothing happened to anyone, everyone is in.
 void expect_fresh(const Batch& batch, Buffers& buf, int g) {
   EXPECT_TRUE(buf.reset(g));
@@ -376,14 +387,10 @@ TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
     std::vector<double> refused = actions;
     refused[8 + 7] = kNaN;  // game 1's evader_1 is the caller's: refused before anything acts or steps
     const std::vector<Vec3> before0 = positions(batch.state(0)), before1 = positions(batch.state(1));
-    try {
-      batch.step(refused.data());
-      FAIL() << "a NaN of the caller's was stepped";
-    } catch (const game::CommandError& e) {
-      EXPECT_EQ(e.game(), 1);
-      EXPECT_EQ(e.agent(), 3);
-      EXPECT_EQ(e.step(), k);
-    }
+    const game::CommandError e = refusal(batch, refused);
+    EXPECT_EQ(e.game(), 1);
+    EXPECT_EQ(e.agent(), 3);
+    EXPECT_EQ(e.step(), k);
     ASSERT_EQ(positions(batch.state(0)), before0);
     ASSERT_EQ(positions(batch.state(1)), before1);
     batch.step(actions.data());
@@ -466,16 +473,12 @@ TEST(EnvBatch, APlayedPolicyWhoseCommandIsRefusedNamesItsFileAndGame) {
   s.controllers = {{"evader_1", file.string()}};
   Batch batch(arena(), standing_evaders(), s);
   const std::vector<double> actions(std::size_t(3 * 4 * 2), 0.0);
-  try {
-    batch.step(actions.data());
-    FAIL() << "the overflowing network's command was stepped";
-  } catch (const game::CommandError& e) {
-    EXPECT_EQ(e.game(), 0);
-    EXPECT_EQ(e.agent(), 3);
-    EXPECT_EQ(e.file(), file);
-    EXPECT_NE(std::string(e.what()).find("game 0: step 1: agent 3 (evader 1), played by this policy file: steering command ("),
-              std::string::npos) << e.what();
-  }
+  const game::CommandError e = refusal(batch, actions);
+  EXPECT_EQ(e.game(), 0);
+  EXPECT_EQ(e.agent(), 3);
+  EXPECT_EQ(e.file(), file);
+  EXPECT_NE(std::string(e.what()).find("game 0: step 1: agent 3 (evader 1), played by this policy file: steering command ("),
+            std::string::npos) << e.what();
   EXPECT_EQ(batch.state(0).step, 0);
 }
 
