@@ -44,7 +44,6 @@ struct Range {
   static constexpr Range closed(double a, double b) { return {a, b, false, false}; }
   static constexpr Range open_closed(double a, double b) { return {a, b, true, false}; }
   static constexpr Range closed_open(double a, double b) { return {a, b, false, true}; }
-  static constexpr Range at_least(double a) { return {a, std::numeric_limits<double>::infinity(), false, false}; }
 
   /// Finite and inside the interval.
   bool contains(double v) const;

@@ -6,10 +6,6 @@
 
 namespace peg3d::game {
 
-double EpisodeResult::mean_capture_time() const {
-  return captures > 0 ? capture_time_sum / captures : std::numeric_limits<double>::quiet_NaN();
-}
-
 EpisodeResult summarize(const SimState& st) {
   EpisodeResult r;
   r.outcome = st.outcome;

@@ -48,8 +48,6 @@ struct EpisodeResult {
     const int steps = r == Role::kPursuer ? pursuer_agent_steps : evader_agent_steps;
     return steps > 0 ? static_cast<double>(pinned) / steps : 0.0;
   }
-  /// Mean capture time over the captured evaders (s); NaN without capture.
-  double mean_capture_time() const;
 };
 
 /// The episode's figures, read from a state (normally a done one).

@@ -75,13 +75,11 @@ AgentConfig agent_preset(const std::string& name, Role role) {
   if (name == "robust") {  // docs/learning.md: peg3d's agent, tuned to hold up against classic opponents
     a = agent_preset("peg3d", role);
     if (role == Role::kPursuer) a.reward.w_r = 1.0;  // walls repel less: a scripted evader runs along them
-    // The pursuer sees where the evader is heading (docs/learning.md: caught its own evaders in 99.6 % of games
-    // instead of 96.7 %); the evader's margins against pure pursuit and PN shrank with that input, so not it.
+    // The pursuer sees where the evader is heading; the evader does not (docs/learning.md, "Seeing the
+    // opponent's heading": it helped the pursuer and not the evader).
     a.observation.opponent_heading = role == Role::kPursuer;
-    // The pursuer learns a correction to pure pursuit instead of the whole turn: within 10 m of their target,
-    // learned pursuers flew a median 13 degrees off the line of sight (pure pursuit: 1) and let evader teams
-    // run out the clock (docs/learning.md, "The pursuer's turn as an offset to pure pursuit"). The evader's
-    // offset to straight flight was worse against the Apollonius interceptor, so not it.
+    // The pursuer learns a correction to pure pursuit instead of the whole turn; the evader keeps the whole
+    // turn (docs/learning.md, "The pursuer's turn as an offset to pure pursuit").
     if (role == Role::kPursuer) a.action = FaclAction::kTargetLineOffset;
     return a;
   }

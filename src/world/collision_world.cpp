@@ -333,7 +333,6 @@ int CollisionWorld::obstacles_near(const Vec3& p, double range, std::span<NearPo
 }
 
 Vec3 CollisionWorld::agent_position(int agent) const { return impl_->agents[std::size_t(agent)].position; }
-double CollisionWorld::agent_radius(int agent) const { return impl_->agents[std::size_t(agent)].radius; }
 int CollisionWorld::agent_count() const { return static_cast<int>(impl_->agents.size()); }
 const Arena& CollisionWorld::arena() const { return *impl_->arena; }
 long long CollisionWorld::sweep_count() const { return impl_->sweeps; }

@@ -77,7 +77,6 @@ class CollisionWorld {
   int obstacles_near(const Vec3& p, double range, std::span<NearPoint> out);
 
   Vec3 agent_position(int agent) const;
-  double agent_radius(int agent) const;
   int agent_count() const;
   const Arena& arena() const;
 

@@ -63,7 +63,6 @@ class PushWorld {
   MoverPoint nearest(const Vec3& p, double cap) const;
   /// Where mover m is now (dynamic bodies as simulated; scripted ones at the current time).
   Pose pose(int m) const;
-  int substeps_done() const { return static_cast<int>(substep_); }
   int movers() const { return static_cast<int>(spec_.movers.size()); }
 
  private:

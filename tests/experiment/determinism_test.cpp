@@ -18,17 +18,7 @@
 namespace peg3d::experiment {
 namespace {
 
-// Golden values. The paper and pack hashes were recorded when the guard began to hold an agent's motion off
-// the nearest obstacle within stop_distance when the turn bound left its heading approaching (issue 13);
-// before that they were 0x0fc8e36d74691a51 and 0x8df1481d092d926e (patrol and rockfall did not move). The
-// patrol hash, and the paper hash before that, were recorded when the guard began to look ahead for a second
-// obstacle (guard.look_ahead, issue 13); before that they were 0x05fa5b182fb8af9e and 0xc45c2a7e724a6c34 (pack
-// and rockfall did not move). The paper and pack hashes before that were recorded when the guard stopped
-// sliding an agent pressed against a wall into an obstacle ahead along it (guard_along_faces, issue 13);
-// before that they were 0xd9b7a65e5c267aab and 0x65228fbba547ebca. Those were recorded when peg3d's evader
-// began to guard the arena's faces (guard.faces, issue 13: it had learned to hug the walls); before that the
-// four were 0x5caa0c292ae93960, 0x67da6ca72cbf2eb7, 0x6cdf6e6e2841d07a and 0x8af5bf5b734fe63b, equal to
-// c35d077's results.
+// Golden values (their history: docs/results.md, "Golden hashes").
 constexpr std::uint64_t kPaperHash = 0x10494b40ad84a1f5; // maps/paper.yaml, peg3d preset, 4 scenarios x 6 training episodes
 constexpr std::uint64_t kPackHash = 0xca3128c92953b4c1;  // maps/pack.yaml, peg3d preset, 4 team scenarios x 3 training episodes
 constexpr std::uint64_t kPatrolHash = 0x9e487d558b277845; // maps/patrol.yaml (scripted movers), 4 scenarios x 2 episodes

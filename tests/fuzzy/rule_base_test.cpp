@@ -1,5 +1,6 @@
 #include "fuzzy/rule_base.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -60,51 +61,61 @@ TEST(RuleBase, SparseAndDenseEvaluationAgree) {
   }
 }
 
-// Sparse firing as the general loop does it, input by input: the reference the unrolled four- and six-input
-// paths must match bit for bit.
-void fire_input_by_input(const RuleBase& rb, std::span<const double> x, FiredRules& out) {
-  std::vector<int> stride(std::size_t(rb.inputs()), 1);
-  for (int i = rb.inputs() - 2; i >= 0; --i) stride[std::size_t(i)] = stride[std::size_t(i + 1)] * rb.input(i + 1).sets();
-  out.count = 1;
-  out.rule[0] = 0;
-  out.strength[0] = 1.0;
-  for (int i = 0; i < rb.inputs(); ++i) {
-    const Activation a = rb.input(i).activate(x[std::size_t(i)]);
-    const int n = out.count;
-    for (int e = 0; e < n; ++e) {
-      const int r = out.rule[e] + a.lower * stride[std::size_t(i)];
-      const double w = out.strength[e];
-      out.rule[e] = r;
-      out.strength[e] = w * (1.0 - a.t);
-      out.rule[n + e] = r + stride[std::size_t(i)];
-      out.strength[n + e] = w * a.t;
-    }
-    out.count = 2 * n;
-  }
-  double sum = 0.0;
-  for (int e = 0; e < out.count; ++e) sum += out.strength[e];
-  const double inv = 1.0 / sum;
-  for (int e = 0; e < out.count; ++e) out.strength[e] *= inv;
-}
-
-TEST(RuleBase, EveryInputCountFiresTheBitsOfTheInputByInputLoop) {
+// The analytic firing of n inputs: input i activates sets k_i (weight 1 - t_i) and k_i + 1 (weight t_i), and
+// the rule of sets (s_0, ..., s_{n-1}) fires with the product of its inputs' weights (they sum to 1, so
+// normalising changes nothing). Partitions of width 0.5 and inputs at k + t with t in eighths make every
+// weight and product exact in binary: fire() must give each of the 2^n rules exactly its product, for every
+// input count 1 to 8, including inputs on a set's centre (t = 0) and clamped beyond either end.
+TEST(RuleBase, EveryInputCountFiresEachRuleWithTheProductOfItsMemberships) {
   Rng rng(17);
-  std::uniform_real_distribution<double> u(-4.0, 40.0);
   for (int inputs = 1; inputs <= 8; ++inputs) {
     std::vector<TriangularPartition> parts;
-    for (int i = 0; i < inputs; ++i) parts.emplace_back(i % 2 ? -M_PI : 0.0, i % 2 ? M_PI : 35.0, 3 + i % 4);
+    std::vector<int> sets;
+    for (int i = 0; i < inputs; ++i) {
+      sets.push_back(2 + (i * 3) % 5);  // 2 to 6 sets
+      const double lo = i % 2 ? -1.0 : 3.0;
+      parts.emplace_back(lo, lo + 0.5 * (sets.back() - 1), sets.back());
+    }
     const RuleBase rb(parts);
-    for (int trial = 0; trial < 2000; ++trial) {
-      std::vector<double> x(static_cast<std::size_t>(inputs));
-      for (double& v : x) v = trial % 7 == 0 ? std::round(u(rng)) : u(rng);  // also on set centres and edges
-      FiredRules got, want;
-      rb.fire(x, got);
-      fire_input_by_input(rb, x, want);
-      ASSERT_EQ(got.count, want.count);
-      for (int e = 0; e < want.count; ++e) {
-        ASSERT_EQ(got.rule[e], want.rule[e]) << inputs << " inputs, entry " << e;
-        ASSERT_EQ(std::memcmp(&got.strength[e], &want.strength[e], sizeof(double)), 0) << inputs << " inputs, entry " << e;
+    std::vector<int> stride(std::size_t(inputs), 1);
+    for (int i = inputs - 2; i >= 0; --i) stride[std::size_t(i)] = stride[std::size_t(i + 1)] * sets[std::size_t(i + 1)];
+    for (int trial = 0; trial < 300; ++trial) {
+      const auto count = static_cast<std::size_t>(inputs);
+      std::vector<double> x(count), t(count);
+      std::vector<int> k(count);
+      for (int i = 0; i < inputs; ++i) {
+        const int n = sets[std::size_t(i)];
+        const int where = std::uniform_int_distribution<int>(0, 9)(rng);
+        if (where == 0) {  // clamped below: the first set alone
+          x[std::size_t(i)] = parts[std::size_t(i)].lo() - 7.25, k[std::size_t(i)] = 0, t[std::size_t(i)] = 0.0;
+        } else if (where == 1) {  // clamped above: the last set alone
+          x[std::size_t(i)] = parts[std::size_t(i)].hi() + 3.5, k[std::size_t(i)] = n - 2, t[std::size_t(i)] = 1.0;
+        } else {
+          k[std::size_t(i)] = std::uniform_int_distribution<int>(0, n - 2)(rng);
+          t[std::size_t(i)] = std::uniform_int_distribution<int>(0, 7)(rng) / 8.0;  // 0: on set k's centre
+          x[std::size_t(i)] = parts[std::size_t(i)].lo() + 0.5 * (k[std::size_t(i)] + t[std::size_t(i)]);
+        }
       }
+      FiredRules f;
+      rb.fire(x, f);
+      ASSERT_EQ(f.count, 1 << inputs);
+      std::vector<int> seen;
+      for (int e = 0; e < f.count; ++e) {
+        // Which set each input contributes to this rule, read back from the mixed-radix index.
+        double product = 1.0;
+        int rest = f.rule[e];
+        for (int i = 0; i < inputs; ++i) {
+          const int s_i = rest / stride[std::size_t(i)];
+          rest %= stride[std::size_t(i)];
+          const int b = s_i - k[std::size_t(i)];
+          ASSERT_TRUE(b == 0 || b == 1) << inputs << " inputs, rule " << f.rule[e] << ", input " << i;
+          product *= b ? t[std::size_t(i)] : 1.0 - t[std::size_t(i)];
+        }
+        ASSERT_EQ(f.strength[e], product) << inputs << " inputs, rule " << f.rule[e];
+        seen.push_back(f.rule[e]);
+      }
+      std::sort(seen.begin(), seen.end());
+      ASSERT_EQ(std::adjacent_find(seen.begin(), seen.end()), seen.end()) << inputs << " inputs: a rule fired twice";
     }
   }
 }
