@@ -38,29 +38,19 @@
 
 namespace peg3d::game {
 
-/// An agent touching an obstacle or another agent.
-struct CollisionEvent {
-  int step = 0;                           ///< the step during which it happened (1 = the first step)
-  double time = 0.0;                      ///< s, time of impact within the episode
-  int agent = 0;                          ///< index of the agent that hit
-  Role role = Role::kPursuer;             ///< its role
-  world::ObstacleKind kind = world::ObstacleKind::kSphere;
-  int obstacle_id = -1;                   ///< index in the map's list of that kind; the other agent's index for kAgent
-  int triangle = -1;                      ///< triangle within the mesh for kMesh, else -1
-  Vec3 point = Vec3::Zero();              ///< m, contact point
-  Vec3 normal = Vec3::UnitZ();            ///< unit, from the obstacle towards the agent
-  double fraction = 0.0;                  ///< time of impact as a fraction of the step, [0, 1]
-  double penetration = 0.0;               ///< m, overlap depth when already intersecting
+/// An agent touching an obstacle or another agent: the query's contact record (agent, what it hit, where),
+/// with when and the agent's role.
+struct CollisionEvent : world::Contact {
+  int step = 0;                ///< the step during which it happened (1 = the first step)
+  double time = 0.0;           ///< s, time of impact within the episode
+  Role role = Role::kPursuer;  ///< the agent's role
 };
 
-/// An agent touching a pushable dynamic body (push mode): logged, not a collision.
-struct PushEvent {
-  int step = 0;                 ///< the step during which it happened (1 = the first step)
-  double time = 0.0;            ///< s, the end of the physics substep it was found at
-  int agent = 0;
-  int mover = -1;               ///< index in the map's movers
-  Vec3 point = Vec3::Zero();    ///< m, the body's point nearest the agent
-  Vec3 normal = Vec3::UnitZ();  ///< unit, from the body towards the agent
+/// An agent touching a pushable dynamic body (push mode), the push world's contact record (kind kMover,
+/// obstacle_id the body's index in the map's movers, `pushed`) with when: logged, not a collision.
+struct PushEvent : world::Contact {
+  int step = 0;       ///< the step during which it happened (1 = the first step)
+  double time = 0.0;  ///< s, the end of the physics substep it was found at
 };
 
 /// A pursuer coming within the capture distance of a free evader at the end of a step.
@@ -133,7 +123,7 @@ struct StepEvents {
   std::vector<CaptureEvent> captures;      ///< in evader index order
   std::vector<PushEvent> pushes;           ///< push mode: each agent's pushes, agents in index order
   /// Mover contact searches that reached their bound (world::MoverTimeline::kMaxAdvancementSteps) and answered
-  /// a contact where the agent was last proved apart (world::MoverContact::gave_up): a collision that may not
+  /// a contact where the agent was last proved apart (world::Contact::gave_up): a collision that may not
   /// be one, never one missed. 0 in practice; peg-throughput reports the total.
   int contact_give_ups = 0;
   bool terminal = false;   ///< the game ended: every evader captured or a terminating collision
@@ -180,7 +170,7 @@ class SimState {
     std::vector<Vec3> positions;          ///< start positions (reset)
     std::vector<Steering> commands;       ///< play()'s command buffer
     std::vector<Vec3> from, to;           ///< push mode: each agent's move of the step
-    std::vector<world::BodyTouch> touches;  ///< push mode: what the agents touched in the step
+    std::vector<world::Contact> touches;  ///< push mode: what the agents touched in the step
     std::array<world::NearPoint, kMaxHeldPoints> near;  ///< the static obstacles within an agent's hold_range
     double capture_reach2 = 0.0;          ///< squared distance beyond which no capture is possible
   } scratch;

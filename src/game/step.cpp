@@ -18,20 +18,14 @@ namespace {
 // CollisionWorld does for static obstacles), so it ends the step apart from what it touched.
 constexpr double kAgentBackoff = 1e-3;  // m
 
+// Agent i's contact `c` during this step, as the step's event.
 CollisionEvent event_of(const SimState& st, int i, const world::Contact& c, double dt) {
-  const AgentState& a = st.agents[std::size_t(i)];
   CollisionEvent e;
+  static_cast<world::Contact&>(e) = c;
+  e.agent = i;
   e.step = st.step + 1;
   e.time = st.time + c.fraction * dt;
-  e.agent = i;
-  e.role = a.role;
-  e.kind = c.kind;
-  e.obstacle_id = c.obstacle_id;
-  e.triangle = c.triangle;
-  e.point = c.point;
-  e.normal = c.normal;
-  e.fraction = c.fraction;
-  e.penetration = c.penetration;
+  e.role = st.agents[std::size_t(i)].role;
   return e;
 }
 
@@ -48,18 +42,6 @@ void record_collision(SimState& st, const CollisionEvent& e) {
 void count_give_up(SimState& st) {
   ++st.events.contact_give_ups;
   ++st.contact_give_ups;
-}
-
-world::Contact contact_of(int agent, const world::MoverContact& m) {
-  world::Contact c;
-  c.agent = agent;
-  c.kind = world::ObstacleKind::kMover;
-  c.obstacle_id = m.mover;
-  c.fraction = m.fraction;
-  c.point = m.point;
-  c.normal = m.normal;
-  c.penetration = m.penetration;
-  return c;
 }
 
 // Where a move from `from` towards `to` stops at fraction t of the step, set back kAgentBackoff.
@@ -160,7 +142,7 @@ void mover_contacts(const Sim& sim, SimState& st, int i, const Vec3& from, const
   if (m && (!hit || m->fraction < hit->fraction)) {
     k.position = stopped_at(from, to, m->fraction);
     st.collider.place_agent(a.body, k.position);
-    record_collision(st, event_of(st, i, contact_of(i, *m), dt));
+    record_collision(st, event_of(st, i, *m, dt));
     return;
   }
   if (!hit) return;
@@ -171,7 +153,7 @@ void mover_contacts(const Sim& sim, SimState& st, int i, const Vec3& from, const
   if (auto late = movers.first_contact(k.position, k.position, radius, st.time + hit->fraction * dt, rest * dt)) {
     if (late->gave_up) count_give_up(st);
     late->fraction = hit->fraction + late->fraction * rest;
-    record_collision(st, event_of(st, i, contact_of(i, *late), dt));
+    record_collision(st, event_of(st, i, *late, dt));
   }
 }
 
@@ -252,21 +234,19 @@ void push_bodies(const Sim& sim, SimState& st) {
   st.scratch.touches.clear();
   st.push->advance(st.scratch.from, st.scratch.to, st.scratch.touches);
   const double dt = sim.config().dt;
-  for (const world::BodyTouch& t : st.scratch.touches) {
-    if (!t.solid) {
-      st.events.pushes.push_back({st.step + 1, st.time + t.fraction * dt, t.agent, t.mover, t.point, t.normal});
+  for (const world::Contact& t : st.scratch.touches) {
+    if (t.pushed) {
+      PushEvent p;
+      static_cast<world::Contact&>(p) = t;
+      p.step = st.step + 1;
+      p.time = st.time + t.fraction * dt;
+      st.events.pushes.push_back(p);
       continue;
     }
     KinematicState& k = st.scratch.next[std::size_t(t.agent)];
     k.position = st.scratch.to[std::size_t(t.agent)];
     st.collider.place_agent(st.agents[std::size_t(t.agent)].body, k.position);
-    world::MoverContact m;
-    m.mover = t.mover;
-    m.fraction = t.fraction;
-    m.point = t.point;
-    m.normal = t.normal;
-    m.penetration = t.penetration;
-    record_collision(st, event_of(st, t.agent, contact_of(t.agent, m), dt));
+    record_collision(st, event_of(st, t.agent, t, dt));
   }
 }
 

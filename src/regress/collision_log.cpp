@@ -45,7 +45,7 @@ CollisionLog make_log(const std::string& name, const game::Trace& trace, const g
                           a.kinematics.heading.theta, a.path, a.active});
   }
   for (const game::PushEvent& p : trace.pushes) {
-    log.pushes.push_back({p.step, p.time, game::agent_label(trace, p.agent), p.mover, p.point, p.normal});
+    log.pushes.push_back({p.step, p.time, game::agent_label(trace, p.agent), p.obstacle_id, p.point, p.normal});
   }
   if (movers != nullptr) {
     for (int m = 0; m < movers->count(); ++m) {

@@ -21,24 +21,6 @@
 
 namespace peg3d::world {
 
-const char* to_string(ObstacleKind kind) {
-  switch (kind) {
-    case ObstacleKind::kSphere:
-      return "sphere";
-    case ObstacleKind::kCylinder:
-      return "cylinder";
-    case ObstacleKind::kMesh:
-      return "mesh";
-    case ObstacleKind::kBoundary:
-      return "boundary";
-    case ObstacleKind::kAgent:
-      return "agent";
-    case ObstacleKind::kMover:
-      return "mover";
-  }
-  return "?";
-}
-
 std::filesystem::path default_cache_dir() {
   if (const char* dir = std::getenv("PEG3D_CACHE_DIR"); dir != nullptr && *dir != '\0') return dir;
   if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0') {

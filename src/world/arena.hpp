@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/vector.hpp"
+#include "world/contact.hpp"
 #include "world/distance_field.hpp"
 #include "world/map_spec.hpp"
 #include "world/obstacle_geometry.hpp"
@@ -26,13 +27,9 @@ struct StaticPhysicsShapes;
 
 class MoverTimeline;
 
-/// What an obstacle is; kBoundary is a face of the arena box (octree and distance field only, never a
-/// collision: the game keeps agents inside the box); kAgent is another agent (when the game lets agents
-/// collide); kMover is a moving obstacle (MapSpec::movers, by index).
-enum class ObstacleKind { kSphere, kCylinder, kMesh, kBoundary, kAgent, kMover };
-
-/// Name of a kind: "sphere", "cylinder", "mesh", "boundary".
-const char* to_string(ObstacleKind kind);
+// ObstacleKind (world/contact.hpp): kBoundary is a face of the arena box (octree and distance field only, never
+// a collision: the game keeps agents inside the box); kAgent is another agent (when the game lets agents
+// collide); kMover is a moving obstacle (MapSpec::movers, by index).
 
 /// Figures about a built arena.
 struct ArenaStats {

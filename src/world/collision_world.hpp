@@ -17,18 +17,6 @@
 
 namespace peg3d::world {
 
-/// A collision of an agent with an obstacle.
-struct Contact {
-  int agent = -1;                            ///< agent index from add_agent
-  ObstacleKind kind = ObstacleKind::kSphere; ///< what was hit (never kBoundary: faces are the game's business)
-  int obstacle_id = -1;                      ///< index into MapSpec::spheres / cylinders / meshes by kind
-  int triangle = -1;                         ///< triangle index within the mesh for kMesh, else -1
-  double fraction = 0.0;                     ///< time of impact along the move, in [0, 1]; 0 for overlaps
-  Vec3 point = Vec3::Zero();                 ///< m, contact point on the obstacle's surface
-  Vec3 normal = Vec3::UnitZ();               ///< unit, obstacle surface normal at the contact, towards the agent
-  double penetration = 0.0;                  ///< m, >= 0: overlap depth when the agent already intersects
-};
-
 /// A static obstacle's surface point near a query point (CollisionWorld::obstacles_near).
 struct NearPoint {
   Vec3 point = Vec3::Zero();                  ///< m, on the obstacle's surface, nearest to the query point

@@ -465,7 +465,7 @@ int MoverTimeline::candidates(const Box& box, double reach, double t0, double t1
 }
 
 void MoverTimeline::contact_with(int m, const Vec3& from, const Vec3& to, double radius, double t0, double dt,
-                                 std::optional<MoverContact>& best) const {
+                                 std::optional<Contact>& best) const {
   const MoverSpec& spec = movers_[std::size_t(m)];
   const double agent_travel = (to - from).norm();
   const double mover_travel = travel_bound(m, t0, t0 + dt);
@@ -477,8 +477,9 @@ void MoverTimeline::contact_with(int m, const Vec3& from, const Vec3& to, double
   // advancing by g / closing never skips a contact, however fast the two move.
   const auto found = [&](double s, const Pose& at, const Vec3& c, double signed_gap, bool gave_up) {
     const TouchPoint tp = touch_point(spec.shape, at, c, radius);
-    MoverContact contact;
-    contact.mover = m;
+    Contact contact;
+    contact.kind = ObstacleKind::kMover;
+    contact.obstacle_id = m;
     contact.fraction = s;
     contact.point = tp.point;
     contact.normal = tp.normal;
@@ -508,21 +509,21 @@ void MoverTimeline::contact_with(int m, const Vec3& from, const Vec3& to, double
   }
 }
 
-std::optional<MoverContact> MoverTimeline::first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
+std::optional<Contact> MoverTimeline::first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
                                                          double dt) const {
   constexpr std::size_t kMaxCandidates = 256;
   int found[kMaxCandidates];
   const int n = candidates({from.cwiseMin(to), from.cwiseMax(to)}, radius + kContactTolerance, t0, t0 + dt, found);
   if (n < 0 || n > static_cast<int>(kMaxCandidates)) return first_contact_scan(from, to, radius, t0, dt);
   // In index order, as the scan: of equally early contacts the lower index wins.
-  std::optional<MoverContact> best;
+  std::optional<Contact> best;
   for (int i = 0; i < n; ++i) contact_with(found[i], from, to, radius, t0, dt, best);
   return best;
 }
 
-std::optional<MoverContact> MoverTimeline::first_contact_scan(const Vec3& from, const Vec3& to, double radius,
+std::optional<Contact> MoverTimeline::first_contact_scan(const Vec3& from, const Vec3& to, double radius,
                                                               double t0, double dt) const {
-  std::optional<MoverContact> best;
+  std::optional<Contact> best;
   for (const int m : queried_) contact_with(m, from, to, radius, t0, dt, best);
   return best;
 }

@@ -33,6 +33,7 @@
 
 #include "geometry/box_index.hpp"
 #include "geometry/pose.hpp"
+#include "world/contact.hpp"
 #include "world/map_spec.hpp"
 #include "world/movers.hpp"
 #include "world/triangle_mesh.hpp"
@@ -60,18 +61,6 @@ struct TouchPoint {
 };
 TouchPoint touch_point(const Shape& shape, const Pose& at, const Vec3& c, double radius);
 
-/// The first touch of an agent's sphere with a mover during one step.
-struct MoverContact {
-  int mover = -1;
-  double fraction = 0.0;         ///< of the step, in [0, 1]
-  Vec3 point = Vec3::Zero();     ///< m, on the mover's surface
-  Vec3 normal = Vec3::UnitZ();   ///< unit, from the mover towards the agent
-  double penetration = 0.0;      ///< m, when already overlapping at the start of the step
-  /// The search reached its bound (MoverTimeline::kMaxAdvancementSteps) before it could tell: the contact is
-  /// assumed at the last fraction it proved free, where the sphere still stood apart from the mover.
-  bool gave_up = false;
-};
-
 /// What a timeline holds and what it cost, for peg-map check and the performance pages.
 struct TimelineStats {
   int dynamic_bodies = 0;
@@ -93,7 +82,7 @@ class MoverTimeline {
   static constexpr double kContactTolerance = 1e-4;
   /// The most advancement steps a contact search takes with one mover. A search that reaches it without an
   /// answer (an agent skimming a mover that moves fast, by a hair more than the tolerance) answers a contact at
-  /// the last fraction it proved free (MoverContact::gave_up): never a missed one.
+  /// the last fraction it proved free (Contact::gave_up): never a missed one.
   static constexpr int kMaxAdvancementSteps = 100000;
   /// Most bytes a timeline may need in the worst case (every dynamic body moving for the whole duration).
   static constexpr std::size_t kMaxBytes = std::size_t{256} << 20;
@@ -137,9 +126,9 @@ class MoverTimeline {
 
   /// The first contact, during the step [t0, t0 + dt], of a sphere of `radius` moving from `from` to `to` at
   /// constant velocity with any mover (the earliest, the lowest index among equally early ones); nullopt when
-  /// it touches none. A search that reaches kMaxAdvancementSteps answers conservatively (MoverContact::gave_up).
+  /// it touches none. A search that reaches kMaxAdvancementSteps answers conservatively (Contact::gave_up).
   /// No allocation.
-  std::optional<MoverContact> first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
+  std::optional<Contact> first_contact(const Vec3& from, const Vec3& to, double radius, double t0,
                                             double dt) const;
 
   /// Writes to `out` (ascending, at most out.size()) the movers whose bounds over [t0, t1] come within `reach`
@@ -156,7 +145,7 @@ class MoverTimeline {
 
   /// nearest() and first_contact() by a visit of every mover: the reference the indexed queries must equal.
   MoverPoint nearest_scan(const Vec3& p, double t, double cap) const;
-  std::optional<MoverContact> first_contact_scan(const Vec3& from, const Vec3& to, double radius, double t0,
+  std::optional<Contact> first_contact_scan(const Vec3& from, const Vec3& to, double radius, double t0,
                                                  double dt) const;
 
   /// The largest distance any point of mover m moves during [t0, t1] (a bound, m).
@@ -218,7 +207,7 @@ class MoverTimeline {
   bool indexed(double t0, double t1) const { return t0 >= 0.0 && t1 <= duration_; }
   /// The contact of mover m during the step, if it comes before `best` (first_contact's per-mover work).
   void contact_with(int m, const Vec3& from, const Vec3& to, double radius, double t0, double dt,
-                    std::optional<MoverContact>& best) const;
+                    std::optional<Contact>& best) const;
   /// Whether mover m at time t is nearer p than `best` (nearest's per-mover work).
   void nearer(int m, const Vec3& p, double t, MoverPoint& best) const;
 

@@ -35,7 +35,7 @@ void PushWorld::remove_agent(int i) {
   in_world_[std::size_t(i)] = false;
 }
 
-void PushWorld::advance(std::span<const Vec3> from, std::span<Vec3> to, std::vector<BodyTouch>& touches) {
+void PushWorld::advance(std::span<const Vec3> from, std::span<Vec3> to, std::vector<Contact>& touches) {
   const int n = static_cast<int>(radius_.size());
   assert(static_cast<int>(from.size()) == n && static_cast<int>(to.size()) == n);
   const std::size_t first_touch = touches.size();
@@ -71,7 +71,16 @@ void PushWorld::advance(std::span<const Vec3> from, std::span<Vec3> to, std::vec
           pushed_.push_back(key);
         }
         const TouchPoint tp = touch_point(spec.shape, at, c, radius_[std::size_t(i)]);
-        touches.push_back({i, m, solid, s, tp.point, tp.normal, std::max(0.0, -gap)});
+        Contact touch;
+        touch.agent = i;
+        touch.kind = ObstacleKind::kMover;
+        touch.obstacle_id = m;
+        touch.fraction = s;
+        touch.point = tp.point;
+        touch.normal = tp.normal;
+        touch.penetration = std::max(0.0, -gap);
+        touch.pushed = !solid;
+        touches.push_back(touch);
         if (solid) {
           // It stops where it stood a substep earlier, apart from the body, and stays there for the step.
           const double back = static_cast<double>(j - 1) / substeps_;

@@ -17,23 +17,13 @@
 
 #include "geometry/pose.hpp"
 #include "world/body_physics.hpp"
+#include "world/contact.hpp"
 #include "world/map_spec.hpp"
 #include "world/mover_timeline.hpp"
 
 namespace peg3d::world {
 
 class Arena;
-
-/// An agent's touch of a dynamic body during a step of push mode.
-struct BodyTouch {
-  int agent = -1;
-  int mover = -1;               ///< index in MapSpec::movers
-  bool solid = true;            ///< DynamicMotion::Touch::kSolid: the agent stopped
-  double fraction = 0.0;        ///< of the step, in (0, 1]: the end of the substep it was found at
-  Vec3 point = Vec3::Zero();    ///< m, the body's point nearest the agent's centre
-  Vec3 normal = Vec3::UnitZ();  ///< unit, from the body towards the agent
-  double penetration = 0.0;     ///< m, overlap depth (0 when apart within the tolerance)
-};
 
 class PushWorld {
  public:
@@ -52,10 +42,12 @@ class PushWorld {
   void remove_agent(int i);
 
   /// One game step: agent i moves from from[i] to to[i] over the step (agents removed stand out of the world).
-  /// A solid touch sets to[i] to where the agent was a substep earlier; every touch is appended to `touches`,
-  /// agents in index order, each agent's in time order: at most one solid touch per agent and one push per
-  /// agent and body, so touches.reserve(max_touches()) keeps every step allocation-free.
-  void advance(std::span<const Vec3> from, std::span<Vec3> to, std::vector<BodyTouch>& touches);
+  /// A solid touch sets to[i] to where the agent was a substep earlier; every touch is appended to `touches`
+  /// (kind kMover; `pushed` for a pushable body; fraction: the end of the substep it was found at; point: the
+  /// body's point nearest the agent's centre), agents in index order, each agent's in time order: at most one
+  /// solid touch per agent and one push per agent and body, so touches.reserve(max_touches()) keeps every step
+  /// allocation-free.
+  void advance(std::span<const Vec3> from, std::span<Vec3> to, std::vector<Contact>& touches);
   /// The most touches a step can report.
   std::size_t max_touches() const { return radius_.size() * (near_.size() + 1); }
 

@@ -50,7 +50,7 @@ TEST(PushMode, PushableBodiesArePushedNotCollidedWith) {
   const Trace t = drive(sim, "crate-lane");
   EXPECT_TRUE(t.collisions.empty());
   ASSERT_FALSE(t.pushes.empty());
-  for (const PushEvent& p : t.pushes) EXPECT_EQ(p.mover, 1);
+  for (const PushEvent& p : t.pushes) EXPECT_EQ(p.obstacle_id, 1);
   // The pursuer was never stopped: it covered speed x time.
   const AgentFrame& last = t.at(t.frame_count() - 1, 0);
   EXPECT_NEAR(last.state.position.x(), 3.0 + 1.1 * 8.0, 1e-9);

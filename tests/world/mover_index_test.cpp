@@ -73,10 +73,10 @@ bool same(const MoverPoint& a, const MoverPoint& b) {
   return a.mover == b.mover && std::memcmp(&a.distance, &b.distance, sizeof(double)) == 0 && a.point == b.point;
 }
 
-bool same(const std::optional<MoverContact>& a, const std::optional<MoverContact>& b) {
+bool same(const std::optional<Contact>& a, const std::optional<Contact>& b) {
   if (a.has_value() != b.has_value()) return false;
   if (!a) return true;
-  return a->mover == b->mover && std::memcmp(&a->fraction, &b->fraction, sizeof(double)) == 0 && a->point == b->point &&
+  return a->obstacle_id == b->obstacle_id && std::memcmp(&a->fraction, &b->fraction, sizeof(double)) == 0 && a->point == b->point &&
          a->normal == b->normal && a->penetration == b->penetration;
 }
 
@@ -160,7 +160,7 @@ TEST(WorldMoverIndex, AClearanceThatRulesOutAContactRulesItOut) {
       contacts += contact.has_value();
       if (!t->clear_of_contact(clearance, p, to, 0.25, time, 0.1)) continue;
       ++clear;
-      ASSERT_FALSE(contact.has_value()) << "query " << q << ": mover " << contact->mover << " touches";
+      ASSERT_FALSE(contact.has_value()) << "query " << q << ": mover " << contact->obstacle_id << " touches";
     }
     std::printf("%s movers: %d of 6000 steps clear, %d contacts\n", fast ? "fast" : "slow", clear, contacts);
     EXPECT_GT(contacts, 50);
@@ -181,7 +181,7 @@ TEST(WorldMoverIndex, AFastMoverIsFoundAtTheTimeOfImpactOfAVisitOfEveryMover) {
     const Vec3 agent(12, 5, 5);
     const auto a = t->first_contact(agent, agent + Vec3(1, 0, 0), 0.25, 0.1 * k, 0.1);
     ASSERT_TRUE(same(a, t->first_contact_scan(agent, agent + Vec3(1, 0, 0), 0.25, 0.1 * k, 0.1))) << k;
-    hits += a.has_value() && a->mover == 0;
+    hits += a.has_value() && a->obstacle_id == 0;
   }
   EXPECT_GE(hits, 1);
 }
@@ -217,7 +217,7 @@ TEST(WorldMoverIndex, OfEquallyNearOrEquallyEarlyMoversTheLowestIndexWins) {
     const auto c = t->first_contact(p, Vec3(15, 15, 7), 0.25, 0.04 * q, 0.1);
     ASSERT_TRUE(same(c, t->first_contact_scan(p, Vec3(15, 15, 7), 0.25, 0.04 * q, 0.1))) << q;
     if (c) {
-      ASSERT_LE(c->mover, 1) << q;
+      ASSERT_LE(c->obstacle_id, 1) << q;
     }
   }
 }

@@ -166,7 +166,7 @@ TEST(WorldMovers, AStandingSphereIsHitWhenTheMoverReachesItAndMissedByAHair) {
   const Vec3 agent(12, 5, 5);
   const auto hit = t->first_contact(agent, agent, 0.25, 0.4, 0.1);
   ASSERT_TRUE(hit.has_value());
-  EXPECT_EQ(hit->mover, 0);
+  EXPECT_EQ(hit->obstacle_id, 0);
   EXPECT_NEAR(0.4 + hit->fraction * 0.1, 0.4375, 1e-5);
   EXPECT_NEAR(hit->point.x(), 11.75, 1e-3);
   EXPECT_LT((hit->normal - Vec3::UnitX()).norm(), 1e-3);
@@ -201,7 +201,7 @@ TEST(WorldMovers, AContactSearchThatReachesItsBoundAnswersAContactWhereTheAgentW
     }
     ASSERT_TRUE(c.has_value());
     EXPECT_TRUE(c->gave_up);
-    EXPECT_EQ(c->mover, 0);
+    EXPECT_EQ(c->obstacle_id, 0);
     // About kMaxAdvancementSteps steps of gap / closing into the step (closing: both travel 30 m).
     EXPECT_NEAR(c->fraction, MoverTimeline::kMaxAdvancementSteps * gap / (2 * speed * dt), 1e-3);
     // There the agent stands apart from the mover, beyond the tolerance.

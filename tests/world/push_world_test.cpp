@@ -66,7 +66,7 @@ Flight play(const Hit& h) {
   Vec3 at = ball - (h.agent_radius + h.ball_radius) * h.normal - h.speed * touch * h.travel;
   PushWorld w(*arena, substeps);
   w.add_agent(h.agent_radius, at);
-  std::vector<BodyTouch> touches;
+  std::vector<Contact> touches;
   std::vector<Vec3> flight;
   for (int k = 0; k < drive + 12; ++k) {
     std::array<Vec3, 1> a{at}, b{k <= drive ? Vec3(at + h.speed * kDt * h.travel) : at};
@@ -141,7 +141,7 @@ TEST(PushWorld, ABallMeetingARestingBallGainsNoEnergyAtAnyPhase) {
           PushWorld w(*arena, substeps);
           Vec3 at = a0 - Vec3(2 * kBall.radius + 0.37 * v / rate + 3 * v * kDt, 0, 0);
           w.add_agent(kBall.radius, at);
-          std::vector<BodyTouch> touches;
+          std::vector<Contact> touches;
           std::vector<Vec3> a, b;
           for (int k = 0; k < 20; ++k) {
             // The agent drives into ball 0 (in step 3) and stands from the step after.
@@ -154,7 +154,7 @@ TEST(PushWorld, ABallMeetingARestingBallGainsNoEnergyAtAnyPhase) {
           std::ostringstream where;
           where << "rate " << rate << " e " << e << " offset (" << offset.transpose() << ") phase " << p;
           ASSERT_GE(touches.size(), 1u) << where.str();
-          ASSERT_EQ(touches[0].mover, 0) << where.str();
+          ASSERT_EQ(touches[0].obstacle_id, 0) << where.str();
           // Ball 0 flies free for two steps after the launch, before it can reach ball 1.
           const Vec3 va = (a[5] - a[4]) / kDt;
           EXPECT_LE((va - launch * Vec3::UnitX()).norm(), 0.02 * launch) << where.str();
@@ -186,7 +186,7 @@ TEST(PushWorld, PushedCrateDeceleratesAtMuG) {
     PushWorld w(*arena, kSubsteps);
     const double z = 0.5;  // the agent's centre at the crate's half height: a horizontal push
     w.add_agent(0.4, Vec3(4.5, 5, z));
-    std::vector<BodyTouch> touches;
+    std::vector<Contact> touches;
     Vec3 at(4.5, 5, z);
     std::vector<Vec3> crate;
     // 2 s of pushing at 3 m/s (the crate settles on the floor first: it starts touching it), then the agent backs off.
@@ -228,7 +228,7 @@ TEST(PushWorld, SolidBodyStopsTheAgentAndIsNotPushed) {
   const auto arena = Arena::build(spec);
   PushWorld w(*arena, kSubsteps);
   w.add_agent(0.5, Vec3(5, 5, 5));
-  std::vector<BodyTouch> touches;
+  std::vector<Contact> touches;
   Vec3 at(5, 5, 5);
   for (int k = 0; k < 30; ++k) {
     std::array<Vec3, 1> a{at}, b{Vec3(at + Vec3(0.2, 0, 0))};
@@ -236,7 +236,7 @@ TEST(PushWorld, SolidBodyStopsTheAgentAndIsNotPushed) {
     at = b[0];
   }
   ASSERT_FALSE(touches.empty());
-  for (const BodyTouch& t : touches) EXPECT_TRUE(t.solid);
+  for (const Contact& t : touches) EXPECT_FALSE(t.pushed);
   EXPECT_EQ(w.pose(0).position, Vec3(8, 5, 5));
   // It stands a substep's travel or less short of the ball's surface.
   const double gap = (at - Vec3(8, 5, 5)).norm() - 1.0;
@@ -258,7 +258,7 @@ TEST(PushWorld, AgentsThatTouchNothingLeaveTheBodiesAlone) {
   BodyPhysics alone(arena->map(), arena->physics_shapes(), arena->map().movers, true);
   PushWorld w(*arena, kSubsteps);
   w.add_agent(0.5, Vec3(28, 28, 13));
-  std::vector<BodyTouch> touches;
+  std::vector<Contact> touches;
   const Vec3 at(28, 28, 13);
   const double h = 1.0 / spec.physics.rate_hz;
   bool moved = false;
@@ -284,7 +284,7 @@ TEST(PushWorld, SameInputsSameBits) {
   auto play = [&] {
     PushWorld w(*arena, kSubsteps);
     w.add_agent(0.5, Vec3(5, 5, 0.5));
-    std::vector<BodyTouch> touches;
+    std::vector<Contact> touches;
     Vec3 at(5, 5, 0.5);
     for (int k = 0; k < 50; ++k) {
       std::array<Vec3, 1> a{at}, b{Vec3(at + Vec3(0.35, 0.01 * std::sin(k), 0))};
