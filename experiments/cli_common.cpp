@@ -18,8 +18,8 @@
 #include "mpi_process_group.hpp"
 #include "view/viewer_html.hpp"
 
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 
 extern char** environ;
 

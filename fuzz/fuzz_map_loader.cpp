@@ -5,8 +5,8 @@
 
 #include "core/error.hpp"
 #include "fuzz_input_file.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 
 extern "C" const char* __lsan_default_suppressions() { return "leak:libassimp.so\n"; }
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "fuzz_input_file.hpp"
-#include "world/triangle_mesh.hpp"
+#include "world/map/triangle_mesh.hpp"
 
 extern "C" const char* __lsan_default_suppressions() { return "leak:libassimp.so\n"; }
 

@@ -22,7 +22,7 @@
 #include "view/replay.hpp"
 #include "view/viewer_html.hpp"
 #include "world/arena.hpp"
-#include "world/map_loader.hpp"
+#include "world/map/map_loader.hpp"
 
 namespace py = pybind11;
 using namespace peg3d;

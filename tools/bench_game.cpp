@@ -19,8 +19,8 @@
 #include "game/facl_policy.hpp"
 #include "game/lineup.hpp"
 #include "world/arena.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace {
 

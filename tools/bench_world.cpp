@@ -20,10 +20,10 @@
 #include "cli_common.hpp"
 #include "core/random.hpp"
 #include "world/arena.hpp"
-#include "world/collision_world.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/collision/collision_world.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
+#include "world/bodies/mover_timeline.hpp"
 #include "world/moving_field.hpp"
 
 namespace {

@@ -9,7 +9,8 @@
 A unit is a header and its source file together (world/arena.hpp and world/arena.cpp). Unit A depends on unit
 B when a file of A includes a header of B ("B.hpp"). Folders are layers (docs/architecture.md); LAYERS lists
 what each may include, and an include outside it is a violation, as is a cycle of units (Tarjan's strongly
-connected components) or an include of a file outside src/ (the library knows no executable).
+connected components), an include of a file outside src/ (the library knows no executable), or a folder
+holding more than LARGEST_SHARE of src/'s lines (a folder's own files; world/ and world/map/ count apart).
 """
 import argparse
 import collections
@@ -19,23 +20,49 @@ import re
 import subprocess
 import sys
 
-# What each folder of src/ may include besides itself: the one-way picture of docs/architecture.md.
+# What each folder of src/ may include besides itself: the one-way picture of docs/architecture.md. world/ is
+# itself layered: map/ (maps and meshes in), field/ (the static distance field) and bodies/ (movers and bodies
+# in time) under world/ (the Arena over them), under collision/ (each run's collision world).
+WORLD_MAP = {"core", "geometry"}
+WORLD_FIELD = WORLD_MAP | {"world/map"}
+WORLD_BODIES = WORLD_MAP | {"world/map"}
+WORLD = WORLD_MAP | {"world/map", "world/field", "world/bodies"}
+WORLD_ALL = WORLD | {"world", "world/collision"}
 LAYERS = {
     "core": set(),
     "geometry": {"core"},
     "fuzzy": {"core"},
-    "world": {"core", "geometry"},
-    "game": {"core", "geometry", "fuzzy", "world"},
+    "world/map": WORLD_MAP,
+    "world/field": WORLD_FIELD,
+    "world/bodies": WORLD_BODIES,
+    "world": WORLD,
+    "world/collision": WORLD | {"world"},
+    "game": {"core", "geometry", "fuzzy"} | WORLD_ALL,
     "sweep": {"core"},
-    "results": {"core", "geometry", "fuzzy", "world", "game"},
-    "regress": {"core", "geometry", "fuzzy", "world", "game", "results"},
-    "experiment": {"core", "geometry", "fuzzy", "world", "game", "sweep", "results"},
-    "view": {"core", "geometry", "fuzzy", "world", "game"},
-    "env": {"core", "geometry", "fuzzy", "world", "game"},
+    "results": {"core", "geometry", "fuzzy", "game"} | WORLD_ALL,
+    "regress": {"core", "geometry", "fuzzy", "game", "results"} | WORLD_ALL,
+    "experiment": {"core", "geometry", "fuzzy", "game", "sweep", "results"} | WORLD_ALL,
+    "view": {"core", "geometry", "fuzzy", "game"} | WORLD_ALL,
+    "env": {"core", "geometry", "fuzzy", "game"} | WORLD_ALL,
 }
+# No folder may hold more than this share of src/'s lines: a folder that large is several concepts.
+LARGEST_SHARE = 0.20
 SOURCE_EXTENSIONS = (".cpp", ".hpp", ".hpp.in")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.MULTILINE)
 FUNCTION_LIMIT = 80
+
+
+def folder_of(path):
+    """The folder of a file under src/: "world/map" for world/map/map_spec.hpp, "game" for game/sim.hpp."""
+    return path.rsplit("/", 1)[0] if "/" in path else ""
+
+
+def folder_lines(files):
+    """Lines per folder (a folder's own files, not its sub-folders'), largest first."""
+    per_folder = collections.Counter()
+    for path, text in files.items():
+        per_folder[folder_of(path)] += text.count("\n")
+    return dict(per_folder.most_common())
 
 
 def unit_of(path):
@@ -108,7 +135,7 @@ def check_layers(src):
     problems = []
     graph = collections.defaultdict(set)
     for path, text in sorted(files.items()):
-        folder = path.split("/")[0]
+        folder = folder_of(path)
         if folder not in LAYERS:
             problems.append(f"{path}: folder '{folder}' is not a layer of tools/check_structure.py")
             continue
@@ -120,7 +147,7 @@ def check_layers(src):
             if included not in headers:
                 problems.append(f"{path}: includes \"{included}\", which is not a header of src/")
                 continue
-            target_folder = included.split("/")[0]
+            target_folder = folder_of(included)
             if target_folder != folder and target_folder not in LAYERS[folder]:
                 problems.append(f"{path}: includes \"{included}\": {folder}/ may not depend on {target_folder}/")
             target = unit_of(included)
@@ -128,18 +155,19 @@ def check_layers(src):
                 graph[unit].add(target)
     for component in strongly_connected(graph):
         problems.append("include cycle between units: " + " -> ".join(component + component[:1]))
+    total = sum(text.count("\n") for text in files.values())
+    for folder, n in folder_lines(files).items():
+        if n > LARGEST_SHARE * total:
+            problems.append(f"{folder}/ holds {n} of src/'s {total} lines, over {LARGEST_SHARE:.0%}: split it by concept")
     return files, problems
 
 
 def report(src, files):
     lines = {path: text.count("\n") for path, text in files.items()}
     total = sum(lines.values())
-    per_folder = collections.Counter()
-    for path, n in lines.items():
-        per_folder[path.split("/")[0]] += n
     print(f"{total} lines in {len(files)} files under {src}")
-    for folder, n in per_folder.most_common():
-        print(f"  {folder + '/':<12} {n:>6}  {100.0 * n / total:5.1f} %")
+    for folder, n in folder_lines(files).items():
+        print(f"  {folder + '/':<17} {n:>6}  {100.0 * n / total:5.1f} %")
     print("largest files:")
     for path, n in sorted(lines.items(), key=lambda kv: -kv[1])[:10]:
         print(f"  {n:>6}  {path}")

@@ -19,7 +19,7 @@
 #include "regress/collision_case.hpp"
 #include "regress/collision_log.hpp"
 #include "results/result_files.hpp"
-#include "world/map_loader.hpp"
+#include "world/map/map_loader.hpp"
 
 using namespace peg3d;
 

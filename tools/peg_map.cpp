@@ -21,9 +21,9 @@
 #include "cli_common.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
+#include "world/bodies/mover_timeline.hpp"
 
 namespace {
 

@@ -28,7 +28,7 @@
 #include "game/config_file.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/bodies/mover_timeline.hpp"
 
 using namespace peg3d;
 

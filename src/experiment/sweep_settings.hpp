@@ -11,7 +11,7 @@
 
 #include "sweep/sweep_control.hpp"
 #include "world/arena.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace peg3d::experiment {
 

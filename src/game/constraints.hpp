@@ -12,7 +12,7 @@
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
 #include "geometry/motion_cone.hpp"
-#include "world/collision_world.hpp"
+#include "world/collision/collision_world.hpp"
 
 namespace peg3d::game {
 

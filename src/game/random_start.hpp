@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "game/sim.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace peg3d::game {
 

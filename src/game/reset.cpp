@@ -100,7 +100,7 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   for (int i = 0; i < n; ++i) st.collider.place_agent(i, st.agents[std::size_t(i)].kinematics.position);
   check_start(sim.arena(), g, sim.movers(), st.collider, scenario, st.scratch.positions);
   if (sim.pushes()) {
-    st.push = std::make_unique<world::PushWorld>(sim.arena(), sim.substeps());
+    st.push = std::make_unique<world::PushWorld>(sim.arena().map(), sim.arena().physics_shapes(), sim.substeps());
     for (int i = 0; i < n; ++i) st.push->add_agent(st.agents[std::size_t(i)].config->radius, st.agents[std::size_t(i)].kinematics.position);
     st.scratch.touches.reserve(st.push->max_touches());
     st.events.pushes.reserve(st.push->max_touches());

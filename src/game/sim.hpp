@@ -31,10 +31,10 @@
 #include "game/reward.hpp"
 #include "game/starts.hpp"
 #include "world/arena.hpp"
-#include "world/collision_world.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/collision/collision_world.hpp"
+#include "world/bodies/mover_timeline.hpp"
 #include "world/moving_field.hpp"
-#include "world/push_world.hpp"
+#include "world/bodies/push_world.hpp"
 
 namespace peg3d::game {
 

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/validation.hpp"
-#include "world/movers.hpp"
+#include "world/map/movers.hpp"
 
 namespace peg3d::game {
 

@@ -10,8 +10,8 @@
 #include "core/error.hpp"
 #include "game/game_config.hpp"
 #include "world/arena.hpp"
-#include "world/collision_world.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/collision/collision_world.hpp"
+#include "world/bodies/mover_timeline.hpp"
 
 namespace peg3d::game {
 

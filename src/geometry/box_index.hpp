@@ -1,7 +1,7 @@
 #pragma once
 // A static index over axis-aligned boxes: which boxes overlap a query box, and the boxes in order of their
 // distance to a point within a bound (branch and bound). It answers the broadphase questions of the movers'
-// timeline (world/mover_timeline.hpp): built once per time window, read by every thread.
+// timeline (world/bodies/mover_timeline.hpp): built once per time window, read by every thread.
 //
 // The same n boxes may come in several frames (a mover's bounds over each block of a window): each frame has
 // bounds of its own, the clusters are shared and bound the boxes of every frame. A query asks one frame. The

@@ -17,8 +17,8 @@
 #include "game/policy_factory.hpp"
 #include "game/saved_policy.hpp"
 #include "geometry/angles.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace peg3d::regress {
 namespace {

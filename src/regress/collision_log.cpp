@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
-#include "world/movers.hpp"
+#include "world/map/movers.hpp"
 
 namespace peg3d::regress {
 namespace {

@@ -11,13 +11,13 @@
 #include "core/atomic_file.hpp"
 #include "core/hash.hpp"
 
-#include "world/field_builder.hpp"
-#include "world/map_rules.hpp"
-#include "world/mover_timeline.hpp"
-#include "world/obstacle_geometry.hpp"
-#include "world/body_physics.hpp"
+#include "world/field/field_builder.hpp"
+#include "world/map/map_rules.hpp"
+#include "world/bodies/mover_timeline.hpp"
+#include "world/map/obstacle_geometry.hpp"
+#include "world/bodies/body_physics.hpp"
 #include "world/terrain_shapes.hpp"
-#include "world/voxel_grid.hpp"
+#include "world/field/voxel_grid.hpp"
 
 namespace peg3d::world {
 

@@ -14,11 +14,11 @@
 #include <vector>
 
 #include "geometry/vector.hpp"
-#include "world/contact.hpp"
-#include "world/distance_field.hpp"
-#include "world/map_spec.hpp"
-#include "world/obstacle_geometry.hpp"
-#include "world/triangle_mesh.hpp"
+#include "world/bodies/contact.hpp"
+#include "world/field/distance_field.hpp"
+#include "world/map/map_spec.hpp"
+#include "world/map/obstacle_geometry.hpp"
+#include "world/map/triangle_mesh.hpp"
 
 namespace peg3d::world {
 
@@ -27,7 +27,7 @@ struct StaticPhysicsShapes;
 
 class MoverTimeline;
 
-// ObstacleKind (world/contact.hpp): kBoundary is a face of the arena box (octree and distance field only, never
+// ObstacleKind (world/bodies/contact.hpp): kBoundary is a face of the arena box (octree and distance field only, never
 // a collision: the game keeps agents inside the box); kAgent is another agent (when the game lets agents
 // collide); kMover is a moving obstacle (MapSpec::movers, by index).
 
@@ -91,16 +91,16 @@ class Arena {
   double clearance_lower_bound(const Vec3& p) const { return field_.clearance_lower_bound(p); }
 
   /// Where the map's moving obstacles are from t = 0 to at least `seconds`: scripted movers exactly, dynamic
-  /// bodies as Bullet simulates them (world/mover_timeline.hpp). Simulated on the first request of a duration
+  /// bodies as Bullet simulates them (world/bodies/mover_timeline.hpp). Simulated on the first request of a duration
   /// and kept: later requests, from any thread, share it read-only. Null for a map without movers. Without
   /// `with_dynamic`, a timeline of the scripted movers alone (push mode: every run moves the dynamic bodies in
-  /// a world of its own, world/push_world.hpp).
+  /// a world of its own, world/bodies/push_world.hpp).
   std::shared_ptr<const MoverTimeline> movers_until(double seconds, bool with_dynamic = true) const;
 
   /// Bullet's hierarchies of the terrain meshes (world/terrain_shapes.hpp), built on the first request and
   /// shared read-only by every later one, from any thread.
   std::shared_ptr<const TerrainShapes> terrain_shapes() const;
-  /// The static geometry's shapes for dynamics worlds (world/body_physics.hpp), built on the first request and
+  /// The static geometry's shapes for dynamics worlds (world/bodies/body_physics.hpp), built on the first request and
   /// shared read-only by every push-mode run, from any thread.
   std::shared_ptr<const StaticPhysicsShapes> physics_shapes() const;
 

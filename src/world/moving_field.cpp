@@ -8,7 +8,7 @@
 #include <dynamicEDT3D/dynamicEDTOctomap.h>
 #include <octomap/OcTree.h>
 
-#include "world/voxel_grid.hpp"
+#include "world/field/voxel_grid.hpp"
 
 namespace peg3d::world {
 namespace {

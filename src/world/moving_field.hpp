@@ -13,7 +13,7 @@
 #include <memory>
 
 #include "world/arena.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/bodies/mover_timeline.hpp"
 
 namespace peg3d::world {
 

@@ -10,7 +10,7 @@
 
 #include <btBulletCollisionCommon.h>
 
-#include "world/triangle_mesh.hpp"
+#include "world/map/triangle_mesh.hpp"
 
 namespace peg3d::world {
 

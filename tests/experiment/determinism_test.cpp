@@ -12,8 +12,8 @@
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
 #include "sweep/parallel_runner.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace peg3d::experiment {
 namespace {

@@ -15,8 +15,8 @@
 #include "core/random.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace peg3d::game {
 namespace {

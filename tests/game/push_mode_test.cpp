@@ -1,4 +1,4 @@
-// Push mode in the game (mover_dynamics = push, world/push_world.hpp): pushes are events, not collisions; a
+// Push mode in the game (mover_dynamics = push, world/bodies/push_world.hpp): pushes are events, not collisions; a
 // solid body is a collision; the agents' sensing sees the bodies where the run moved them; runs of a seed are
 // the same in any thread; the default mode on the same map is unchanged by the setting's existence.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include "core/hash.hpp"
 #include "game/episode.hpp"
 #include "game/lineup.hpp"
-#include "world/map_loader.hpp"
+#include "world/map/map_loader.hpp"
 
 namespace peg3d::game {
 namespace {

@@ -14,9 +14,9 @@
 #include "game/scripted_policies.hpp"
 #include "game/views.hpp"
 #include "test_arena.hpp"
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
-#include "world/mover_timeline.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
+#include "world/bodies/mover_timeline.hpp"
 
 namespace peg3d::game {
 namespace {

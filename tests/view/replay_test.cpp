@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "game/episode.hpp"
-#include "world/map_loader.hpp"
+#include "world/map/map_loader.hpp"
 #include "geometry/angles.hpp"
 #include "test_arena.hpp"
 #include "world_test_support.hpp"

@@ -7,7 +7,7 @@
 #include <octomap/OcTree.h>
 
 #include "world/arena.hpp"
-#include "world/map_loader.hpp"
+#include "world/map/map_loader.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

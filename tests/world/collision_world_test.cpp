@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "world/collision_world.hpp"
-#include "world/map_loader.hpp"
+#include "world/collision/collision_world.hpp"
+#include "world/map/map_loader.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

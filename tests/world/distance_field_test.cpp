@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "world/arena.hpp"
-#include "world/field_builder.hpp"
-#include "world/obstacle_geometry.hpp"
-#include "world/voxel_grid.hpp"
+#include "world/field/field_builder.hpp"
+#include "world/map/obstacle_geometry.hpp"
+#include "world/field/voxel_grid.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

@@ -7,10 +7,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "world/map_loader.hpp"
-#include "world/map_spec.hpp"
-#include "world/obstacle_geometry.hpp"
-#include "world/random_obstacles.hpp"
+#include "world/map/map_loader.hpp"
+#include "world/map/map_spec.hpp"
+#include "world/map/obstacle_geometry.hpp"
+#include "world/map/random_obstacles.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

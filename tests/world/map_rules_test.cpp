@@ -1,6 +1,6 @@
 // The map rules, shared by load_map and by maps written in code (Arena::build): a map built in code gets the
 // same checks as a file, named by its field.
-#include "world/map_rules.hpp"
+#include "world/map/map_rules.hpp"
 
 #include <gtest/gtest.h>
 

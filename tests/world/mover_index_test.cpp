@@ -1,4 +1,4 @@
-// The movers' timeline as a store and an index (world/mover_timeline.hpp): the indexed queries give the answers
+// The movers' timeline as a store and an index (world/bodies/mover_timeline.hpp): the indexed queries give the answers
 // of a visit of every mover, to the bit, on a crowded map of scripted movers (slow and fast, every shape) and
 // dynamic bodies; bodies at rest are stored once; keyframes thinned by physics.keyframe_hz are the simulated
 // poses; the worst case is checked against the budget before anything is simulated; blocks are simulated only
@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "world/arena.hpp"
-#include "world/mover_timeline.hpp"
-#include "world/movers.hpp"
+#include "world/bodies/mover_timeline.hpp"
+#include "world/map/movers.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

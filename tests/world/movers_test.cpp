@@ -8,9 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "world/arena.hpp"
-#include "world/map_rules.hpp"
-#include "world/mover_timeline.hpp"
-#include "world/movers.hpp"
+#include "world/map/map_rules.hpp"
+#include "world/bodies/mover_timeline.hpp"
+#include "world/map/movers.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

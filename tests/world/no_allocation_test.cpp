@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "../support/counting_new.hpp"
-#include "world/collision_world.hpp"
-#include "world/map_loader.hpp"
+#include "world/collision/collision_world.hpp"
+#include "world/map/map_loader.hpp"
 #include "world_test_support.hpp"
 
 namespace {

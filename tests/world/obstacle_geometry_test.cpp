@@ -1,6 +1,6 @@
 // The vertical-ray index answers exactly as the scan of every triangle, on vertices, edges, cell borders
 // and random points, for a height field and for a jumble of triangles.
-#include "world/obstacle_geometry.hpp"
+#include "world/map/obstacle_geometry.hpp"
 
 #include <gtest/gtest.h>
 

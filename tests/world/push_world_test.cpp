@@ -1,4 +1,4 @@
-// Push mode's world (world/push_world.hpp): agents as kinematic spheres push the pushable bodies as Bullet
+// Push mode's world (world/bodies/push_world.hpp): agents as kinematic spheres push the pushable bodies as Bullet
 // resolves the contact, with the analytic answers of a hit at any phase of a substep (head-on, oblique, 3-D),
 // of a ball meeting a ball and of sliding friction; solid bodies stop an agent and are not moved by it; agents
 // that touch nothing change no body's motion, to the bit; the world is a function of its inputs.
@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "world/arena.hpp"
-#include "world/body_physics.hpp"
-#include "world/mover_timeline.hpp"
-#include "world/push_world.hpp"
+#include "world/bodies/body_physics.hpp"
+#include "world/bodies/mover_timeline.hpp"
+#include "world/bodies/push_world.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {
@@ -64,7 +64,7 @@ Flight play(const Hit& h) {
   const int drive = 4;  // the touch falls in the last substep of step 4 (0-based)
   const double touch = drive * kDt + (substeps - 1 + h.phase) / h.rate_hz;
   Vec3 at = ball - (h.agent_radius + h.ball_radius) * h.normal - h.speed * touch * h.travel;
-  PushWorld w(*arena, substeps);
+  PushWorld w(arena->map(), arena->physics_shapes(), substeps);
   w.add_agent(h.agent_radius, at);
   std::vector<Contact> touches;
   std::vector<Vec3> flight;
@@ -138,7 +138,7 @@ TEST(PushWorld, ABallMeetingARestingBallGainsNoEnergyAtAnyPhase) {
             spec.movers.back().dynamic.friction = 0.0;
           }
           const auto arena = Arena::build(spec);
-          PushWorld w(*arena, substeps);
+          PushWorld w(arena->map(), arena->physics_shapes(), substeps);
           Vec3 at = a0 - Vec3(2 * kBall.radius + 0.37 * v / rate + 3 * v * kDt, 0, 0);
           w.add_agent(kBall.radius, at);
           std::vector<Contact> touches;
@@ -183,7 +183,7 @@ TEST(PushWorld, PushedCrateDeceleratesAtMuG) {
     spec.movers.push_back(body(Vec3(6, 5, 0.9), kCrate, DynamicMotion::Touch::kPushable));
     spec.movers.back().dynamic.friction = mu;
     const auto arena = Arena::build(spec);
-    PushWorld w(*arena, kSubsteps);
+    PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
     const double z = 0.5;  // the agent's centre at the crate's half height: a horizontal push
     w.add_agent(0.4, Vec3(4.5, 5, z));
     std::vector<Contact> touches;
@@ -226,7 +226,7 @@ TEST(PushWorld, SolidBodyStopsTheAgentAndIsNotPushed) {
   spec.physics.gravity = Vec3::Zero();
   spec.movers.push_back(body(Vec3(8, 5, 5), kBall, DynamicMotion::Touch::kSolid));
   const auto arena = Arena::build(spec);
-  PushWorld w(*arena, kSubsteps);
+  PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
   w.add_agent(0.5, Vec3(5, 5, 5));
   std::vector<Contact> touches;
   Vec3 at(5, 5, 5);
@@ -256,7 +256,7 @@ TEST(PushWorld, AgentsThatTouchNothingLeaveTheBodiesAlone) {
   }
   const auto arena = Arena::build(spec);
   BodyPhysics alone(arena->map(), arena->physics_shapes(), arena->map().movers, true);
-  PushWorld w(*arena, kSubsteps);
+  PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
   w.add_agent(0.5, Vec3(28, 28, 13));
   std::vector<Contact> touches;
   const Vec3 at(28, 28, 13);
@@ -282,7 +282,7 @@ TEST(PushWorld, SameInputsSameBits) {
   for (int k = 0; k < 6; ++k) spec.movers.push_back(body(Vec3(8 + 2 * k, 5, 0.5), kBall, DynamicMotion::Touch::kPushable));
   const auto arena = Arena::build(spec);
   auto play = [&] {
-    PushWorld w(*arena, kSubsteps);
+    PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
     w.add_agent(0.5, Vec3(5, 5, 0.5));
     std::vector<Contact> touches;
     Vec3 at(5, 5, 0.5);

@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "world/mesh_file_checks.hpp"
-#include "world/triangle_mesh.hpp"
+#include "world/map/mesh_file_checks.hpp"
+#include "world/map/triangle_mesh.hpp"
 #include "world_test_support.hpp"
 
 // assimp 5.2's ASCII STL reader leaks the mesh it was filling when a file ends mid-facet (the truncation test

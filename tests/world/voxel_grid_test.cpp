@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "world/obstacle_geometry.hpp"
-#include "world/triangle_mesh.hpp"
-#include "world/voxel_grid.hpp"
+#include "world/map/obstacle_geometry.hpp"
+#include "world/map/triangle_mesh.hpp"
+#include "world/field/voxel_grid.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {

@@ -7,7 +7,7 @@
 
 #include "support/scratch_dir.hpp"
 #include "world/arena.hpp"
-#include "world/map_spec.hpp"
+#include "world/map/map_spec.hpp"
 
 namespace peg3d::world::testing {
 
