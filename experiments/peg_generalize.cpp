@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> html;
   cli::add_sweep_options(app, o);
   cli::add_html_option(app, html, "TRAIN_rREPEAT_on_EVALMAP_EVALSCENARIO, e.g. S1_r0_on_forest_S2 or '*_r0_on_valley_*'");
-  app.add_option("--config", config_source, "configuration: a preset (peg3d, paper, baseline, robust) or a JSON file")
+  app.add_option("--config", config_source, "configuration: a preset (" + game::preset_list() + ") or a JSON file")
       ->capture_default_str();
   app.add_option("--eval-maps", eval_maps, "maps to evaluate the trained policies on")->delimiter(',')->capture_default_str();
   app.add_flag("--list-config", list_config, "print every configuration field and exit");

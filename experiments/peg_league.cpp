@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   app.remove_option(app.get_option("--repeats"));  // training seeds and evaluation seeds instead
   app.get_option("--map")->description("the map the policies train on (YAML, docs/maps.md)");
   app.get_option("--episodes")->description("training episodes per training run");
-  app.add_option("--algorithms", algorithms, "algorithms that train policies: presets (peg3d, paper, baseline, robust)")
+  app.add_option("--algorithms", algorithms, "algorithms that train policies: presets (" + game::preset_list() + ")")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--train-seeds", o.sweep.repeats, "training runs (seeds) per algorithm")

@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   cli::add_sweep_options(app, o);
   cli::add_html_option(app, html, "SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee or 'S2_r0_*'");
   app.add_option("--config", config_source,
-                 "configuration the agents start from: a preset (peg3d, paper, baseline, robust) or a JSON file")
+                 "configuration the agents start from: a preset (" + game::preset_list() + ") or a JSON file")
       ->capture_default_str();
   app.add_option("--pursuers", pursuers, "pursuer policies: facl, pure-pursuit, pn, apollonius, random")
       ->delimiter(',')

@@ -62,6 +62,11 @@ PYBIND11_MODULE(_core, m) {
     }
   });
 
+  // The configuration presets, from the one list the library keeps (game::kPresetNames).
+  py::tuple presets(std::size(game::kPresetNames));
+  for (std::size_t i = 0; i < std::size(game::kPresetNames); ++i) presets[i] = game::kPresetNames[i];
+  m.attr("PRESETS") = presets;
+
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
                        const std::string& scenario, int games, int threads, std::uint64_t seed, int neighbours,

@@ -114,10 +114,9 @@ void training_steps(benchmark::State& state, const char* map, const char* preset
 }
 
 void BM_TrainingSteps(benchmark::State& state) {
-  const char* names[] = {"peg3d", "paper", "baseline"};
-  training_steps(state, "maps/paper.yaml", names[state.range(0)], -1);
+  training_steps(state, "maps/paper.yaml", game::kPresetNames[state.range(0)], -1);
 }
-BENCHMARK(BM_TrainingSteps)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+BENCHMARK(BM_TrainingSteps)->DenseRange(0, std::size(game::kPresetNames) - 1)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 void BM_TeamTrainingSteps(benchmark::State& state) { training_steps(state, "maps/pack.yaml", "peg3d", 0); }
 BENCHMARK(BM_TeamTrainingSteps)->Unit(benchmark::kMillisecond)->MinTime(2.0);

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   double warmup = 0.1;
   std::uint64_t seed = 1;
   app.add_option("--map", map, "map to train on (every scenario in turn)");
-  app.add_option("--config", preset, "configuration preset")->check(CLI::IsMember({"peg3d", "paper", "baseline"}));
+  app.add_option("--config", preset, "configuration preset")->check(CLI::IsMember(std::vector<std::string>(std::begin(game::kPresetNames), std::end(game::kPresetNames))));
   app.add_option("--episodes", episodes, "training episodes")->check(CLI::Range(1LL, 1000000000LL));
   app.add_option("--samples", samples, "memory samples printed")->check(CLI::Range(2, 100000));
   app.add_option("--warmup", warmup, "fraction of the episodes after which memory must stay flat")->check(CLI::Range(0.0, 0.9));

@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
   app.add_option("--map", map, "the map")->capture_default_str();
   app.add_option("--steps", steps, "training steps per pass, over all threads")->capture_default_str()->check(CLI::Range(1LL, 1'000'000'000'000LL));
   app.add_option("--threads", threads, "threads, each with its own learners")->capture_default_str()->check(CLI::Range(1, 256));
-  app.add_option("--config", config_source, "configuration: a preset (peg3d, paper, baseline) or a JSON file")->capture_default_str();
+  app.add_option("--config", config_source, "configuration: a preset (" + game::preset_list() + ") or a JSON file")->capture_default_str();
   app.add_option("--set", sets, "configuration overrides, key=value (repeatable)");
   app.add_flag("!--no-breakdown", breakdown, "skip the second pass that times each part of a step");
   app.add_flag("--no-cache", no_cache, "rebuild the world instead of using the on-disk cache");

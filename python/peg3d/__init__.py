@@ -3,9 +3,10 @@
     parallel_env(map=..., ...)              one game, PettingZoo's ParallelEnv API
     vector_env(map=..., num_envs=N, ...)    N games stepped by one call on C++ threads (Gymnasium VectorEnv)
     InputError                              a bad map, configuration, policy or keyword (a ValueError)
+    PRESETS                                 the configuration presets `config` may name
 """
 
-from ._core import InputError
+from ._core import PRESETS, InputError
 from .parallel import ParallelEnv
 from .spaces import Box
 from .vector import VectorEnv
@@ -31,4 +32,4 @@ def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
     return VectorEnv(map=map, num_envs=num_envs, threads=threads, **kwargs)
 
 
-__all__ = ["Box", "InputError", "OBSERVATION", "ParallelEnv", "VectorEnv", "parallel_env", "vector_env"]
+__all__ = ["Box", "InputError", "OBSERVATION", "PRESETS", "ParallelEnv", "VectorEnv", "parallel_env", "vector_env"]

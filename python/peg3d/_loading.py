@@ -30,7 +30,7 @@ def resolve(path):
 
 
 def config_source(config):
-    """A preset name (peg3d, paper, baseline) as it is, a JSON file resolved like a map."""
+    """A preset name (peg3d.PRESETS) as it is, a JSON file resolved like a map."""
     if not isinstance(config, (str, os.PathLike)):
         raise TypeError("config: a preset name or a JSON file")
     c = str(config)

@@ -24,7 +24,7 @@ GameConfig load_game_config(const std::string& source) {
     if (source == name) return preset(source);
   const std::filesystem::path file(source);
   if (file.extension() != ".json") {
-    throw InputError(fmt::format("--config {}: neither a preset (peg3d, paper, baseline, robust) nor a .json file", source));
+    throw InputError(fmt::format("--config {}: neither a preset ({}) nor a .json file", source, preset_list()));
   }
   const std::string text = read_input_file(file, "configuration file");
   const nlohmann::json j = parse_json_text(text, file);

@@ -9,7 +9,7 @@
 
 namespace peg3d::game {
 
-/// The configuration named by `source`: a preset name (peg3d, paper, baseline, robust) or a JSON file holding a
+/// The configuration named by `source`: a preset name (kPresetNames) or a JSON file holding a
 /// GameConfig, read over the peg3d preset (fields it leaves out keep the preset's values; unknown keys and
 /// wrong types are errors naming the file and field).
 GameConfig load_game_config(const std::string& source);

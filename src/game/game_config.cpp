@@ -63,6 +63,12 @@ GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy) {
   return config;
 }
 
+std::string preset_list() {
+  std::string list;
+  for (const char* name : kPresetNames) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
+}
+
 AgentConfig agent_preset(const std::string& name, Role role) {
   AgentConfig a;
   a.speed = role == Role::kPursuer ? 1.1 : 1.0;
@@ -98,7 +104,7 @@ AgentConfig agent_preset(const std::string& name, Role role) {
     a.reward.kind = RewardKind::kDistanceOnly;
     return a;
   }
-  throw InvalidParameter("config", "\"" + name + "\"", "must be one of: peg3d, paper, baseline, robust");
+  throw InvalidParameter("config", "\"" + name + "\"", "must be one of: " + preset_list());
 }
 
 GameConfig preset(const std::string& name) {

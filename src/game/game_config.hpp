@@ -324,6 +324,8 @@ GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy);
 /// the manner of Al-Mahbashi et al. 2020 for the pursuer) and "robust" (peg3d trained with an opponent pool,
 /// docs/learning.md).
 inline constexpr const char* kPresetNames[] = {"peg3d", "paper", "baseline", "robust"};
+/// kPresetNames as text for messages and help: "peg3d, paper, baseline, robust".
+std::string preset_list();
 /// A named configuration. Throws InvalidParameter for an unknown name.
 GameConfig preset(const std::string& name);
 /// The preset's settings for one agent (the pursuer's or the evader's side of that preset).

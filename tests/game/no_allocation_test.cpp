@@ -52,7 +52,7 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
 }
 
 TEST(GameNoAllocation, OneAgainstOneTrainingAndEvaluation) {
-  for (const char* name : {"peg3d", "paper", "baseline"}) expect_no_allocation("maps/paper.yaml", name, AgentCollisions::kNone);
+  for (const char* name : kPresetNames) expect_no_allocation("maps/paper.yaml", name, AgentCollisions::kNone);
 }
 
 TEST(GameNoAllocation, ForestTrainingAndEvaluation) {

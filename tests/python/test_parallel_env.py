@@ -90,3 +90,12 @@ def test_a_saved_policy_can_play_the_opponent(tmp_path):
     bad.write_text("{}")
     with pytest.raises(peg3d.InputError, match="policy.json"):
         peg3d.parallel_env(opponents={"evader": str(bad)})
+
+
+def test_every_preset_the_package_names_builds_a_game():
+    assert "peg3d" in peg3d.PRESETS and "robust" in peg3d.PRESETS
+    for name in peg3d.PRESETS:
+        env = peg3d.parallel_env(config=name, opponents={"evader": "flee"}, set=SHORT)
+        observations, _ = env.reset(seed=0)
+        assert set(observations) == {"pursuer_0"}
+        env.close()
