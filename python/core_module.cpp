@@ -19,6 +19,7 @@
 #include "core/hash.hpp"
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
+#include "game/observation_vector.hpp"
 #include "view/replay.hpp"
 #include "view/viewer_html.hpp"
 #include "world/arena.hpp"
@@ -66,6 +67,14 @@ PYBIND11_MODULE(_core, m) {
   py::tuple presets(std::size(game::kPresetNames));
   for (std::size_t i = 0; i < std::size(game::kPresetNames); ++i) presets[i] = game::kPresetNames[i];
   m.attr("PRESETS") = presets;
+  // The observation's first entries as the library declares them (game::kObservationEntries): (name, unit,
+  // meaning) each.
+  py::tuple entries(game::kObservationEntries.size());
+  for (std::size_t i = 0; i < game::kObservationEntries.size(); ++i) {
+    const game::ObservationEntry& e = game::kObservationEntries[i];
+    entries[i] = py::make_tuple(e.name, e.unit, e.meaning);
+  }
+  m.attr("OBSERVATION_ENTRIES") = entries;
 
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,

@@ -41,14 +41,15 @@
     arena: 'Arena box'
   };
   var SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 50];
-  var INPUT_LABELS = [
-    ['d to opponent', 'm'],
-    ['opponent azimuth error', 'rad'],
-    ['opponent elevation error', 'rad'],
-    ['d to obstacle', 'm'],
-    ['obstacle azimuth error', 'rad'],
-    ['obstacle elevation error', 'rad']
-  ];
+  // The percept's labels and units, [[label, unit], ...], as the library declares them
+  // (<script id="peg-vocabulary">, from game::kObservationEntries).
+  var INPUT_LABELS = (function () {
+    try {
+      var v = JSON.parse(document.getElementById('peg-vocabulary').textContent);
+      if (Array.isArray(v.inputs)) return v.inputs;
+    } catch (e) { /* no vocabulary: the panel leaves the inputs out */ }
+    return [];
+  })();
   var PURSUER_COLORS = [0xff5a4f, 0xff9a3c, 0xe0457b, 0xff8c8c, 0xc8553d, 0xffc06a];
   var EVADER_COLORS = [0x4fa3ff, 0x36d1c4, 0x8a7dff, 0x8fd0ff, 0x3d6fe0, 0x5ee08e];
   var OTHER_COLOR = 0xcccccc;
@@ -1294,7 +1295,7 @@
         var act = isActive(a, f);
         agentCells.status.textContent = act ? 'active' : 'out of the game';
         agentCells.status.parentNode.className = act ? '' : 'peg-out';
-        for (var j = 0; j < 6; ++j) agentCells.inputs[j].textContent = fmtNum(readN(a.inputs, 6, f, j), j === 0 || j === 3 ? 2 : 3);
+        for (var j = 0; j < agentCells.inputs.length; ++j) agentCells.inputs[j].textContent = fmtNum(readN(a.inputs, 6, f, j), j === 0 || j === 3 ? 2 : 3);
         agentCells.dAlpha.textContent = fmtNum(readN(a.action, 2, f, 0), 4);
         agentCells.dTheta.textContent = fmtNum(readN(a.action, 2, f, 1), 4);
         agentCells.reward.textContent = fmtNum(readN(a.reward, 1, f, 0), 4);

@@ -6,20 +6,14 @@
     PRESETS                                 the configuration presets `config` may name
 """
 
-from ._core import PRESETS, InputError
+from ._core import OBSERVATION_ENTRIES, PRESETS, InputError
 from .parallel import ParallelEnv
 from .spaces import Box
 from .vector import VectorEnv
 
-OBSERVATION = (
-    "target_distance", "target_azimuth_error", "target_elevation_error",
-    "obstacle_distance", "obstacle_azimuth_error", "obstacle_elevation_error",
-    "x", "y", "z", "alpha", "theta",
-    "opponent_dx", "opponent_dy", "opponent_dz",
-    "opponent_vx", "opponent_vy", "opponent_vz",
-    "obstacle_dx", "obstacle_dy", "obstacle_dz",
-)
-"""The names of an observation's first 20 entries; then the neighbours (docs/python.md)."""
+OBSERVATION = tuple(name for name, _unit, _meaning in OBSERVATION_ENTRIES)
+"""The names of an observation's first 20 entries, as the C++ library declares them (OBSERVATION_ENTRIES: name,
+unit, meaning); then the neighbours (docs/python.md)."""
 
 
 def parallel_env(map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None, render_mode=None,
@@ -32,4 +26,4 @@ def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
     return VectorEnv(map=map, num_envs=num_envs, threads=threads, **kwargs)
 
 
-__all__ = ["Box", "InputError", "OBSERVATION", "PRESETS", "ParallelEnv", "VectorEnv", "parallel_env", "vector_env"]
+__all__ = ["Box", "InputError", "OBSERVATION", "OBSERVATION_ENTRIES", "PRESETS", "ParallelEnv", "VectorEnv", "parallel_env", "vector_env"]

@@ -366,15 +366,10 @@ ObservationBounds Batch::observation_bounds() const {
     b.low.push_back(float(lo));
     b.high.push_back(float(hi));
   };
-  add(0, reach);
-  add(-kPi, kPi), add(-kPi, kPi);
-  add(0, reach);
-  add(-kPi, kPi), add(-kPi, kPi);
-  for (int a = 0; a < 3; ++a) add(box.lo[a], box.hi[a]);
-  add(-kPi, kPi), add(0, kPi);
-  for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
-  for (int a = 0; a < 3; ++a) add(-speed, speed);
-  for (int a = 0; a < 3; ++a) add(-reach, reach);
+  for (const game::ObservationEntry& e : game::kObservationEntries) {
+    const auto [lo, hi] = game::entry_bounds(e.range, box, reach, speed);
+    add(lo, hi);
+  }
   for (int k = 0; k < 2 * layout_.neighbours; ++k) {
     for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
     add(0, 1);

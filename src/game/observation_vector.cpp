@@ -2,6 +2,24 @@
 
 namespace peg3d::game {
 
+std::pair<double, double> entry_bounds(EntryRange range, const Box& box, double reach, double speed) {
+  const Vec3 extent = box.hi - box.lo;
+  switch (range) {
+    case EntryRange::kDistance: return {0.0, reach};
+    case EntryRange::kAngle: return {-kPi, kPi};
+    case EntryRange::kPolar: return {0.0, kPi};
+    case EntryRange::kPositionX: return {box.lo.x(), box.hi.x()};
+    case EntryRange::kPositionY: return {box.lo.y(), box.hi.y()};
+    case EntryRange::kPositionZ: return {box.lo.z(), box.hi.z()};
+    case EntryRange::kOffsetX: return {-extent.x(), extent.x()};
+    case EntryRange::kOffsetY: return {-extent.y(), extent.y()};
+    case EntryRange::kOffsetZ: return {-extent.z(), extent.z()};
+    case EntryRange::kVelocity: return {-speed, speed};
+    case EntryRange::kReach: return {-reach, reach};
+  }
+  return {0.0, 0.0};
+}
+
 void observation_base(const AgentView& v, float* o) {
   const Percept& p = v.percept;
   const Vec3& self = v.self.position;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/atomic_file.hpp"
+#include "game/observation_vector.hpp"
 
 namespace peg3d::view {
 namespace {
@@ -66,6 +67,16 @@ const std::string& script_text(const std::string& text, const char* what) {
   return text;
 }
 
+// What the page names from the library's tables rather than its own copies: the percept entries' labels and
+// units (game::kObservationEntries), as [[label, unit], ...] under "inputs".
+std::string vocabulary_json() {
+  nlohmann::json inputs = nlohmann::json::array();
+  for (int k = 0; k < game::kPerceptEntries; ++k) {
+    inputs.push_back({game::kObservationEntries[std::size_t(k)].meaning, game::kObservationEntries[std::size_t(k)].unit});
+  }
+  return nlohmann::json{{"inputs", inputs}}.dump();
+}
+
 }  // namespace
 
 ViewerAssets ViewerAssets::load(const std::filesystem::path& dir) {
@@ -86,6 +97,7 @@ std::string viewer_html(const ViewerAssets& assets, const nlohmann::json& replay
                                {"/*@THREE_JS@*/", script_text(assets.three, "three.min.js")},
                                {"/*@ORBIT_CONTROLS_JS@*/", script_text(assets.orbit_controls, "OrbitControls.js")},
                                {"@REPLAY_JSON@", data},
+                               {"@VOCABULARY_JSON@", vocabulary_json()},
                                {"/*@VIEWER_JS@*/", script_text(assets.js, "viewer.js")}});
 }
 

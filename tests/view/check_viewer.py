@@ -10,7 +10,8 @@ usage: check_viewer.py BIN_DIR SOURCE_DIR WORK_DIR
    console holds no error and no exception, and the page makes no network request.
 3. On the peg-paper file, from the pixels of screenshots at two instants: hiding the obstacles, the terrain,
    the trails or the movers changes the picture (so each is drawn), and the agents' pixels lie elsewhere at
-   the second instant (so they moved). The screenshots stay in WORK_DIR to look at.
+   the second instant (so they moved); the agent panel labels the fuzzy inputs from the library's table and
+   shows their values. The screenshots stay in WORK_DIR to look at.
 
 Exit status 0: all passed; 77: skipped (no Chromium, or no python3-websocket); 1: a check failed.
 """
@@ -240,6 +241,15 @@ def main():
             check(moved > 10, f"the agents moved between the instants ({moved:.0f} pixels)")
         n = int(changed_pixels(shots["early"], shots["late"]).sum())
         check(n > 500, f"the two instants look different ({n} pixels)")
+        # The agent panel labels the fuzzy inputs from the library's table (game::kObservationEntries), and
+        # shows a number for each.
+        rows = page.js("Array.from(document.querySelectorAll('#peg-agent-info tr')).map(function (r) {"
+                       " return Array.from(r.children).map(function (c) { return c.textContent; }); })")
+        inputs = {r[0]: r for r in rows if len(r) == 3}
+        for label, unit in (("d to opponent", "m"), ("opponent azimuth error", "rad"), ("obstacle elevation error", "rad")):
+            row = inputs.get(label)
+            check(row is not None and row[2] == unit and row[1] not in ("", "\u2013"),
+                  f"the agent panel shows '{label}' in {unit}: {row}")
         problems = console_problems(page, paper_html)
         check(not problems, "no console error or network request while driving the page" +
               ("" if not problems else ": " + "; ".join(problems[:5])))

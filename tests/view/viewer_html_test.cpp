@@ -12,7 +12,8 @@ namespace {
 ViewerAssets tiny() {
   return {"<title>@TITLE@</title><style>/*@VIEWER_CSS@*/</style><script>/*@THREE_JS@*/</script>"
           "<script>/*@ORBIT_CONTROLS_JS@*/</script><script id=\"peg-replay\" type=\"application/json\">@REPLAY_JSON@"
-          "</script><script>/*@VIEWER_JS@*/</script>",
+          "</script><script id=\"peg-vocabulary\" type=\"application/json\">@VOCABULARY_JSON@</script>"
+          "<script>/*@VIEWER_JS@*/</script>",
           "body{}", "viewer();", "var THREE={};", "THREE.OrbitControls=1;"};
 }
 
@@ -27,13 +28,16 @@ TEST(ViewViewerHtml, FillsEveryPlaceholderOnce) {
   EXPECT_EQ(page,
             "<title>S1 peg3d</title><style>body{}</style><script>var THREE={};</script>"
             "<script>THREE.OrbitControls=1;</script><script id=\"peg-replay\" type=\"application/json\">{\"frames\":3}"
-            "</script><script>viewer();</script>");
+            "</script><script id=\"peg-vocabulary\" type=\"application/json\">{\"inputs\":[[\"d to opponent\",\"m\"],"
+            "[\"opponent azimuth error\",\"rad\"],[\"opponent elevation error\",\"rad\"],[\"d to obstacle\",\"m\"],"
+            "[\"obstacle azimuth error\",\"rad\"],[\"obstacle elevation error\",\"rad\"]]}</script>"
+            "<script>viewer();</script>");
 }
 
 TEST(ViewViewerHtml, NoTextOfTheReplayCanCloseItsScriptOrFillAPlaceholder) {
   const std::string nasty = "</script><script>alert(1)</script>/*@VIEWER_JS@*/ @TITLE@";
   const std::string page = viewer_html(tiny(), {{"title", nasty}}, nasty);
-  EXPECT_EQ(count(page, "</script>"), 4u);  // the page's own four scripts, nothing more
+  EXPECT_EQ(count(page, "</script>"), 5u);  // the page's own five scripts, nothing more
   EXPECT_EQ(count(page, "viewer();"), 1u);
   EXPECT_NE(page.find("&lt;/script&gt;"), std::string::npos);  // the title, escaped
   // The JSON still reads back as the same text.
