@@ -184,8 +184,10 @@ class Sim {
  public:
   /// Validates the configuration (InvalidParameter) and checks every scenario of the arena's map against it
   /// once, before any run (StartError), so that no run can fail on its start. On a map with moving obstacles it
-  /// also gets their motion for the whole episode from the arena (simulated once per map) and checks that the
-  /// game step is a whole number of physics substeps (MapError naming physics.rate_hz).
+  /// also gets the timeline of their motion for the whole episode from the arena (one per map, shared by every
+  /// Sim of it; its blocks are simulated as runs first reach them, so building a Sim simulates nothing:
+  /// world/bodies/mover_timeline.hpp) and checks that the game step is a whole number of physics substeps
+  /// (MapError naming physics.rate_hz).
   Sim(std::shared_ptr<const world::Arena> arena, GameConfig config);
 
   const GameConfig& config() const { return *config_; }
