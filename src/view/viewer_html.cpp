@@ -80,7 +80,9 @@ std::string vocabulary_json() {
 }  // namespace
 
 ViewerAssets ViewerAssets::load(const std::filesystem::path& dir) {
-  return {slurp(dir / "viewer.html"), slurp(dir / "viewer.css"), slurp(dir / "viewer.js"), slurp(dir / "three.min.js"),
+  std::string js;
+  for (const char* script : kViewerScripts) js += slurp(dir / script) + "\n";
+  return {slurp(dir / "viewer.html"), slurp(dir / "viewer.css"), js, slurp(dir / "three.min.js"),
           slurp(dir / "OrbitControls.js")};
 }
 
@@ -98,7 +100,7 @@ std::string viewer_html(const ViewerAssets& assets, const nlohmann::json& replay
                                {"/*@ORBIT_CONTROLS_JS@*/", script_text(assets.orbit_controls, "OrbitControls.js")},
                                {"@REPLAY_JSON@", data},
                                {"@VOCABULARY_JSON@", vocabulary_json()},
-                               {"/*@VIEWER_JS@*/", script_text(assets.js, "viewer.js")}});
+                               {"/*@VIEWER_JS@*/", script_text(assets.js, "the viewer's scripts")}});
 }
 
 void write_viewer_html(const std::filesystem::path& file, const ViewerAssets& assets, const nlohmann::json& replay,

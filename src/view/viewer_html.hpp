@@ -11,16 +11,21 @@
 
 namespace peg3d::view {
 
+/// The viewer's scripts, by concern (assets/viewer/common.js's header says what each holds), in the order the
+/// page inlines them, one after the other inside one function scope of the template.
+inline constexpr const char* kViewerScripts[] = {"common.js", "replay.js", "scene.js", "timeline.js", "panels.js",
+                                                 "main.js"};
+
 /// The texts a viewer file is assembled from.
 struct ViewerAssets {
   std::string html;            ///< viewer.html, the template with the placeholders below
   std::string css;             ///< viewer.css
-  std::string js;              ///< viewer.js
+  std::string js;              ///< the viewer's scripts (kViewerScripts), in order, one after the other
   std::string three;           ///< three.min.js
   std::string orbit_controls;  ///< OrbitControls.js (non-module build)
 
-  /// Reads viewer.html, viewer.css, viewer.js, three.min.js and OrbitControls.js from `dir`. Throws
-  /// std::runtime_error naming the missing file (an installation problem, not the user's input).
+  /// Reads viewer.html, viewer.css, the scripts of kViewerScripts, three.min.js and OrbitControls.js from
+  /// `dir`. Throws std::runtime_error naming the missing file (an installation problem, not the user's input).
   static ViewerAssets load(const std::filesystem::path& dir);
 };
 

@@ -11,7 +11,8 @@ usage: check_viewer.py BIN_DIR SOURCE_DIR WORK_DIR
 3. On the peg-paper file, from the pixels of screenshots at two instants: hiding the obstacles, the terrain,
    the trails or the movers changes the picture (so each is drawn), and the agents' pixels lie elsewhere at
    the second instant (so they moved); the agent panel labels the fuzzy inputs from the library's table and
-   shows their values. The screenshots stay in WORK_DIR to look at.
+   shows their values; a key steps a frame, play advances, the URL fragment seeks, and the pair, agent and
+   follow selectors work, all without a console error. The screenshots stay in WORK_DIR to look at.
 
 Exit status 0: all passed; 77: skipped (no Chromium, or no python3-websocket); 1: a check failed.
 """
@@ -250,6 +251,26 @@ def main():
             row = inputs.get(label)
             check(row is not None and row[2] == unit and row[1] not in ("", "\u2013"),
                   f"the agent panel shows '{label}' in {unit}: {row}")
+        # The controls: a key steps one frame, play advances, the URL fragment seeks, the selectors switch
+        # the pair, the agent and the followed agent (each wired through its own part of the viewer).
+        page.js("pegView.seek(pegView.duration / 4)")
+        before = page.js("pegView.frame")
+        page.js("document.dispatchEvent(new KeyboardEvent('keydown', {key: 'ArrowRight'}))")
+        check(page.js("pegView.frame") == before + 1, "the right-arrow key steps one frame")
+        page.js("document.getElementById('peg-play').click()")
+        time.sleep(0.6)
+        page.js("document.getElementById('peg-play').click()")
+        check(page.js("pegView.frame") > before + 1, "play advances the replay")
+        page.js("location.hash = '#t=' + (pegView.duration / 3)")
+        time.sleep(0.3)
+        t = page.js("pegView.time")
+        check(t <= duration / 3 + 1e-9 and t > duration / 3 - 0.2, f"the URL fragment seeks to a third ({t:.2f} s)")
+        for select, value in (("peg-pair", "0"), ("peg-agent", "1"), ("peg-follow", "0")):
+            page.js(f"(function () {{ var s = document.getElementById('{select}'); s.value = '{value}';"
+                    " s.dispatchEvent(new Event('change')); })()")
+        page.js("pegView.seek(pegView.duration / 2)")
+        check(page.js("document.getElementById('peg-agent-info').textContent.indexOf('fuzzy inputs') >= 0"),
+              "the agent panel is rebuilt for the agent chosen")
         problems = console_problems(page, paper_html)
         check(not problems, "no console error or network request while driving the page" +
               ("" if not problems else ": " + "; ".join(problems[:5])))
