@@ -367,8 +367,4 @@ void report_viewers(const std::vector<std::string>& files, const std::vector<std
   }
 }
 
-std::string ending_of(const game::EpisodeResult& result) {
-  return fmt::format("{} at {:.1f} s", game::to_string(result.outcome), result.duration);
-}
-
 }  // namespace peg3d::cli

@@ -182,9 +182,6 @@ std::uintmax_t write_case_viewer(const std::filesystem::path& file, const regres
 /// Prints "replay viewer: FILE" for each file written; a warning on stderr when --html chose no run.
 void report_viewers(const std::vector<std::string>& files, const std::vector<std::string>& patterns);
 
-/// How an episode ended, for a viewer's subtitle: "capture at 31.2 s", "timeout at 100 s", ...
-std::string ending_of(const game::EpisodeResult& result);
-
 /// Runs `/usr/bin/python3 <data_dir>/tools/<script> <dir>` (an argument vector, no shell); false (with a
 /// warning) when it fails.
 bool run_plot_script(const std::string& script, const std::filesystem::path& dir);

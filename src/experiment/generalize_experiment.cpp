@@ -9,6 +9,7 @@
 #include "core/config_json.hpp"
 #include "core/random.hpp"
 #include "experiment/trial.hpp"
+#include "game/policy_io.hpp"
 #include "results/codecs.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"
@@ -124,46 +125,122 @@ std::vector<GeneralizeRecord> restore_run(const nlohmann::json& data, TrialResul
 
 }  // namespace
 
-std::vector<GeneralizeRecord> run_generalization(
-    const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s,
-    std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep) {
-  const auto& scenarios = train.arena().map().scenarios;
-  const std::size_t repeats = static_cast<std::size_t>(s.sweep.repeats);
-  const std::size_t jobs = scenarios.size() * repeats;
-  std::vector<std::vector<GeneralizeRecord>> per_job(jobs);
-  std::vector<TrialResult> kept(scenarios.size());  // repeat 0's trained models, per training scenario
-  const auto kept_of = [&](std::size_t i) { return i % repeats == 0 ? &kept[i / repeats] : nullptr; };
-  const auto run = [&](std::size_t i) {
-    const int sc = static_cast<int>(i / repeats), rep = static_cast<int>(i % repeats);
-    const std::uint64_t seed = run_seed(s.sweep.seed, sc, rep);
-    TrialResult t = run_trial(train, {.scenario = &scenarios[std::size_t(sc)],
-                                      .seed = seed,
-                                      .episodes = s.sweep.episodes,
-                                      .stop = s.sweep.control.stop,
-                                      .pool = s.pool.get(),
-                                      .progress = s.sweep.control.progress});
-    per_job[i] = evaluate_everywhere(t, scenarios[std::size_t(sc)].name, rep, seed, evals, s);
-    if (rep == 0) kept[std::size_t(sc)] = std::move(t);
-    if (s.sweep.control.progress) s.sweep.control.progress->run_done();
-  };
-  sweep::run_sweep(jobs, s.sweep.threads, s.sweep.control,
-                   {.run = run,
-                    .encode = [&](std::size_t i) { return encode_run(per_job[i], kept_of(i)); },
-                    .restore = [&](std::size_t i, const nlohmann::json& data) { per_job[i] = restore_run(data, kept_of(i)); }});
-  if (keep) {
-    for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
-      for (const auto& [role, models] :
-           {std::pair{"pursuer", &kept[sc].pursuer_models}, std::pair{"evader", &kept[sc].evader_models}}) {
-        for (std::size_t m = 0; m < models->models.size(); ++m) {
-          keep->emplace_back(scenarios[sc].name + "_" + role + (m == 0 ? std::string() : std::to_string(m)),
-                             models->models[m]);
-        }
+namespace {
+
+std::vector<EvalMap> make_eval_maps(const std::vector<std::shared_ptr<const world::Arena>>& arenas,
+                                    const game::GameConfig& config) {
+  const std::vector<std::string> names = eval_map_names(arenas);
+  std::vector<EvalMap> evals;
+  for (std::size_t m = 0; m < arenas.size(); ++m) evals.push_back({names[m], game::Sim(arenas[m], config)});
+  return evals;
+}
+
+}  // namespace
+
+GeneralizeExperiment::GeneralizeExperiment(std::shared_ptr<const world::Arena> train,
+                                           std::vector<std::shared_ptr<const world::Arena>> evals,
+                                           const game::GameConfig& config, GeneralizeSettings settings)
+    : train_(train, config), evals_(make_eval_maps(evals, config)), settings_(std::move(settings)) {
+  if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(train, config);
+}
+
+std::size_t GeneralizeExperiment::episodes_per_run() const {
+  std::size_t games = 0;
+  for (const auto& e : evals_) games += e.sim.arena().map().scenarios.size();
+  return static_cast<std::size_t>(settings_.sweep.episodes) + 1 + games;
+}
+
+TrialResult* GeneralizeExperiment::kept_of(std::size_t i) {
+  const std::size_t repeats = static_cast<std::size_t>(settings_.sweep.repeats);
+  return i % repeats == 0 ? &kept_[i / repeats] : nullptr;
+}
+
+void GeneralizeExperiment::begin(const sweep::SweepControl& control) {
+  settings_.sweep.control = control;
+  per_run_.assign(run_count(), {});
+  kept_.assign(train_.arena().map().scenarios.size(), TrialResult{});
+}
+
+void GeneralizeExperiment::run_one(std::size_t i) {
+  const auto& scenarios = train_.arena().map().scenarios;
+  const sweep::SweepControl& control = settings_.sweep.control;
+  const int sc = static_cast<int>(i / settings_.sweep.repeats), rep = static_cast<int>(i % settings_.sweep.repeats);
+  const std::uint64_t seed = run_seed(settings_.sweep.seed, sc, rep);
+  TrialResult t = run_trial(train_, {.scenario = &scenarios[std::size_t(sc)],
+                                     .seed = seed,
+                                     .episodes = settings_.sweep.episodes,
+                                     .stop = control.stop,
+                                     .pool = settings_.pool.get(),
+                                     .progress = control.progress});
+  per_run_[i] = evaluate_everywhere(t, scenarios[std::size_t(sc)].name, rep, seed, evals_, settings_);
+  if (rep == 0) kept_[std::size_t(sc)] = std::move(t);
+  if (control.progress) control.progress->run_done();
+}
+
+nlohmann::json GeneralizeExperiment::encode(std::size_t i) const {
+  const std::size_t repeats = static_cast<std::size_t>(settings_.sweep.repeats);
+  return encode_run(per_run_[i], i % repeats == 0 ? &kept_[i / repeats] : nullptr);
+}
+
+void GeneralizeExperiment::restore(std::size_t i, const nlohmann::json& record) {
+  per_run_[i] = restore_run(record, kept_of(i));
+}
+
+void GeneralizeExperiment::finish(bool root) {
+  if (!root) return;
+  records_.clear();
+  for (auto& v : per_run_) std::move(v.begin(), v.end(), std::back_inserter(records_));
+  per_run_.clear();
+  std::vector<std::string> names;
+  for (const auto& e : evals_) names.push_back(e.name);
+  summary_ = summarize_generalization(records_, names);
+}
+
+void GeneralizeExperiment::write_results(const std::filesystem::path& out, const SweepTiming&) const {
+  const auto& scenarios = train_.arena().map().scenarios;
+  std::filesystem::create_directories(out / "policies");
+  for (std::size_t sc = 0; sc < scenarios.size(); ++sc) {
+    for (const auto& [role, models] :
+         {std::pair{"pursuer", &kept_[sc].pursuer_models}, std::pair{"evader", &kept_[sc].evader_models}}) {
+      for (std::size_t m = 0; m < models->models.size(); ++m) {
+        const std::string key = scenarios[sc].name + "_" + role + (m == 0 ? std::string() : std::to_string(m));
+        game::save_policy(results::output_file(out / "policies", key, ".json"), *models->models[m]);
       }
     }
   }
-  std::vector<GeneralizeRecord> out;
-  for (auto& v : per_job) std::move(v.begin(), v.end(), std::back_inserter(out));
+  write_generalization_csv(out / "generalization.csv", records_);
+  results::write_json(out / "summary.json", summary_);
+}
+
+std::vector<std::pair<std::string, const world::Arena*>> GeneralizeExperiment::maps() const {
+  std::vector<std::pair<std::string, const world::Arena*>> maps{{"train", &train_.arena()}};
+  for (const auto& e : evals_) maps.emplace_back("eval " + e.name, &e.sim.arena());
+  return maps;
+}
+
+nlohmann::ordered_json GeneralizeExperiment::run_info() const {
+  return {{"setup", setup()}, {"seeds", generalize_seeds(train_, settings_)}};
+}
+
+std::vector<RecordedEpisode> GeneralizeExperiment::recorded() const {
+  std::vector<RecordedEpisode> out;
+  for (const EvalMap& e : evals_) {
+    for (const auto& r : records_) {
+      if (!r.trace || r.eval_map != e.name) continue;
+      out.push_back({generalize_key(r), &e.sim, r.trace.get(),
+                     fmt::format("trained on {} {} (repeat {}), played on {} {}", train_.arena().map().name,
+                                 r.train_scenario, r.repeat, r.eval_map, r.eval_scenario),
+                     fmt::format("peg-generalize, seed {}, {} training episodes; {}", settings_.sweep.seed,
+                                 settings_.sweep.episodes, ending_of(r.result))});
+    }
+  }
   return out;
+}
+
+std::string GeneralizeExperiment::report(const SweepTiming&) const {
+  return fmt::format("trained on {} ({} scenarios x {} repeats, {} episodes each)\n", train_.arena().map().source.string(),
+                     train_.arena().map().scenarios.size(), settings_.sweep.repeats, settings_.sweep.episodes) +
+         generalization_table(summary_);
 }
 
 void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records) {

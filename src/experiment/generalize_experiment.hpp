@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/experiment.hpp"
+#include "experiment/trial.hpp"
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
@@ -63,20 +65,54 @@ nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMa
 /// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
 nlohmann::ordered_json generalize_seeds(const game::Sim& train, const GeneralizeSettings& settings);
 
-/// Trains per training scenario and repeat on `train`, evaluates the frozen models greedily on every scenario
-/// of every evaluation map. The trained models of repeat 0 are returned through `keep` as
-/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...) when not null. With
-/// settings.sweep.control's journal, finished runs are recorded as they finish and runs it holds are read back
-/// instead of run; a stop request throws sweep::SweepInterrupted.
-std::vector<GeneralizeRecord> run_generalization(
-    const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& settings,
-    std::vector<std::pair<std::string, std::shared_ptr<const game::FaclModel>>>* keep = nullptr);
-
 void write_generalization_csv(const std::filesystem::path& file, const std::vector<GeneralizeRecord>& records);
 
 /// Per evaluation map: runs, captures and collision runs with Wilson intervals, mean capture time.
 nlohmann::ordered_json summarize_generalization(const std::vector<GeneralizeRecord>& records,
                                                 const std::vector<std::string>& maps);
 std::string generalization_table(const nlohmann::ordered_json& summary);
+
+/// The generalization as an Experiment: run i (training scenario i / repeats, repeat i % repeats) trains on the
+/// training map, then plays the frozen models greedily on every scenario of every evaluation map. Result files
+/// (docs/results.md): generalization.csv, summary.json, and policies/ with repeat 0's trained models, as
+/// "<train_scenario>_<role>" (a second model of a role: "<role>1", ...).
+class GeneralizeExperiment : public Experiment {
+ public:
+  /// Builds the training Sim and one per evaluation map, each checking its map's starts against the agents,
+  /// and, unless settings.pool is set, the classic opponents training mixes in.
+  GeneralizeExperiment(std::shared_ptr<const world::Arena> train, std::vector<std::shared_ptr<const world::Arena>> evals,
+                       const game::GameConfig& config, GeneralizeSettings settings);
+
+  std::string kind() const override { return "generalize"; }
+  nlohmann::json setup() const override { return generalize_setup(train_, evals_, settings_); }
+  std::size_t run_count() const override { return generalize_run_count(train_, settings_); }
+  std::size_t episodes_per_run() const override;
+  void begin(const sweep::SweepControl& control) override;
+  void run_one(std::size_t i) override;
+  nlohmann::json encode(std::size_t i) const override;
+  void restore(std::size_t i, const nlohmann::json& record) override;
+  void finish(bool root) override;
+  void record_episodes(std::function<bool(const std::string&)> chosen) override { settings_.keep_trace = std::move(chosen); }
+  void write_results(const std::filesystem::path& out, const SweepTiming& timing) const override;
+  std::vector<std::pair<std::string, const world::Arena*>> maps() const override;
+  nlohmann::ordered_json run_info() const override;
+  std::vector<RecordedEpisode> recorded() const override;
+  std::string report(const SweepTiming& timing) const override;
+
+  /// Every game, in run order, once finish(true) has gathered them.
+  const std::vector<GeneralizeRecord>& records() const { return records_; }
+
+ private:
+  // Repeat 0's slot of trained models for run i, null for the other repeats.
+  TrialResult* kept_of(std::size_t i);
+
+  game::Sim train_;
+  std::vector<EvalMap> evals_;
+  GeneralizeSettings settings_;
+  std::vector<std::vector<GeneralizeRecord>> per_run_;
+  std::vector<TrialResult> kept_;  ///< repeat 0's trained models, per training scenario
+  std::vector<GeneralizeRecord> records_;
+  nlohmann::ordered_json summary_;
+};
 
 }  // namespace peg3d::experiment

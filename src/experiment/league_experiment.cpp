@@ -8,6 +8,7 @@
 #include "core/config_json.hpp"
 #include "core/random.hpp"
 #include "core/validation.hpp"
+#include "experiment/generalize_experiment.hpp"
 #include "experiment/trial.hpp"
 #include "results/codecs.hpp"
 #include "results/run_info.hpp"
@@ -164,48 +165,102 @@ results::LearningCurve League::curve(int a, int t) const {
   return {training_[run].episodes, pool_opponent_names(pools_[std::size_t(a)], training_[run].opponents)};
 }
 
-void League::train() const {
+std::vector<game::PolicyKind> classic_policies(const std::vector<std::string>& names, game::Role role,
+                                               const std::string& flag) {
+  std::vector<game::PolicyKind> kinds;
+  for (const auto& name : names) {
+    const auto kind = game::policy_named(name, role, flag);
+    if (kind == game::PolicyKind::kFacl) {
+      throw InputError(fmt::format("{}: facl is not a {} (use --algorithms)", flag,
+                                   role == game::Role::kPursuer ? "classic pursuer" : "scripted evader"));
+    }
+    kinds.push_back(kind);
+  }
+  return kinds;
+}
+
+std::optional<game::InitialHeading> heading_named(const std::string& name, const std::string& flag,
+                                                  bool config_allowed) {
+  if (config_allowed && name == "config") return std::nullopt;
+  if (const auto* h = config::enum_value(game::kInitialHeadingNames, name)) return *h;
+  throw InvalidParameter(flag, "\"" + name + "\"",
+                         config_allowed ? "must be random, chase, facing, plus-x or config"
+                                        : "must be random, chase, facing or plus-x");
+}
+
+SavedEntrant saved_entrant(const std::string& spec, game::Role role,
+                           const std::function<std::filesystem::path(const std::filesystem::path&)>& resolve) {
+  const std::size_t eq = spec.find('=');
+  const std::filesystem::path file = eq == std::string::npos ? spec : spec.substr(eq + 1);
+  return {eq == std::string::npos ? file.stem().string() : spec.substr(0, eq), game::load_saved_policy(resolve(file), role)};
+}
+
+std::vector<LeagueMap> league_maps(const std::shared_ptr<const world::Arena>& train,
+                                   std::vector<std::shared_ptr<const world::Arena>> evals) {
+  if (evals.empty()) evals.push_back(train);
+  const std::vector<std::string> names = eval_map_names(evals);
+  std::vector<LeagueMap> maps;
+  for (std::size_t m = 0; m < evals.size(); ++m) maps.push_back({names[m], evals[m]});
+  return maps;
+}
+
+std::size_t League::episodes_per_run() const {
+  // Progress counts the training episodes and the games, spread over the training runs.
+  const std::size_t runs = training_runs();
+  return (runs * static_cast<std::size_t>(settings_.sweep.episodes) + games() + runs - 1) / runs;
+}
+
+void League::begin(const sweep::SweepControl& control) { settings_.sweep.control = control; }
+
+void League::run_one(std::size_t i) {
   const LeagueSettings& s = settings_;
   const sweep::SweepControl& control = s.sweep.control;
-  const auto& scenarios = train_->map().scenarios;
   const int max_p = most_agents(*train_, game::Role::kPursuer), max_e = most_agents(*train_, game::Role::kEvader);
   const std::size_t seeds = std::size_t(train_seeds());
-  // Run (a, t) is index a * train_seeds + t.
-  const auto run = [&](std::size_t i) {
-    const std::size_t a = i / seeds, t = i % seeds;
-    const std::uint64_t seed = derive_seed(s.sweep.seed, {1, a, t});
-    const game::Sim& sim = train_sims_[a];
-    game::Lineup lineup;
-    game::add_configured(lineup, sim.config(), game::Role::kPursuer, max_p, stream_seed(seed, TrialStream::kPursuer),
-                         &trained_pursuers_[i]);
-    game::add_configured(lineup, sim.config(), game::Role::kEvader, max_e, stream_seed(seed, TrialStream::kEvader),
-                         &trained_evaders_[i]);
-    game::SimState state(sim);
-    training_[i] = train_lineup({.sim = &sim,
-                                 .pool = &pools_[a],
-                                 .scenarios = scenarios,
-                                 .pursuers = max_p,
-                                 .seed = seed,
-                                 .episodes = s.sweep.episodes,
-                                 .stop = control.stop,
-                                 .progress = control.progress},
-                                lineup, state);
-    if (control.progress) control.progress->run_done();
-  };
-  const auto encode = [&](std::size_t i) {
-    return nlohmann::json{{"pursuers", results::role_models_to_json(trained_pursuers_[i])},
-                          {"evaders", results::role_models_to_json(trained_evaders_[i])},
-                          {"training", results::episodes_to_json(training_[i].episodes)},
-                          {"training_opponent", training_[i].opponents}};
-  };
-  const auto restore = [&](std::size_t i, const nlohmann::json& data) {
-    trained_pursuers_[i] = results::role_models_from_json(data.at("pursuers"), game::Role::kPursuer);
-    trained_evaders_[i] = results::role_models_from_json(data.at("evaders"), game::Role::kEvader);
-    training_[i].episodes = results::episodes_from_json(data.at("training"));
-    training_[i].opponents = data.at("training_opponent").get<std::vector<int>>();
-    check_journaled_opponents(pools_[i / seeds], training_[i].opponents, training_[i].episodes.size());
-  };
-  sweep::run_sweep(training_runs(), s.sweep.threads, control, {.run = run, .encode = encode, .restore = restore});
+  const std::size_t a = i / seeds, t = i % seeds;
+  const std::uint64_t seed = derive_seed(s.sweep.seed, {1, a, t});
+  const game::Sim& sim = train_sims_[a];
+  game::Lineup lineup;
+  game::add_configured(lineup, sim.config(), game::Role::kPursuer, max_p, stream_seed(seed, TrialStream::kPursuer),
+                       &trained_pursuers_[i]);
+  game::add_configured(lineup, sim.config(), game::Role::kEvader, max_e, stream_seed(seed, TrialStream::kEvader),
+                       &trained_evaders_[i]);
+  game::SimState state(sim);
+  training_[i] = train_lineup({.sim = &sim,
+                               .pool = &pools_[a],
+                               .scenarios = train_->map().scenarios,
+                               .pursuers = max_p,
+                               .seed = seed,
+                               .episodes = s.sweep.episodes,
+                               .stop = control.stop,
+                               .progress = control.progress},
+                              lineup, state);
+  if (control.progress) control.progress->run_done();
+}
+
+nlohmann::json League::encode(std::size_t i) const {
+  return nlohmann::json{{"pursuers", results::role_models_to_json(trained_pursuers_[i])},
+                        {"evaders", results::role_models_to_json(trained_evaders_[i])},
+                        {"training", results::episodes_to_json(training_[i].episodes)},
+                        {"training_opponent", training_[i].opponents}};
+}
+
+void League::restore(std::size_t i, const nlohmann::json& data) {
+  trained_pursuers_[i] = results::role_models_from_json(data.at("pursuers"), game::Role::kPursuer);
+  trained_evaders_[i] = results::role_models_from_json(data.at("evaders"), game::Role::kEvader);
+  training_[i].episodes = results::episodes_from_json(data.at("training"));
+  training_[i].opponents = data.at("training_opponent").get<std::vector<int>>();
+  check_journaled_opponents(pools_[i / std::size_t(train_seeds())], training_[i].opponents,
+                            training_[i].episodes.size());
+}
+
+void League::finish(bool root) {
+  if (root) games_ = play_games();
+}
+
+std::vector<League::Game> League::run(bool root) {
+  run_experiment(*this, settings_.sweep.threads, settings_.sweep.control, root);
+  return games_;
 }
 
 int League::group_of(const Entrant& e) const {
@@ -250,10 +305,7 @@ void League::play_start(const Start& st, std::span<Game> games) const {
   }
 }
 
-std::vector<League::Game> League::run(bool root) const {
-  train();
-  if (!root) return {};
-  // The games, on this process: one job per (map, scenario, evaluation seed) plays every pairing.
+std::vector<League::Game> League::play_games() const {
   const LeagueSettings& s = settings_;
   std::vector<Start> starts;
   for (std::size_t m = 0; m < maps_.size(); ++m)

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -22,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/algorithms.hpp"
+#include "experiment/experiment.hpp"
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
@@ -61,6 +63,21 @@ struct LeagueSettings {
   std::vector<SavedEntrant> saved_pursuers, saved_evaders;
 };
 
+/// The classic pursuers or scripted evaders `names` names (game::policy_named); facl is refused, since the
+/// trained entrants come from the algorithms. Errors name `flag`.
+std::vector<game::PolicyKind> classic_policies(const std::vector<std::string>& names, game::Role role,
+                                               const std::string& flag);
+
+/// An initial heading by name (random, chase, facing, plus-x), or, when `config_allowed`, "config" (nullopt:
+/// each algorithm's own). InvalidParameter naming `flag` otherwise.
+std::optional<game::InitialHeading> heading_named(const std::string& name, const std::string& flag,
+                                                  bool config_allowed);
+
+/// A saved entrant from NAME=FILE, or FILE alone (named by its stem): the policy file resolve(FILE), loaded
+/// for `role` (game::load_saved_policy).
+SavedEntrant saved_entrant(const std::string& spec, game::Role role,
+                           const std::function<std::filesystem::path(const std::filesystem::path&)>& resolve);
+
 /// One player of the league.
 struct Entrant {
   std::string name;   ///< "ALGORITHM#SEED" for a trained policy, the policy's name for a classic one
@@ -83,8 +100,16 @@ struct LeagueMap {
   std::shared_ptr<const world::Arena> arena;
 };
 
-/// Everything a league plays, built (and every start checked against every configuration) before any run.
-class League {
+/// The evaluation maps by name (eval_map_names); none: the training map alone.
+std::vector<LeagueMap> league_maps(const std::shared_ptr<const world::Arena>& train,
+                                   std::vector<std::shared_ptr<const world::Arena>> evals);
+
+/// Everything a league plays, built (and every start checked against every configuration) before any run. As
+/// an Experiment, its runs are the training runs (run a * train_seeds + t is algorithm a's seed t); once they
+/// are in, the root plays every game (finish). Result files (docs/learning.md, written by league_report.cpp):
+/// policies/, games.csv, learning_curves.csv, matrix.csv, matrix_entrants.csv, summary.json; the heat map by
+/// tools/plot_league.py.
+class League : public Experiment {
  public:
   League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap> eval_maps, std::vector<Algorithm> algorithms,
          LeagueSettings settings);
@@ -110,18 +135,36 @@ class League {
   std::size_t games() const;
 
   /// The journal header: experiment, build, map hashes, seeds, episodes, the algorithms' configurations.
-  nlohmann::json setup() const;
+  nlohmann::json setup() const override;
 
-  /// Trains every (algorithm, seed) run (journaled, spread over ranks), then, on the root, plays every game.
-  /// Returns the games in order: map, scenario, evaluation seed, pursuer, evader. Non-root ranks return an
-  /// empty list once the training is done.
+  /// One evaluation game.
   struct Game {
     std::string map, scenario;
     int eval_seed = 0;
     std::string pursuer, evader;  ///< entrant names
     game::EpisodeResult result;
   };
-  std::vector<Game> run(bool root) const;
+  /// Trains every (algorithm, seed) run (journaled, spread over ranks: run_experiment), then, on the root, plays
+  /// every game. Returns the games in order: map, scenario, evaluation seed, pursuer, evader. Non-root ranks
+  /// return an empty list once the training is done.
+  std::vector<Game> run(bool root);
+  /// The games, once run() or finish(true) has played them.
+  const std::vector<Game>& played() const { return games_; }
+
+  // Experiment
+  std::string kind() const override { return "league"; }
+  std::size_t run_count() const override { return training_runs(); }
+  std::size_t episodes_per_run() const override;
+  void begin(const sweep::SweepControl& control) override;
+  void run_one(std::size_t i) override;
+  nlohmann::json encode(std::size_t i) const override;
+  void restore(std::size_t i, const nlohmann::json& record) override;
+  void finish(bool root) override;
+  void write_results(const std::filesystem::path& out, const SweepTiming& timing) const override;
+  std::vector<std::pair<std::string, const world::Arena*>> maps() const override;
+  nlohmann::ordered_json run_info() const override;
+  std::string report(const SweepTiming& timing) const override;
+  std::string plot_script() const override { return "plot_league.py"; }
 
   /// The trained models of run (algorithm a, training seed t), once run() has trained them.
   const game::RoleModels& models(int a, int t, game::Role role) const;
@@ -140,8 +183,8 @@ class League {
   /// The group an entrant plays in: its algorithm, or after the algorithms its classic policy, or after those its
   /// saved policy.
   int group_of(const Entrant& e) const;
-  /// Every (algorithm, seed) run, journaled and spread over the ranks.
-  void train() const;
+  /// Every game, on this process: one job per (map, scenario, evaluation seed) plays every pairing.
+  std::vector<Game> play_games() const;
   /// Every pairing's game at one start, into `games` (pursuer-major).
   void play_start(const Start& start, std::span<Game> games) const;
 
@@ -156,8 +199,9 @@ class League {
   /// policies per role).
   std::vector<game::Sim> eval_sims_;
   int pursuer_groups_ = 0, evader_groups_ = 0;
-  mutable std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
-  mutable std::vector<TrainingResult> training_;  ///< per training run: its episodes and their pool entries
+  std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
+  std::vector<TrainingResult> training_;  ///< per training run: its episodes and their pool entries
+  std::vector<Game> games_;
 };
 
 }  // namespace peg3d::experiment

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
+#include "game/policy_io.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"
 #include "results/statistics.hpp"
@@ -277,6 +278,49 @@ std::string league_table(const nlohmann::ordered_json& matrix) {
                      r["collision_games"].get<std::size_t>(), number_or_nan(r["evader_pinned_fraction"]));
   }
   return s;
+}
+
+void League::write_results(const std::filesystem::path& out, const SweepTiming&) const {
+  std::filesystem::create_directories(out / "policies");
+  for (std::size_t a = 0; a < algorithms().size(); ++a) {
+    for (int t = 0; t < train_seeds(); ++t) {
+      for (const game::Role role : {game::Role::kPursuer, game::Role::kEvader}) {
+        const auto& trained = models(static_cast<int>(a), t, role).models;
+        for (std::size_t k = 0; k < trained.size(); ++k) {
+          const std::string key = fmt::format("{}_{}_{}{}", algorithms()[a].name, t, game::to_string(role),
+                                              k == 0 ? std::string() : fmt::format("_{}", k));
+          game::save_policy(results::output_file(out / "policies", key, ".json"), *trained[k]);
+        }
+      }
+    }
+  }
+  const auto matrix = league_matrix(*this, games_, /*by_group=*/true);
+  const auto entrants = league_matrix(*this, games_, /*by_group=*/false);
+  write_league_games_csv(out / "games.csv", games_);
+  write_league_learning_curves_csv(out / "learning_curves.csv", *this);
+  write_league_matrix_csv(out / "matrix.csv", matrix);
+  write_league_matrix_csv(out / "matrix_entrants.csv", entrants);
+  results::write_json(out / "summary.json", nlohmann::ordered_json{{"matrix", matrix},
+                                                                   {"entrants", entrants},
+                                                                   {"findings", league_findings(*this, games_)}});
+}
+
+std::vector<std::pair<std::string, const world::Arena*>> League::maps() const {
+  std::vector<std::pair<std::string, const world::Arena*>> maps{{"train", &train_arena()}};
+  for (const LeagueMap& m : eval_maps()) maps.emplace_back("eval " + m.name, m.arena.get());
+  return maps;
+}
+
+nlohmann::ordered_json League::run_info() const {
+  return {{"setup", setup()},
+          {"seeds", {{"root", settings().sweep.seed},
+                     {"derivation", "training run (a, t) = derive_seed(root, {1, a, t}); game at (map m, scenario s, "
+                                    "evaluation seed k) = derive_seed(root, {2, m, s, k}) for every pairing, its classic "
+                                    "pursuers derive_seed(game, {1}), scripted evaders derive_seed(game, {2})"}}}};
+}
+
+std::string League::report(const SweepTiming&) const {
+  return league_table(league_matrix(*this, games_, /*by_group=*/true));
 }
 
 }  // namespace peg3d::experiment

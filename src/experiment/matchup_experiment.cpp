@@ -90,6 +90,8 @@ bool needs_training(const MatchupSettings& s) {
   return false;
 }
 
+}  // namespace
+
 // One run of the matchups: the FACL agents of a start (trained or loaded), then every pairing's greedy game.
 class MatchupRun {
  public:
@@ -165,6 +167,8 @@ class MatchupRun {
   bool train_;
 };
 
+namespace {
+
 nlohmann::json encode_games(const std::vector<MatchupRecord>& records) {
   nlohmann::json games = nlohmann::json::array();
   for (const MatchupRecord& r : records) {
@@ -198,23 +202,70 @@ std::vector<MatchupRecord> restore_games(const nlohmann::json& data, std::size_t
 
 }  // namespace
 
-std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& s) {
-  const std::size_t jobs = matchup_run_count(sims.front().arena(), s);
-  const std::size_t pairings = s.pursuers.size() * s.evaders.size();
-  std::vector<std::vector<MatchupRecord>> per_job(jobs);
-  const MatchupRun matchups(sims, s);
-  sweep::run_sweep(jobs, s.sweep.threads, s.sweep.control,
-                   {.run =
-                        [&](std::size_t i) {
-                          per_job[i] = matchups.play(i);
-                          if (s.sweep.control.progress) s.sweep.control.progress->run_done();
-                        },
-                    .encode = [&](std::size_t i) { return encode_games(per_job[i]); },
-                    .restore = [&](std::size_t i, const nlohmann::json& data) { per_job[i] = restore_games(data, pairings); }});
-  std::vector<MatchupRecord> out;
-  for (auto& v : per_job) std::move(v.begin(), v.end(), std::back_inserter(out));
+MatchupExperiment::MatchupExperiment(std::shared_ptr<const world::Arena> arena, game::GameConfig base,
+                                     MatchupSettings settings)
+    : arena_(std::move(arena)),
+      base_(std::move(base)),
+      settings_(std::move(settings)),
+      sims_(make_matchup_sims(arena_, base_, settings_)) {
+  if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(arena_, base_);
+}
+
+MatchupExperiment::~MatchupExperiment() = default;
+
+std::size_t MatchupExperiment::episodes_per_run() const {
+  return static_cast<std::size_t>(settings_.sweep.episodes) + 1 + pairings();
+}
+
+void MatchupExperiment::begin(const sweep::SweepControl& control) {
+  settings_.sweep.control = control;
+  play_ = std::make_unique<const MatchupRun>(sims_, settings_);
+  per_run_.assign(run_count(), {});
+}
+
+void MatchupExperiment::run_one(std::size_t i) {
+  per_run_[i] = play_->play(i);
+  if (settings_.sweep.control.progress) settings_.sweep.control.progress->run_done();
+}
+
+nlohmann::json MatchupExperiment::encode(std::size_t i) const { return encode_games(per_run_[i]); }
+
+void MatchupExperiment::restore(std::size_t i, const nlohmann::json& record) {
+  per_run_[i] = restore_games(record, pairings());
+}
+
+void MatchupExperiment::finish(bool root) {
+  if (!root) return;
+  records_.clear();
+  for (auto& v : per_run_) std::move(v.begin(), v.end(), std::back_inserter(records_));
+  per_run_.clear();
+  summary_ = summarize_matchups(records_, settings_);
+}
+
+void MatchupExperiment::write_results(const std::filesystem::path& out, const SweepTiming&) const {
+  write_matchups_csv(out / "matchups.csv", records_);
+  write_matchup_agents_csv(out / "agents.csv", records_);
+  results::write_json(out / "summary.json", summary_);
+}
+
+nlohmann::ordered_json MatchupExperiment::run_info() const {
+  return {{"setup", setup()}, {"seeds", matchup_seeds(*arena_, settings_)}};
+}
+
+std::vector<RecordedEpisode> MatchupExperiment::recorded() const {
+  std::vector<RecordedEpisode> out;
+  for (std::size_t k = 0; k < records_.size(); ++k) {
+    const MatchupRecord& r = records_[k];
+    if (!r.trace) continue;
+    // Each run's games are its pairings in order, so game k is pairing k % pairings (Sim 1 + that).
+    out.push_back({matchup_key(r), &sims_[1 + k % pairings()], r.trace.get(),
+                   fmt::format("{} {} repeat {}: {} vs {}", arena_->map().name, r.scenario, r.repeat, r.pursuer, r.evader),
+                   fmt::format("peg-matchup, seed {}; {}", settings_.sweep.seed, ending_of(r.result))});
+  }
   return out;
 }
+
+std::string MatchupExperiment::report(const SweepTiming&) const { return matchup_table(summary_); }
 
 std::string matchup_key(const MatchupRecord& r) {
   return fmt::format("{}_r{}_{}_vs_{}", r.scenario, r.repeat, r.pursuer, r.evader);

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "experiment/experiment.hpp"
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
@@ -34,8 +35,8 @@ struct MatchupSettings {
   SweepSettings sweep{.repeats = 10};
   /// A saved pursuer (FACL or MLP) playing the "facl" slot instead of a trained one (every pursuer plays it);
   /// results name the slot by its kind ("facl" or "mlp").
-  std::shared_ptr<const game::SavedPolicy> pursuer_policy;
-  std::shared_ptr<const game::SavedPolicy> evader_policy;  ///< the same for the evaders
+  std::shared_ptr<const game::SavedPolicy> pursuer_policy{};
+  std::shared_ptr<const game::SavedPolicy> evader_policy{};  ///< the same for the evaders
   /// The classic opponents mixed into FACL training (experiment/training.hpp); null: co-learning.
   std::shared_ptr<const OpponentPool> pool{};
   /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
@@ -79,11 +80,6 @@ nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& 
 /// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
 nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& settings);
 
-/// Plays every run (see matchup_run_count); with settings.sweep.control's journal, finished runs are recorded
-/// as they finish and runs it holds are read back instead of played; a stop request throws
-/// sweep::SweepInterrupted.
-std::vector<MatchupRecord> run_matchups(const std::vector<game::Sim>& sims, const MatchupSettings& settings);
-
 /// matchups.csv: one row per game (scenario, repeat, pursuer, evader, then the episode columns).
 void write_matchups_csv(const std::filesystem::path& file, const std::vector<MatchupRecord>& records);
 /// agents.csv: one row per agent per game (docs/results.md).
@@ -94,5 +90,49 @@ void write_matchup_agents_csv(const std::filesystem::path& file, const std::vect
 /// fraction.
 nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& records, const MatchupSettings& settings);
 std::string matchup_table(const nlohmann::ordered_json& summary);
+
+class MatchupRun;
+
+/// The matchups as an Experiment: run i (scenario i / repeats, repeat i % repeats) trains the FACL agents of
+/// its start when a "facl" slot needs them, then plays every pairing, pursuer-major. Result files
+/// (docs/results.md): matchups.csv, agents.csv, summary.json.
+class MatchupExperiment : public Experiment {
+ public:
+  /// Builds every Sim (make_matchup_sims, each checking the map's starts) and, unless settings.pool is set, the
+  /// classic opponents FACL training mixes in.
+  MatchupExperiment(std::shared_ptr<const world::Arena> arena, game::GameConfig base, MatchupSettings settings);
+  ~MatchupExperiment() override;
+
+  std::string kind() const override { return "matchup"; }
+  nlohmann::json setup() const override { return matchup_setup(*arena_, base_, settings_); }
+  std::size_t run_count() const override { return matchup_run_count(*arena_, settings_); }
+  std::size_t episodes_per_run() const override;
+  void begin(const sweep::SweepControl& control) override;
+  void run_one(std::size_t i) override;
+  nlohmann::json encode(std::size_t i) const override;
+  void restore(std::size_t i, const nlohmann::json& record) override;
+  void finish(bool root) override;
+  void record_episodes(std::function<bool(const std::string&)> chosen) override { settings_.keep_trace = std::move(chosen); }
+  void write_results(const std::filesystem::path& out, const SweepTiming& timing) const override;
+  std::vector<std::pair<std::string, const world::Arena*>> maps() const override { return {{"map", arena_.get()}}; }
+  nlohmann::ordered_json run_info() const override;
+  std::vector<RecordedEpisode> recorded() const override;
+  std::string report(const SweepTiming& timing) const override;
+
+  /// Every game, in run order then pairing order, once finish(true) has gathered them.
+  const std::vector<MatchupRecord>& records() const { return records_; }
+
+ private:
+  std::size_t pairings() const { return settings_.pursuers.size() * settings_.evaders.size(); }
+
+  std::shared_ptr<const world::Arena> arena_;
+  game::GameConfig base_;
+  MatchupSettings settings_;
+  std::vector<game::Sim> sims_;  ///< [0] trains, then one per pairing (make_matchup_sims)
+  std::unique_ptr<const MatchupRun> play_;
+  std::vector<std::vector<MatchupRecord>> per_run_;
+  std::vector<MatchupRecord> records_;
+  nlohmann::ordered_json summary_;
+};
 
 }  // namespace peg3d::experiment

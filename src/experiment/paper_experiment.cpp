@@ -6,7 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "core/config_json.hpp"
 #include "experiment/trial.hpp"
+#include "game/policy_io.hpp"
+#include "results/result_files.hpp"
+#include "results/trajectory_file.hpp"
 #include "results/codecs.hpp"
 #include "results/run_info.hpp"
 #include "results/statistics.hpp"
@@ -117,36 +121,117 @@ PaperResults gather(const std::vector<Algorithm>& algorithms, const std::vector<
 
 }  // namespace
 
-PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
-                                  const std::vector<OpponentPool>& pools, const PaperSettings& s) {
-  const auto& scenarios = sims.front().arena().map().scenarios;
-  const std::size_t n_alg = algorithms.size(), n_rep = static_cast<std::size_t>(s.sweep.repeats);
-  const sweep::SweepControl& control = s.sweep.control;
-  std::vector<TrialResult> trials(scenarios.size() * n_alg * n_rep);
-  const auto traced = [&](std::size_t i) { return static_cast<int>(i % n_rep) == s.trace_repeat; };
-  const auto run = [&](std::size_t i) {
-    const PaperRun at = paper_run(i, n_alg, n_rep);
-    TrialSpec spec{.scenario = &scenarios[at.scenario],
-                   .seed = run_seed(s.sweep.seed, static_cast<int>(at.scenario), static_cast<int>(at.repeat)),
-                   .episodes = s.sweep.episodes,
-                   .keep_trace = traced(i),
-                   .stop = control.stop,
-                   .pool = &pools[at.algorithm],
-                   .progress = control.progress};
-    trials[i] = run_trial(sims[at.algorithm], spec);
-    if (!spec.keep_trace) {  // only the traced repeat's models are kept
-      trials[i].pursuer_models = {};
-      trials[i].evader_models = {};
+PaperExperiment::PaperExperiment(std::shared_ptr<const world::Arena> arena, std::vector<Algorithm> algorithms,
+                                 PaperSettings settings, std::string map_file)
+    : arena_(std::move(arena)),
+      algorithms_(std::move(algorithms)),
+      settings_(std::move(settings)),
+      map_file_(std::move(map_file)),
+      sims_(make_sims(arena_, algorithms_)),
+      pools_(make_pools(arena_, algorithms_)) {}
+
+void PaperExperiment::begin(const sweep::SweepControl& control) {
+  control_ = control;
+  trials_.assign(run_count(), TrialResult{});
+}
+
+void PaperExperiment::run_one(std::size_t i) {
+  const PaperRun at = paper_run(i, algorithms_.size(), static_cast<std::size_t>(settings_.sweep.repeats));
+  const auto& scenarios = arena_->map().scenarios;
+  TrialSpec spec{.scenario = &scenarios[at.scenario],
+                 .seed = run_seed(settings_.sweep.seed, static_cast<int>(at.scenario), static_cast<int>(at.repeat)),
+                 .episodes = settings_.sweep.episodes,
+                 .keep_trace = traced(i),
+                 .stop = control_.stop,
+                 .pool = &pools_[at.algorithm],
+                 .progress = control_.progress};
+  trials_[i] = run_trial(sims_[at.algorithm], spec);
+  if (!spec.keep_trace) {  // only the traced repeat's models are kept
+    trials_[i].pursuer_models = {};
+    trials_[i].evader_models = {};
+  }
+  if (control_.progress) control_.progress->run_done();
+}
+
+nlohmann::json PaperExperiment::encode(std::size_t i) const { return encode_trial(trials_[i], traced(i)); }
+
+void PaperExperiment::restore(std::size_t i, const nlohmann::json& record) {
+  const PaperRun at = paper_run(i, algorithms_.size(), static_cast<std::size_t>(settings_.sweep.repeats));
+  restore_trial(trials_[i], record, traced(i), pools_[at.algorithm]);
+}
+
+void PaperExperiment::finish(bool root) {
+  if (!root) return;
+  results_ = gather(algorithms_, arena_->map().scenarios, pools_, settings_, trials_);
+  trials_.clear();
+  std::vector<std::string> scenario_names, algorithm_names;
+  for (const auto& s : arena_->map().scenarios) scenario_names.push_back(s.name);
+  for (const auto& a : algorithms_) algorithm_names.push_back(a.name);
+  summary_ = summarize(results_.runs, scenario_names, algorithm_names, algorithms_.front().config.time_limit);
+}
+
+void PaperExperiment::write_results(const std::filesystem::path& out, const SweepTiming& timing) const {
+  nlohmann::ordered_json config{{"map", map_file_},
+                                {"seed", settings_.sweep.seed},
+                                {"episodes", settings_.sweep.episodes},
+                                {"repeats", settings_.sweep.repeats},
+                                {"algorithms", nlohmann::ordered_json::object()}};
+  for (const auto& a : algorithms_) {
+    config["algorithms"][a.name] = nlohmann::ordered_json::parse(config::to_json(a.config).dump());
+  }
+  std::filesystem::create_directories(out / "trajectories");
+  std::filesystem::create_directories(out / "policies");
+  results::write_json(out / "config.json", config);
+  results::write_runs_csv(out / "runs.csv", results_.runs);
+  results::write_learning_curves_csv(out / "learning_curves.csv", results_.runs, results_.curves);
+  results::write_json(out / "summary.json", summary_);
+  for (const auto& [key, trace] : results_.traces) {
+    results::write_trajectory_csv(results::output_file(out / "trajectories", key, ".csv"), trace);
+  }
+  for (const auto& [key, model] : results_.policies) {
+    game::save_policy(results::output_file(out / "policies", key, ".json"), *model);
+  }
+  results::write_json(out / "map.json", results::map_to_json(*arena_));
+  results::write_json(out / "apollonius.json",
+                      results::apollonius_to_json({10, 10, 10}, {-10, -10, 10}, 1.1, 1.0, {0.5, 1.0, 2.0}));
+  results::write_json(out / "timing.json",
+                      nlohmann::ordered_json{{"world_build_s", timing.build_seconds},
+                                             {"runs_s", timing.run_seconds},
+                                             {"runs", run_count()},
+                                             {"steps", results_.steps},
+                                             {"steps_per_second", results_.steps / timing.run_seconds},
+                                             {"threads", timing.threads},
+                                             {"ranks", timing.ranks},
+                                             {"world_cache", arena_->stats().cache_status}});
+}
+
+std::vector<RecordedEpisode> PaperExperiment::recorded() const {
+  std::vector<RecordedEpisode> out;
+  for (const auto& sc : arena_->map().scenarios) {
+    for (std::size_t a = 0; a < algorithms_.size(); ++a) {
+      const std::string key = sc.name + "_" + algorithms_[a].name;
+      const auto trace = results_.traces.find(key);
+      if (trace == results_.traces.end()) continue;
+      const game::EpisodeResult* result = nullptr;
+      for (const auto& r : results_.runs) {
+        if (r.scenario == sc.name && r.algorithm == algorithms_[a].name && r.repeat == settings_.trace_repeat) {
+          result = &r.evaluation;
+        }
+      }
+      out.push_back({key, &sims_[a], &trace->second,
+                     fmt::format("{} {}: {}", arena_->map().name, sc.name, algorithms_[a].name),
+                     fmt::format("peg-paper, seed {}, repeat {} after {} training episodes; {}", settings_.sweep.seed,
+                                 settings_.trace_repeat, settings_.sweep.episodes,
+                                 result ? ending_of(*result) : std::string("evaluation"))});
     }
-    if (control.progress) control.progress->run_done();
-  };
-  sweep::run_sweep(trials.size(), s.sweep.threads, control,
-                   {.run = run,
-                    .encode = [&](std::size_t i) { return encode_trial(trials[i], traced(i)); },
-                    .restore = [&](std::size_t i, const nlohmann::json& data) {
-                      restore_trial(trials[i], data, traced(i), pools[paper_run(i, n_alg, n_rep).algorithm]);
-                    }});
-  return gather(algorithms, scenarios, pools, s, trials);
+  }
+  return out;
+}
+
+std::string PaperExperiment::report(const SweepTiming& timing) const {
+  return summary_table(summary_) + fmt::format("\n{} runs, {} steps in {:.1f} s ({:.0f} steps/s)", run_count(),
+                                               results_.steps, timing.run_seconds,
+                                               static_cast<double>(results_.steps) / timing.run_seconds);
 }
 
 namespace {

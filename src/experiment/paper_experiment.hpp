@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/algorithms.hpp"
+#include "experiment/experiment.hpp"
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
+#include "experiment/trial.hpp"
 #include "game/episode.hpp"
 #include "game/facl_policy.hpp"
 #include "game/game_config.hpp"
@@ -53,11 +55,50 @@ nlohmann::json paper_setup(const world::Arena& arena, const std::vector<Algorith
 /// traced repeat, and where the configuration and the per-run seeds are.
 nlohmann::ordered_json paper_run_info(const PaperSettings& settings);
 
-/// Runs every scenario x algorithm x repeat; sims[k] plays algorithms[k], which trains with pools[k]. Run i is
-/// scenario i / (A * R), algorithm (i / R) % A, repeat i % R. With settings.sweep.control's journal, finished runs are recorded as
-/// they finish and runs it holds are read back instead of run; a stop request throws sweep::SweepInterrupted.
-PaperResults run_paper_experiment(const std::vector<Algorithm>& algorithms, const std::vector<game::Sim>& sims,
-                                  const std::vector<OpponentPool>& pools, const PaperSettings& settings);
+/// The paper's sweep as an Experiment: every scenario x algorithm x repeat. Run i is scenario i / (A * R),
+/// algorithm (i / R) % A, repeat i % R; algorithm k trains and plays with its own Sim and opponent pool.
+/// Result files (docs/results.md): config.json, runs.csv, learning_curves.csv, summary.json, trajectories/ and
+/// policies/ of the traced repeat, map.json, apollonius.json, timing.json; figures by tools/plot_paper.py.
+class PaperExperiment : public Experiment {
+ public:
+  /// Builds a Sim and an opponent pool per algorithm; each Sim checks every start against its agents' radii.
+  /// `map_file` is the map's path as config.json names it.
+  PaperExperiment(std::shared_ptr<const world::Arena> arena, std::vector<Algorithm> algorithms, PaperSettings settings,
+                  std::string map_file);
+
+  std::string kind() const override { return "paper"; }
+  nlohmann::json setup() const override { return paper_setup(*arena_, algorithms_, settings_); }
+  std::size_t run_count() const override { return paper_run_count(*arena_, algorithms_, settings_); }
+  std::size_t episodes_per_run() const override { return static_cast<std::size_t>(settings_.sweep.episodes) + 1; }
+  void begin(const sweep::SweepControl& control) override;
+  void run_one(std::size_t i) override;
+  nlohmann::json encode(std::size_t i) const override;
+  void restore(std::size_t i, const nlohmann::json& record) override;
+  void finish(bool root) override;
+  void write_results(const std::filesystem::path& out, const SweepTiming& timing) const override;
+  std::vector<std::pair<std::string, const world::Arena*>> maps() const override { return {{"map", arena_.get()}}; }
+  nlohmann::ordered_json run_info() const override { return paper_run_info(settings_); }
+  std::vector<RecordedEpisode> recorded() const override;
+  std::string report(const SweepTiming& timing) const override;
+  std::string plot_script() const override { return "plot_paper.py"; }
+
+  /// The results, once finish(true) has gathered them: runs in run order, the traced repeat's steps and models.
+  const PaperResults& results() const { return results_; }
+
+ private:
+  bool traced(std::size_t i) const { return static_cast<int>(i % settings_.sweep.repeats) == settings_.trace_repeat; }
+
+  std::shared_ptr<const world::Arena> arena_;
+  std::vector<Algorithm> algorithms_;
+  PaperSettings settings_;
+  std::string map_file_;
+  std::vector<game::Sim> sims_;       ///< per algorithm
+  std::vector<OpponentPool> pools_;   ///< per algorithm
+  sweep::SweepControl control_;
+  std::vector<TrialResult> trials_;   ///< per run, until finish() moves them into results_
+  PaperResults results_;
+  nlohmann::ordered_json summary_;
+};
 
 /// summary.json (docs/results.md): per scenario and algorithm rates and means with 95% intervals, and paired
 /// comparisons of every pair of algorithms.

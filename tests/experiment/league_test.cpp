@@ -64,8 +64,8 @@ TEST(League, EntrantsAreTheTrainedPoliciesOfEverySeedThenTheClassicOnes) {
 }
 
 TEST(League, EveryPairingMeetsAtEveryStartAndSeedWhateverTheThreads) {
-  const League one = league({algorithm("a", "peg3d")}, small(1));
-  const League two = league({algorithm("a", "peg3d")}, small(2));
+  League one = league({algorithm("a", "peg3d")}, small(1));
+  League two = league({algorithm("a", "peg3d")}, small(2));
   const auto g1 = one.run(true);
   const auto g2 = two.run(true);
   // 2 trained + 3 classic per role, 2 starts x 2 evaluation seeds.
@@ -112,7 +112,7 @@ TEST(League, EachTrainedSideChoosesItsOpponentsAsItsAlgorithmDoes) {
   std::vector<Algorithm> algs{algorithm("a", "peg3d"), algorithm("b", "peg3d")};
   algs[0].config.team.evader_threat = game::OpponentChoice::kAssigned;
   algs[1].config.team.pursuer_target = game::OpponentChoice::kAssigned;
-  const League l = league(algs, small());
+  League l = league(algs, small());
   const int classic = 2;  // the first classic group of either role
   for (const int e : {0, 1, classic}) {
     EXPECT_EQ(l.game_config(0, 0, e).team.pursuer_target, game::OpponentChoice::kNearest) << e;
@@ -133,7 +133,7 @@ TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
     LeagueSettings s = small();
     s.sweep.repeats = 1;
     s.train_heading = heading;
-    const League l = league({a}, s);
+    League l = league({a}, s);
     l.run(true);
     const auto table = l.models(0, 0, Role::kPursuer).models.at(0)->tables(0).actor_table();
     return std::vector<double>(table.begin(), table.end());
@@ -149,7 +149,7 @@ TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
 }
 
 TEST(League, MatrixCountsTheGamesOfEachPairing) {
-  const League l = league({algorithm("a", "peg3d")}, small());
+  League l = league({algorithm("a", "peg3d")}, small());
   const auto games = l.run(true);
   const auto groups = league_matrix(l, games, true);
   const auto entrants = league_matrix(l, games, false);
@@ -173,7 +173,7 @@ TEST(League, MatrixCountsTheGamesOfEachPairing) {
 }
 
 TEST(League, FindingsCompareWithTheBestClassicOpponent) {
-  const League l = league({algorithm("a", "peg3d")}, small());
+  League l = league({algorithm("a", "peg3d")}, small());
   // Made-up games at one start: pure pursuit catches flee in 30 s, pn does not; a#0 catches it in 50 s and
   // a#1 does not. Against pure pursuit, flee lasts 30 s and a#0 and a#1 last 40 s and 20 s (mean 30).
   const auto game = [](const char* p, const char* e, bool captured, double t) {
@@ -205,7 +205,7 @@ TEST(League, FindingsCompareWithTheBestClassicOpponent) {
 TEST(League, ASavedEntrantPlaysAsTheTrainedPolicyItWasSavedFrom) {
   // Save a#0's trained pursuer and evader and enter them again, as files: at every start and seed they play the
   // games a#0 plays, bit for bit, after the classic entrants.
-  const League first = league({algorithm("a", "peg3d")}, small());
+  League first = league({algorithm("a", "peg3d")}, small());
   const auto first_games = first.run(true);
   const auto dir = std::filesystem::path(::testing::TempDir());
   game::save_policy(dir / "league_p.json", *first.models(0, 0, Role::kPursuer).models.at(0));
@@ -213,7 +213,7 @@ TEST(League, ASavedEntrantPlaysAsTheTrainedPolicyItWasSavedFrom) {
   LeagueSettings s = small();
   s.saved_pursuers = {{"saved_p", game::load_saved_policy(dir / "league_p.json", Role::kPursuer)}};
   s.saved_evaders = {{"saved_e", game::load_saved_policy(dir / "league_e.json", Role::kEvader)}};
-  const League second = league({algorithm("a", "peg3d")}, s);
+  League second = league({algorithm("a", "peg3d")}, s);
   EXPECT_EQ(second.pursuers().back().name, "saved_p");
   EXPECT_EQ(second.pursuers().back().group, "saved_p");
   EXPECT_EQ(second.evaders().back().name, "saved_e");
