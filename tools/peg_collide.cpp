@@ -77,13 +77,13 @@ int main(int argc, char** argv) {
   CLI::App* rec = app.add_subcommand("record", "write the golden logs of cases");
   rec->add_option("cases", record_cases, "case folders, .yaml files, or folders of cases")->required();
 
-  std::string map, motion, out, agent = "pursuer", scenario;
+  std::string map, motion, out, agent = "pursuer_0", scenario;
   std::vector<std::string> sets;
   CLI::App* make = app.add_subcommand("new", "make a case from a map and a motion file, and record it");
   make->add_option("--map", map, "the map (YAML)")->required();
   make->add_option("--motion", motion, "NAME.commands (timed steering) or NAME.waypoints")->required();
   make->add_option("--out", out, "the case folder to create")->required();
-  make->add_option("--agent", agent, "the agent the motion drives (pursuer, evader, pursuer1, ...)")->capture_default_str();
+  make->add_option("--agent", agent, "the agent the motion drives (pursuer_0, evader_0, pursuer_1, ...)")->capture_default_str();
   make->add_option("--scenario", scenario, "the map's scenario (default: its first)");
   make->add_option("--set", sets, "configuration overrides, key=value (repeatable)");
 

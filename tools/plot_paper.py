@@ -217,14 +217,22 @@ def read_map(results):
             "scenarios": scenarios}
 
 
-TRAJECTORY_COLUMNS = ("t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "evader_z")
+def trajectory_columns(index):
+    """t and the positions of the first pursuer and evader: pursuer_0_x, ... (files written before issue 37
+    named the only agent of a role pursuer_x, ...)."""
+    p, e = ("pursuer_0", "evader_0") if "pursuer_0_x" in index else ("pursuer", "evader")
+    return ("t",) + tuple(f"{a}_{c}" for a in (p, e) for c in "xyz")
 
 
 def read_trajectory(path):
-    index, rows = read_csv(path, TRAJECTORY_COLUMNS)
+    index, rows = read_csv(path, ())
+    columns = trajectory_columns(index)
+    missing = [c for c in columns if c not in index]
+    if missing:
+        raise InputError(f"{path}: missing column(s) {', '.join(missing)}")
     if not rows:
         raise InputError(f"{path}: no rows (row 0 is the start)")
-    columns = list(TRAJECTORY_COLUMNS) + (["distance"] if "distance" in index else [])
+    columns = list(columns) + (["distance"] if "distance" in index else [])
     data = np.empty((len(rows), len(columns)))
     for r, row in enumerate(rows):
         for c, name in enumerate(columns):

@@ -20,9 +20,6 @@ namespace peg3d::env {
 namespace {
 constexpr std::uint64_t kPolicyStream = 0x706f6c6963790000ULL;  // "policy": the C++ policies' seeds below the root
 
-std::string agent_name(game::Role role, int rank) {
-  return fmt::format("{}_{}", role == game::Role::kPursuer ? "pursuer" : "evader", rank);
-}
 }  // namespace
 
 struct Batch::Pool {
@@ -122,7 +119,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   pursuers_ = int(first.pursuers.size());
   agents_ = first.agents();
   for (int i = 0; i < agents_; ++i) {
-    names_.push_back(i < pursuers_ ? agent_name(game::Role::kPursuer, i) : agent_name(game::Role::kEvader, i - pursuers_));
+    names_.push_back(game::agent_label(game::role_at(i, pursuers_), game::rank_at(i, pursuers_)));
   }
   std::vector<std::string> source(static_cast<std::size_t>(agents_));  // per agent: "" or its policy name or file
   for (const auto& [key, policy] : settings_.controllers) {

@@ -67,13 +67,9 @@ void Trace::reserve(int max_steps, int agent_count) {
 
 std::string agent_label(const Trace& trace, int i) {
   const Role role = trace.roles[std::size_t(i)];
-  int rank = 0, count = 0;
-  for (int j = 0; j < trace.agents; ++j) {
-    if (trace.roles[std::size_t(j)] != role) continue;
-    if (j < i) ++rank;
-    ++count;
-  }
-  return agent_label(role, rank, count);
+  int rank = 0;
+  for (int j = 0; j < i; ++j) rank += trace.roles[std::size_t(j)] == role;
+  return agent_label(role, rank);
 }
 
 void Trace::clear() {

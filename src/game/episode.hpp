@@ -101,8 +101,7 @@ struct Trace {
   void record(const SimState& state, bool after_step);
 };
 
-/// The label of agent i of a trace, as trajectory files, logs and viewers write it (agent_label(role, rank,
-/// count): "pursuer" alone, else "pursuer0", "pursuer1", ...).
+/// The label of agent i of a trace (agent_label: "pursuer_0", "evader_0", ...).
 std::string agent_label(const Trace& trace, int i);
 
 /// step(), with a CommandError for an agent whose policy (policies[i] drives agent i) was read from a file

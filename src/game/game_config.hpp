@@ -23,9 +23,15 @@ const char* to_string(Role r);
 /// role, and its rank k among the agents of that role.
 constexpr Role role_at(int i, int pursuers) { return i < pursuers ? Role::kPursuer : Role::kEvader; }
 constexpr int rank_at(int i, int pursuers) { return i < pursuers ? i : i - pursuers; }
-/// How logs, trajectories and viewers name agent `rank` of a role that has `count` agents in the game: the role
-/// alone ("pursuer", "evader") when it has one, else role and rank ("pursuer0", "pursuer1", ...).
-std::string agent_label(Role role, int rank, int count);
+/// The one name of agent `rank` (0 first) of a role, everywhere peg3d names agents: trajectory files, collision
+/// logs and cases, replays, results, Python (its agents, its `opponents` keys): "pursuer_0", "evader_1", ... The
+/// "<group>_<int>" form is the one multi-agent libraries group agents by (TorchRL, VMAS, BenchMARL).
+std::string agent_label(Role role, int rank);
+
+/// A label in the current form for one peg3d wrote before issue 37 (collision logs of format 1, collision cases,
+/// trajectory files): the role alone, which named the only agent of its role ("pursuer" -> "pursuer_0"), or role
+/// and rank run together ("evader1" -> "evader_1"). Any other text comes back unchanged.
+std::string current_agent_label(const std::string& label);
 
 /// Who drives an agent when the game is played by policies (an external caller may instead pass its own
 /// steering commands to step()).

@@ -118,8 +118,7 @@ std::vector<game::Waypoint> read_waypoints(const std::filesystem::path& file) { 
 
 std::string scenario_label(const world::Scenario& s, int i) {
   const int p = static_cast<int>(s.pursuers.size());
-  const game::Role role = game::role_at(i, p);
-  return game::agent_label(role, game::rank_at(i, p), role == game::Role::kPursuer ? p : s.agents() - p);
+  return game::agent_label(game::role_at(i, p), game::rank_at(i, p));
 }
 
 CollisionCase load_case(const std::filesystem::path& path) {
@@ -231,8 +230,13 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   for (const AgentDriver& d : c.drivers) {
     bool found = false;
     for (int i = 0; i < n; ++i) {
-      const std::string ranked = fmt::format("{}{}", to_string(game::role_at(i, p)), game::rank_at(i, p));
-      if (d.label == scenario_label(*scenario, i) || d.label == ranked) {
+      // Cases written before issue 37 name agents as logs then did: the role alone for the only agent of its
+      // role, else role and rank run together ("pursuer1").
+      const game::Role role = game::role_at(i, p);
+      const bool alone = (role == game::Role::kPursuer ? p : n - p) == 1;
+      const bool old_label = d.label == fmt::format("{}{}", to_string(role), game::rank_at(i, p)) ||
+                             (alone && d.label == to_string(role));
+      if (d.label == scenario_label(*scenario, i) || old_label) {
         driver_of[std::size_t(i)] = &d;
         found = true;
       }

@@ -9,10 +9,10 @@
 //   set: [collision=penalize]     optional, configuration overrides as with --set
 //   seed: 1                       optional, the run's seed (default 1)
 //   agents:                       optional, who drives which agent (the others play the configuration's policy)
-//     pursuer: {commands: pursuer.commands}     timed steering commands (a file, or inline [[t, da, dt], ...])
-//     evader: {waypoints: evader.waypoints}     waypoints flown at the agent's speed (file or [[x, y, z, t?]])
-//     pursuer1: {policy: pursuer.json}          a saved policy (FACL or MLP)
-//     evader1: {scripted: flee}                 a scripted policy by name
+//     pursuer_0: {commands: pursuer.commands}   timed steering commands (a file, or inline [[t, da, dt], ...])
+//     evader_0: {waypoints: evader.waypoints}   waypoints flown at the agent's speed (file or [[x, y, z, t?]])
+//     pursuer_1: {policy: pursuer.json}         a saved policy (FACL or MLP)
+//     evader_1: {scripted: flee}                a scripted policy by name
 
 #include <cstdint>
 #include <filesystem>
@@ -29,7 +29,9 @@ namespace peg3d::regress {
 /// How one agent of a case is driven.
 struct AgentDriver {
   enum class Kind { kCommands, kWaypoints, kPolicy, kScripted };
-  std::string label;  ///< pursuer, evader (one of a role) or pursuer0, evader1, ... (by rank)
+  /// pursuer_0, evader_1, ... (game::agent_label); cases written before issue 37 may say pursuer or evader
+  /// (the only agent of its role) or pursuer0, evader1, ...
+  std::string label;
   int line = 0;       ///< its line in the case file, for messages
   Kind kind = Kind::kCommands;
   std::vector<game::TimedCommand> commands;

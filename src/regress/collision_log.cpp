@@ -69,7 +69,7 @@ CollisionLog make_log(const std::string& name, const game::Trace& trace, const g
 }
 
 std::string format_log(const CollisionLog& log) {
-  std::string out = "# peg3d collision log, format 1 (docs/collision-tests.md)\n";
+  std::string out = "# peg3d collision log, format 2 (docs/collision-tests.md)\n";
   out += fmt::format("case {}\n", log.name);
   out += fmt::format("outcome {} steps={} time={:.6f}\n", log.outcome, log.steps, log.time);
   for (std::size_t i = 0; i < log.events.size(); ++i) {
@@ -158,6 +158,8 @@ class Reader {
 
 }  // namespace
 
+// Logs of format 1 (before issue 37) named agents by the labels of then; each is read as its current label
+// (game::current_agent_label), so that an old golden log still compares equal to a new run.
 CollisionLog parse_log(std::string_view text, const std::filesystem::path& file) {
   CollisionLog log;
   bool have_case = false, have_outcome = false, have_hash = false;
@@ -194,8 +196,9 @@ CollisionLog parse_log(std::string_view text, const std::filesystem::path& file)
       LoggedEvent e;
       e.step = reader.integer(reader.need(r, "step"), "event.step");
       e.time = reader.number(r, "time");
-      e.agent = reader.need(r, "agent");
+      e.agent = game::current_agent_label(reader.need(r, "agent"));
       e.hit = reader.need(r, "hit");
+      if (e.hit.starts_with("agent:")) e.hit = "agent:" + game::current_agent_label(e.hit.substr(6));
       const std::string& tri = reader.need(r, "triangle");
       e.triangle = tri == "-" ? -1 : reader.integer(tri, "event.triangle");
       e.point = reader.vec(r, "point");
@@ -204,12 +207,13 @@ CollisionLog parse_log(std::string_view text, const std::filesystem::path& file)
       log.events.push_back(e);
     } else if (r.type == "capture") {
       log.captures.push_back({reader.integer(reader.need(r, "step"), "capture.step"), reader.number(r, "time"),
-                              reader.need(r, "pursuer"), reader.need(r, "evader"), reader.number(r, "distance")});
+                              game::current_agent_label(reader.need(r, "pursuer")),
+                              game::current_agent_label(reader.need(r, "evader")), reader.number(r, "distance")});
     } else if (r.type == "push") {
       LoggedPush p;
       p.step = reader.integer(reader.need(r, "step"), "push.step");
       p.time = reader.number(r, "time");
-      p.agent = reader.need(r, "agent");
+      p.agent = game::current_agent_label(reader.need(r, "agent"));
       const std::string& body = reader.need(r, "body");
       if (body.rfind("mover:", 0) != 0) reader.fail("push.body", "'" + body + "' is not mover:<index>");
       p.mover = reader.integer(body.substr(6), "push.body");
@@ -219,7 +223,7 @@ CollisionLog parse_log(std::string_view text, const std::filesystem::path& file)
     } else if (r.type == "agent") {
       const std::string& active = reader.need(r, "active");
       if (active != "yes" && active != "no") reader.fail("agent.active", "must be yes or no");
-      log.agents.push_back({r.label, reader.vec(r, "position"), reader.number(r, "alpha"), reader.number(r, "theta"),
+      log.agents.push_back({game::current_agent_label(r.label), reader.vec(r, "position"), reader.number(r, "alpha"), reader.number(r, "theta"),
                             reader.number(r, "path"), active == "yes"});
     } else if (r.type == "mover") {
       const auto q = reader.numbers(r, "orientation", 4);

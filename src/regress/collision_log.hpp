@@ -18,8 +18,8 @@ namespace peg3d::regress {
 struct LoggedEvent {
   int step = 0;
   double time = 0.0;         ///< s, time of impact
-  std::string agent;         ///< label: pursuer, evader, pursuer0, ...
-  std::string hit;           ///< what it hit: "sphere:3", "cylinder:0", "mesh:1", "mover:2", "agent:evader1"
+  std::string agent;         ///< label: pursuer_0, evader_0, pursuer_1, ... (game::agent_label)
+  std::string hit;           ///< what it hit: "sphere:3", "cylinder:0", "mesh:1", "mover:2", "agent:evader_1"
   int triangle = -1;         ///< triangle of a mesh, else -1 (written "-")
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::Zero();

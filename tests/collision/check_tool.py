@@ -48,7 +48,7 @@ def main():
     open(case_file, "w").write(original_case.replace("commands: [[0, 0, 0]]", "commands: [[0, 0, 0], [4, 2, 0]]"))
     r = run(tool, "run", case)
     check(r.returncode == 1, f"a changed command fails the case: {r.stdout}")
-    check("straight-sphere: event 1: pursuer hit sphere:0 at 7.954545 s -> (none)" in r.stdout, f"the diff names the vanished event: {r.stdout}")
+    check("straight-sphere: event 1: pursuer_0 hit sphere:0 at 7.954545 s -> (none)" in r.stdout, f"the diff names the vanished event: {r.stdout}")
     r = run(tool, "run", "--update", case)
     check(r.returncode == 0 and "updated" in r.stdout, "--update rewrites the golden log")
     check(run(tool, "run", case).returncode == 0, "and the case passes with it")

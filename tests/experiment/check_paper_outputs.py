@@ -20,12 +20,12 @@ EPISODE = ["outcome", "captured", "capture_time_s", "episode_time_s", "final_dis
            "evader_return"]
 RUNS = ["scenario", "algorithm", "repeat", "seed", "train_captures"] + EPISODE
 CURVES = ["scenario", "algorithm", "repeat", "episode", "pool_opponent"] + EPISODE
-TRAJ = ["t", "pursuer_x", "pursuer_y", "pursuer_z", "evader_x", "evader_y", "evader_z", "pursuer_alpha",
-        "pursuer_theta", "evader_alpha", "evader_theta", "distance"] + [
-            f"{a}_{c}" for a in ("pursuer", "evader") for c in (
+TRAJ = ["t", "pursuer_0_x", "pursuer_0_y", "pursuer_0_z", "evader_0_x", "evader_0_y", "evader_0_z", "pursuer_0_alpha",
+        "pursuer_0_theta", "evader_0_alpha", "evader_0_theta", "distance"] + [
+            f"{a}_{c}" for a in ("pursuer_0", "evader_0") for c in (
                 "d_target", "target_az", "target_el", "d_obstacle", "obstacle_az", "obstacle_el", "d_alpha",
                 "d_theta", "reward", "pinned")] + [
-            f"{a}_{c}" for a in ("pursuer", "evader") for c in ("active", "hit", "captured")]
+            f"{a}_{c}" for a in ("pursuer_0", "evader_0") for c in ("active", "hit", "captured")]
 FIGURES = ["trajectories.png", "comparison.png", "learning.png", "apollonius.png"]
 DETERMINISTIC = ["runs.csv", "learning_curves.csv", "summary.json", "config.json"]
 
@@ -102,8 +102,8 @@ def main():
     documented = documented_names(os.path.join(source, "docs", "results.md"))
     for col in RUNS + CURVES + TRAJ:
         # Per-agent trajectory columns are documented once for an agent `a`: `a_d_target` stands for
-        # pursuer_d_target and evader_d_target.
-        generic = re.sub(r"^(pursuer|evader)_", "a_", col)
+        # pursuer_0_d_target and evader_0_d_target.
+        generic = re.sub(r"^(pursuer|evader)_[0-9]+_", "a_", col)
         check(col in documented or generic in documented, f"column {col} documented in docs/results.md")
 
     r = run(binary, b, "--no-plots", "--threads", "1")

@@ -91,8 +91,8 @@ TEST_F(CollisionCaseFiles, MistakesNameTheFileTheLineAndTheField) {
   write("late.commands", "2 0 0\n1 0 0\n");
   f = write("e.yaml", map + "agents:\n  pursuer: {commands: late.commands}\n");
   expect(dir_ / "late.commands", error_of(f), 2, "");
-  f = write("f.yaml", map + "agents:\n  pursuer7: {commands: [[0, 0, 0]]}\n");
-  expect(f, error_of(f), 3, "agents.pursuer7");
+  f = write("f.yaml", map + "agents:\n  pursuer_7: {commands: [[0, 0, 0]]}\n");
+  expect(f, error_of(f), 3, "agents.pursuer_7");
   f = write("g.yaml", map + "scenario: nowhere\n");
   expect(f, error_of(f), 2, "scenario");
   f = write("h.yaml", map + "agents:\n  pursuer: {scripted: flee}\n");
@@ -105,11 +105,11 @@ TEST_F(CollisionCaseFiles, AStraightRunHitsTheSphereAtTheAnalyticTime) {
   // 8.75 m at 1.1 m/s, at 7.954545 s, at the point (14, 10, 10) with the normal -x.
   const fs::path f = write("run.yaml", "map: " + shapes_.string() + "\nscenario: toward-sphere\n"
                                        "set: [pursuer.guard.enabled=false, pursuer.motion_space=false, evader.speed=0]\n"
-                                       "agents:\n  pursuer: {commands: [[0, 0, 0]]}\n");
+                                       "agents:\n  pursuer_0: {commands: [[0, 0, 0]]}\n");
   const CollisionLog log = run_case(load_case(f), false);
   EXPECT_EQ(log.outcome, "pursuer-collision");
   ASSERT_EQ(log.events.size(), 1u);
-  EXPECT_EQ(log.events[0].agent, "pursuer");
+  EXPECT_EQ(log.events[0].agent, "pursuer_0");
   EXPECT_EQ(log.events[0].hit, "sphere:0");
   EXPECT_NEAR(log.events[0].time, 8.75 / 1.1, 1e-6);
   EXPECT_NEAR((log.events[0].point - Vec3(14, 10, 10)).norm(), 0.0, 1e-6);
@@ -117,6 +117,29 @@ TEST_F(CollisionCaseFiles, AStraightRunHitsTheSphereAtTheAnalyticTime) {
   EXPECT_EQ(log.agents.size(), 2u);
   // The same case, played again, logs the same trajectory bit for bit.
   EXPECT_EQ(run_case(load_case(f), false).trajectory_hash, log.trajectory_hash);
+}
+
+TEST_F(CollisionCaseFiles, CasesWrittenBeforeIssue37StillNameTheirAgents) {
+  // Then the only agent of a role was "pursuer" and agents of teams "pursuer1"; each still drives the agent now
+  // named pursuer_0 or pursuer_1 (the same final states as the current label, not those of no driver), while
+  // "pursuer" alone stays refused in a team, where it named no agent.
+  const std::string head = "map: " + shapes_.string() +
+                           "\nset: [pursuer.guard.enabled=false, pursuer.motion_space=false, evader.speed=0, time_limit=3]\n";
+  const auto finals = [&](const std::string& scenario, const std::string& label) {
+    const std::string agents = label.empty() ? "" : "agents:\n  " + label + ": {commands: [[0, 20, 10]]}\n";
+    const fs::path f = write(scenario + "-" + (label.empty() ? "none" : label) + ".yaml",
+                             head + "scenario: " + scenario + "\n" + agents);
+    std::vector<Vec3> out;
+    for (const auto& a : run_case(load_case(f), false).agents) out.push_back(a.position);
+    return out;
+  };
+  EXPECT_EQ(finals("toward-sphere", "pursuer"), finals("toward-sphere", "pursuer_0"));
+  EXPECT_NE(finals("toward-sphere", "pursuer"), finals("toward-sphere", ""));
+  EXPECT_EQ(finals("pack", "pursuer1"), finals("pack", "pursuer_1"));
+  EXPECT_NE(finals("pack", "pursuer1"), finals("pack", ""));
+  EXPECT_NE(finals("pack", "pursuer1"), finals("pack", "pursuer_0"));
+  const fs::path team = write("team.yaml", head + "scenario: pack\nagents:\n  pursuer: {commands: [[0, 0, 0]]}\n");
+  EXPECT_EQ(error_of(team).field(), "agents.pursuer");
 }
 
 }  // namespace

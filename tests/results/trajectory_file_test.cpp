@@ -67,6 +67,31 @@ TEST(ResultsTrajectoryFile, ReadsBackEveryFrameExactly) {
   EXPECT_EQ(back.captures[0].pursuer, t.captures[0].pursuer);
 }
 
+TEST(ResultsTrajectoryFile, FilesWrittenBeforeIssue37ReadAsToday) {
+  // Then the only agent of a role was "evader" and agents of teams "pursuer0", "pursuer1": columns evader_x,
+  // pursuer1_hit, ... The same file with those labels reads into the same trace.
+  const ScratchDir dir;
+  const game::Trace t = team_chase();
+  write_trajectory_csv(dir / "now.csv", t);
+  std::ifstream in(dir / "now.csv");
+  std::string header, rest, line;
+  std::getline(in, header);
+  while (std::getline(in, line)) rest += line + "\n";
+  ASSERT_NE(header.find("pursuer_1_x"), std::string::npos) << header;
+  for (const auto& [now, then] : {std::pair<std::string, std::string>{"pursuer_0_", "pursuer0_"}, {"pursuer_1_", "pursuer1_"},
+                                  {"evader_0_", "evader_"}}) {
+    for (std::size_t at = header.find(now); at != std::string::npos; at = header.find(now, at)) header.replace(at, now.size(), then);
+  }
+  write(dir / "then.csv", header + "\n" + rest);
+  const game::Trace a = read_trajectory_csv(dir / "now.csv"), b = read_trajectory_csv(dir / "then.csv");
+  EXPECT_EQ(b.roles, a.roles);
+  EXPECT_EQ(b.times, a.times);
+  ASSERT_EQ(b.frames.size(), a.frames.size());
+  for (std::size_t f = 0; f < a.frames.size(); ++f) ASSERT_EQ(b.frames[f].state.position, a.frames[f].state.position) << f;
+  ASSERT_EQ(b.captures.size(), a.captures.size());
+  EXPECT_EQ(b.captures[0].pursuer, a.captures[0].pursuer);
+}
+
 TEST(ResultsTrajectoryFile, CollisionsReadBackWithTheirKindAndFrame) {
   const ScratchDir dir;
   game::Trace t = team_chase();
@@ -123,17 +148,17 @@ TEST(ResultsTrajectoryFile, MalformedFilesNameTheLineAndColumn) {
   EXPECT_NE(message_of(dir / "short.csv").find("fields"), std::string::npos);
 
   std::string bad = row2;
-  bad.replace(bad.find(',') + 1, 0, "x");  // pursuer0_x becomes "x<number>"
+  bad.replace(bad.find(',') + 1, 0, "x");  // pursuer_0_x becomes "x<number>"
   write(dir / "word.csv", header + "\n" + row1 + "\n" + bad + "\n");
-  EXPECT_NE(message_of(dir / "word.csv").find("pursuer0_x"), std::string::npos) << message_of(dir / "word.csv");
+  EXPECT_NE(message_of(dir / "word.csv").find("pursuer_0_x"), std::string::npos) << message_of(dir / "word.csv");
 
   write(dir / "back.csv", header + "\n" + row2 + "\n" + row1 + "\n");
   EXPECT_NE(message_of(dir / "back.csv").find("increase"), std::string::npos);
 
   std::string no_z = header;
-  no_z.replace(no_z.find("evader_z"), 8, "evader_q");
+  no_z.replace(no_z.find("evader_0_z"), 10, "evader_0_q");
   write(dir / "col.csv", no_z + "\n");
-  EXPECT_NE(message_of(dir / "col.csv").find("evader_z"), std::string::npos) << message_of(dir / "col.csv");
+  EXPECT_NE(message_of(dir / "col.csv").find("evader_0_z"), std::string::npos) << message_of(dir / "col.csv");
 
   write(dir / "empty.csv", "");
   EXPECT_NE(message_of(dir / "empty.csv").find("header"), std::string::npos);

@@ -145,7 +145,7 @@ TEST(ViewReplay, HoldsEveryRecordedFrameOfEveryAgent) {
   EXPECT_EQ(j.at("frames").get<int>(), n);
   EXPECT_EQ(series<double>(j.at("times_f64")), e.trace.times);
   ASSERT_EQ(j.at("agents").size(), 2u);
-  EXPECT_EQ(j.at("agents")[0].at("name"), "pursuer");
+  EXPECT_EQ(j.at("agents")[0].at("name"), "pursuer_0");
   EXPECT_EQ(j.at("agents")[1].at("role"), "evader");
   EXPECT_EQ(j.at("agents")[0].at("speed").get<double>(), 2.0);
   for (int i = 0; i < 2; ++i) {
