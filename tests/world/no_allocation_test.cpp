@@ -10,7 +10,7 @@
 #include <LinearMath/btAlignedAllocator.h>
 #include <gtest/gtest.h>
 
-#include "../support/counting_new.hpp"
+#include "support/counting_new.hpp"
 #include "world/collision/collision_world.hpp"
 #include "world/map/map_loader.hpp"
 #include "world_test_support.hpp"
