@@ -1,0 +1,120 @@
+#include "geometry/ray.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace peg3d {
+namespace {
+
+// The ray's parameter interval [t0, t1] inside the slab lo <= x <= hi along one axis, intersected into
+// [enter, leave]; false when the ray runs parallel to the slab outside it.
+bool clip_slab(double origin, double direction, double lo, double hi, double& enter, double& leave) {
+  if (direction == 0.0) return origin >= lo && origin <= hi;
+  double t0 = (lo - origin) / direction, t1 = (hi - origin) / direction;
+  if (t0 > t1) std::swap(t0, t1);
+  enter = std::max(enter, t0);
+  leave = std::min(leave, t1);
+  return true;
+}
+
+// The first t in [0, range] with the point in the clipped interval [enter, leave], if that is not empty.
+std::optional<double> first_in(double enter, double leave, double range) {
+  if (enter > leave || leave < 0.0) return std::nullopt;
+  const double t = std::max(enter, 0.0);
+  return t <= range ? std::optional<double>(t) : std::nullopt;
+}
+
+}  // namespace
+
+std::optional<double> ray_sphere(const Ray& ray, const Vec3& centre, double radius, double range) {
+  const Vec3 m = ray.origin - centre;
+  const double c = m.squaredNorm() - radius * radius;
+  if (c <= 0.0) return 0.0;  // starts inside or on the surface
+  const double b = m.dot(ray.direction);
+  if (b >= 0.0) return std::nullopt;  // outside and heading away
+  const double disc = b * b - c;
+  if (disc < 0.0) return std::nullopt;
+  // -b - sqrt(disc) loses digits when the ray passes far from the centre; c / (-b + sqrt(disc)) is the same
+  // root without the cancellation.
+  const double t = c / (-b + std::sqrt(disc));
+  return t <= range ? std::optional<double>(t) : std::nullopt;
+}
+
+std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, double radius, double height,
+                                           double range) {
+  // The solid is the intersection of the slab base.z <= z <= base.z + height with the infinite round column;
+  // the ray's interval in each is exact, and the first point of their intersection is the entry.
+  double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
+  if (!clip_slab(ray.origin.z(), ray.direction.z(), base.z(), base.z() + height, enter, leave)) return std::nullopt;
+  const double ox = ray.origin.x() - base.x(), oy = ray.origin.y() - base.y();
+  const double dx = ray.direction.x(), dy = ray.direction.y();
+  const double a = dx * dx + dy * dy, c = ox * ox + oy * oy - radius * radius;
+  if (a == 0.0) {  // parallel to the axis: inside the column all along, or never
+    if (c > 0.0) return std::nullopt;
+  } else {
+    const double b = ox * dx + oy * dy;
+    const double disc = b * b - a * c;
+    if (disc < 0.0) return std::nullopt;
+    const double s = std::sqrt(disc);
+    // The two roots without cancellation: q = -(b + sign(b) s), roots q / a and c / q.
+    const double q = b >= 0.0 ? -(b + s) : -(b - s);
+    double t0 = q / a, t1 = q != 0.0 ? c / q : t0;
+    if (t0 > t1) std::swap(t0, t1);
+    enter = std::max(enter, t0);
+    leave = std::min(leave, t1);
+  }
+  return first_in(enter, leave, range);
+}
+
+std::optional<double> ray_box(const Ray& ray, const Vec3& lo, const Vec3& hi, double range) {
+  double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (!clip_slab(ray.origin[k], ray.direction[k], lo[k], hi[k], enter, leave)) return std::nullopt;
+  }
+  return first_in(enter, leave, range);
+}
+
+std::optional<double> ray_triangle(const Ray& ray, const Vec3& a, const Vec3& b, const Vec3& c, double range) {
+  // Moller-Trumbore, both sides, edges included.
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 p = ray.direction.cross(e2);
+  const double det = e1.dot(p);
+  if (det == 0.0) return std::nullopt;  // in the triangle's plane, or a degenerate triangle
+  const double inv = 1.0 / det;
+  const Vec3 s = ray.origin - a;
+  const double u = s.dot(p) * inv;
+  if (u < 0.0 || u > 1.0) return std::nullopt;
+  const Vec3 q = s.cross(e1);
+  const double v = ray.direction.dot(q) * inv;
+  if (v < 0.0 || u + v > 1.0) return std::nullopt;
+  const double t = e2.dot(q) * inv;
+  if (t < 0.0 || t > range) return std::nullopt;
+  return t;
+}
+
+std::optional<double> ray_shape(const Ray& ray, const Shape& shape, const Pose& pose, double range) {
+  // In the body's frame the shape is centred on the origin and axis-aligned; distances are the same there.
+  const Quat to_body = pose.orientation.conjugate();
+  const Ray local{to_body * (ray.origin - pose.position), to_body * ray.direction};
+  switch (shape.kind) {
+    case Shape::Kind::kSphere: return ray_sphere(local, Vec3::Zero(), shape.radius, range);
+    case Shape::Kind::kCylinder:
+      return ray_upright_cylinder(local, Vec3(0, 0, -0.5 * shape.height), shape.radius, shape.height, range);
+    case Shape::Kind::kBox: return ray_box(local, -0.5 * shape.size, 0.5 * shape.size, range);
+  }
+  return std::nullopt;
+}
+
+double ray_box_exit(const Ray& ray, const Vec3& lo, const Vec3& hi) {
+  double leave = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double o = ray.origin[k], d = ray.direction[k];
+    if (o < lo[k] || o > hi[k]) return 0.0;
+    if (d > 0.0) leave = std::min(leave, (hi[k] - o) / d);
+    if (d < 0.0) leave = std::min(leave, (lo[k] - o) / d);
+  }
+  return leave;
+}
+
+}  // namespace peg3d

@@ -1,0 +1,44 @@
+#pragma once
+// Where a ray first meets a solid, exactly, in double precision: the distances a range sensor reads (issue 38).
+// A ray is an origin and a unit direction; it meets a solid at the smallest distance t in [0, range] at which
+// its point lies in the solid (surface included). So a ray that starts inside a solid meets it at t = 0, a ray
+// that only touches a solid (a tangent, an edge, a corner) meets it at the touching point, and a ray that lies
+// in a face's plane meets the face where it enters it.
+
+#include <optional>
+
+#include "geometry/pose.hpp"
+#include "geometry/vector.hpp"
+
+namespace peg3d {
+
+/// A ray: origin (m) and unit direction.
+struct Ray {
+  Vec3 origin = Vec3::Zero();
+  Vec3 direction = Vec3::UnitX();  ///< unit length
+
+  Vec3 at(double t) const { return origin + t * direction; }
+};
+
+/// The first distance in [0, range] at which the ray meets a solid ball; nullopt when it does not.
+std::optional<double> ray_sphere(const Ray& ray, const Vec3& centre, double radius, double range);
+
+/// ... a solid upright cylinder: axis +z from the centre of its base disc, `height` long (m).
+std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, double radius, double height,
+                                           double range);
+
+/// ... a solid axis-aligned box [lo, hi].
+std::optional<double> ray_box(const Ray& ray, const Vec3& lo, const Vec3& hi, double range);
+
+/// ... a triangle, from either side; a ray in the triangle's plane does not meet it (a sensor does not see a
+/// face edge-on).
+std::optional<double> ray_triangle(const Ray& ray, const Vec3& a, const Vec3& b, const Vec3& c, double range);
+
+/// ... a posed shape (geometry/pose.hpp: a ball, a cylinder along the body's z centred on its origin, a box).
+std::optional<double> ray_shape(const Ray& ray, const Shape& shape, const Pose& pose, double range);
+
+/// The distance at which a ray from inside the box [lo, hi] leaves it through a face (0 from outside): what a
+/// sensor reads when the arena's faces are walls.
+double ray_box_exit(const Ray& ray, const Vec3& lo, const Vec3& hi);
+
+}  // namespace peg3d
