@@ -11,6 +11,8 @@ find_package(assimp REQUIRED)
 find_package(octomap REQUIRED)
 find_package(dynamicEDT3D REQUIRED)
 find_package(meshoptimizer REQUIRED CONFIG)
+# Embree 3 (libembree-dev) casts the range sensors' rays against the static scene (src/sense/).
+find_package(embree 3 REQUIRED CONFIG)
 
 # three.js for the replay viewer (libjs-three, r111): its build and the non-module OrbitControls are inlined
 # into every viewer file, so they are staged beside the viewer's own files.

@@ -8,6 +8,11 @@
 //                                   method 0 exact (static field + each mover's exact distance), 1 octree
 //                                   (movers' voxels marked and dynamicEDT3D updated incrementally); counters
 //                                   mean_error_m and max_error_m against the exact distance
+//   BM_StaticScan/<map>             one 64-ray scan (8 x 8 rays over 120 x 40 degrees about a random heading, 20 m
+//                                   range) from a free point of a random walk, against the static scene
+//                                   (sense::StaticRayScene): map 0 maps/valley.yaml (terrain), 1 maps/forest.yaml,
+//                                   2 maps/quarry.yaml (terrain and its static solids), 3 the paper's arena with
+//                                   1000 random spheres and cylinders; items_per_second is rays per second
 // Run: build/bin/peg-bench-world [--benchmark_filter=...]
 
 #include <map>
@@ -25,6 +30,7 @@
 #include "world/map/map_spec.hpp"
 #include "world/bodies/mover_timeline.hpp"
 #include "world/moving_field.hpp"
+#include "sense/static_ray_scene.hpp"
 
 namespace {
 
@@ -208,6 +214,71 @@ void BM_MoverSensing(benchmark::State& state) {
 BENCHMARK(BM_MoverSensing)->ArgsProduct({{0}, {1, 10, 100}})->Unit(benchmark::kMicrosecond)->Iterations(500);
 BENCHMARK(BM_MoverSensing)->ArgsProduct({{1}, {1, 10}})->Unit(benchmark::kMicrosecond)->Iterations(20);
 BENCHMARK(BM_MoverSensing)->Args({1, 100})->Unit(benchmark::kMicrosecond)->Iterations(3);
+
+std::shared_ptr<const Arena> scan_arena(int which) {
+  static std::map<int, std::shared_ptr<const Arena>> built;
+  auto& a = built[which];
+  if (a) return a;
+  if (which < 3) {
+    const char* maps[] = {"maps/valley.yaml", "maps/forest.yaml", "maps/quarry.yaml"};
+    return a = Arena::build(load_map(peg3d::cli::data_dir() / maps[which]));
+  }
+  MapSpec m = load_map(peg3d::cli::data_dir() / "maps/paper.yaml");
+  Rng rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Vec3 lo = m.bounds.lo, size = m.bounds.size();
+  for (int i = 0; i < 500; ++i) {
+    m.spheres.push_back({lo + size.cwiseProduct(Vec3(u(rng), u(rng), u(rng))), 0.3 + 0.7 * u(rng)});
+    const Vec3 base = lo + size.cwiseProduct(Vec3(u(rng), u(rng), 0.0));
+    m.cylinders.push_back({base, 0.2 + 0.5 * u(rng), 1.0 + 8.0 * u(rng)});
+  }
+  m.scenarios.clear();
+  return a = Arena::build(m);
+}
+
+void BM_StaticScan(benchmark::State& state) {
+  const auto arena = scan_arena(static_cast<int>(state.range(0)));
+  const sense::StaticRayScene scene(*arena);
+  // 2 000 scans along a random walk of 0.1 m steps through free space (as an agent scans at 10 Hz), each about
+  // a random heading; made before timing.
+  Rng rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Box inner = arena->bounds().shrunk(0.5);
+  Vec3 p = inner.clamp(arena->bounds().lo + 0.5 * arena->bounds().size());
+  constexpr int kScans = 2000, kRays = 64;
+  std::vector<Ray> rays(std::size_t(kScans) * kRays);
+  for (int s = 0; s < kScans; ++s) {
+    for (int tries = 0; tries < 50; ++tries) {
+      const Vec3 next = inner.clamp(p + 0.1 * Vec3(u(rng), u(rng), 0.3 * u(rng)).normalized());
+      if (arena->nearest_obstacle(next).distance > 0.3) {
+        p = next;
+        break;
+      }
+    }
+    const double heading = 3.14159 * u(rng);
+    for (int i = 0; i < 8; ++i) {
+      for (int j = 0; j < 8; ++j) {
+        const double az = heading + (i - 3.5) * (120.0 / 7.0) * 3.14159 / 180.0;
+        const double el = (j - 3.5) * (40.0 / 7.0) * 3.14159 / 180.0;
+        rays[std::size_t(s * kRays + 8 * i + j)] = {p, Vec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el))};
+      }
+    }
+  }
+  std::vector<sense::RayHit> hits(kRays);
+  long scans = 0, met = 0;
+  for (auto _ : state) {
+    const std::size_t s = std::size_t(scans % kScans);
+    scene.cast(std::span<const Ray>(rays).subspan(s * kRays, kRays), 20.0, hits);
+    benchmark::DoNotOptimize(hits.data());
+    if (scans < kScans) {
+      for (const auto& h : hits) met += h.target != sense::RayTarget::kNone;
+    }
+    ++scans;
+  }
+  state.SetItemsProcessed(scans * kRays);  // rays per second; ns per ray = 1e9 / items_per_second
+  state.counters["share_hit"] = double(met) / double(std::min<long>(scans, kScans) * kRays);
+}
+BENCHMARK(BM_StaticScan)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -9,7 +9,7 @@ PACKAGES=(
   libbullet-dev libeigen3-dev libassimp-dev liboctomap-dev libdynamicedt3d-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libboost-dev libmeshoptimizer-dev libjs-three libopenmpi-dev openmpi-bin
+  libboost-dev libmeshoptimizer-dev libjs-three libopenmpi-dev openmpi-bin libembree-dev
   python3-matplotlib python3-numpy pybind11-dev python3-dev
 )
 if [[ "${1:-}" == "--test" ]]; then

@@ -106,15 +106,16 @@ std::optional<double> ray_shape(const Ray& ray, const Shape& shape, const Pose& 
   return std::nullopt;
 }
 
-double ray_box_exit(const Ray& ray, const Vec3& lo, const Vec3& hi) {
-  double leave = std::numeric_limits<double>::infinity();
+BoxExit ray_box_exit(const Ray& ray, const Vec3& lo, const Vec3& hi) {
+  BoxExit out{std::numeric_limits<double>::infinity(), 0};
   for (int k = 0; k < 3; ++k) {
     const double o = ray.origin[k], d = ray.direction[k];
-    if (o < lo[k] || o > hi[k]) return 0.0;
-    if (d > 0.0) leave = std::min(leave, (hi[k] - o) / d);
-    if (d < 0.0) leave = std::min(leave, (lo[k] - o) / d);
+    if (o < lo[k] || o > hi[k]) return {0.0, 2 * k + (o > hi[k] ? 1 : 0)};
+    if (d == 0.0) continue;
+    const double t = d > 0.0 ? (hi[k] - o) / d : (lo[k] - o) / d;
+    if (t < out.distance) out = {t, 2 * k + (d > 0.0 ? 1 : 0)};
   }
-  return leave;
+  return out;
 }
 
 }  // namespace peg3d

@@ -37,8 +37,13 @@ std::optional<double> ray_triangle(const Ray& ray, const Vec3& a, const Vec3& b,
 /// ... a posed shape (geometry/pose.hpp: a ball, a cylinder along the body's z centred on its origin, a box).
 std::optional<double> ray_shape(const Ray& ray, const Shape& shape, const Pose& pose, double range);
 
-/// The distance at which a ray from inside the box [lo, hi] leaves it through a face (0 from outside): what a
-/// sensor reads when the arena's faces are walls.
-double ray_box_exit(const Ray& ray, const Vec3& lo, const Vec3& hi);
+/// Where a ray from inside the box [lo, hi] leaves it: the distance (0 from outside) and the face, 0..5 for
+/// -x, +x, -y, +y, -z, +z (the first of them when it leaves through an edge or a corner): what a sensor reads
+/// when the arena's faces are walls.
+struct BoxExit {
+  double distance = 0.0;  ///< m
+  int face = 0;
+};
+BoxExit ray_box_exit(const Ray& ray, const Vec3& lo, const Vec3& hi);
 
 }  // namespace peg3d

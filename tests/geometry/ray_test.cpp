@@ -212,15 +212,21 @@ TEST(RayBoxExit, LeavesThroughTheNearestFaceAhead) {
   for (int k = 0; k < 2000; ++k) {
     const Vec3 o(uniform(rng, 0, 35), uniform(rng, 0, 35), uniform(rng, 0, 20));
     const Vec3 d = random_unit(rng);
-    const double t = ray_box_exit({o, d}, lo, hi);
+    const BoxExit exit = ray_box_exit({o, d}, lo, hi);
+    const double t = exit.distance;
     const Vec3 p = o + t * d;
+    // On the face it names.
+    const int axis = exit.face / 2;
+    EXPECT_NEAR(p[axis], exit.face % 2 == 1 ? hi[axis] : lo[axis], kTol) << k;
     // On the box's surface, and every coordinate within it.
     const double gap = std::min({p.x() - lo.x(), hi.x() - p.x(), p.y() - lo.y(), hi.y() - p.y(), p.z() - lo.z(),
                                  hi.z() - p.z()});
     EXPECT_NEAR(gap, 0.0, kTol) << k;
   }
-  EXPECT_EQ(ray_box_exit({{1, 2, 3}, {0, 0, 1}}, lo, hi), 17.0);
-  EXPECT_EQ(ray_box_exit({{-1, 2, 3}, {0, 0, 1}}, lo, hi), 0.0);  // from outside
+  EXPECT_EQ(ray_box_exit({{1, 2, 3}, {0, 0, 1}}, lo, hi).distance, 17.0);
+  EXPECT_EQ(ray_box_exit({{1, 2, 3}, {0, 0, 1}}, lo, hi).face, 5);
+  EXPECT_EQ(ray_box_exit({{1, 2, 3}, {-1, 0, 0}}, lo, hi).face, 0);
+  EXPECT_EQ(ray_box_exit({{-1, 2, 3}, {0, 0, 1}}, lo, hi).distance, 0.0);  // from outside
 }
 
 }  // namespace

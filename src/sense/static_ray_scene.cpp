@@ -1,0 +1,210 @@
+#include "sense/static_ray_scene.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace peg3d::sense {
+namespace {
+
+// The arena's face the ray leaves through, when the map makes it an obstacle and it lies within range.
+RayHit face_hit(const world::MapSpec& map, const Ray& ray, double range) {
+  const BoxExit exit = ray_box_exit(ray, map.bounds.lo, map.bounds.hi);
+  const bool obstacle = exit.face == 4 ? map.floor_is_obstacle : exit.face == 5 ? map.ceiling_is_obstacle : map.walls_is_obstacle;
+  if (!obstacle || exit.distance > range) return {range, RayTarget::kNone, -1};
+  return {exit.distance, RayTarget::kArenaFace, exit.face};
+}
+
+// The nearer of two hits (a tie keeps the first).
+RayHit nearer(const RayHit& a, const RayHit& b) { return b.target != RayTarget::kNone && b.distance < a.distance ? b : a; }
+
+// A query's context: Embree's, then the ray in double precision and the exact distance of the best user-geometry
+// hit so far (Embree keeps only its float).
+struct ExactContext {
+  RTCIntersectContext embree;
+  const Ray* ray;
+  double exact;
+  unsigned spheres_id;  // ties at one distance (a ray from inside several solids) go to spheres, then low indices
+};
+
+// Bounds of a user primitive in float, widened by a relative 1e-6 (and 1e-6 m) so that rounding never drops a
+// solid a ray meets.
+void store_bounds(RTCBounds* b, const Vec3& lo, const Vec3& hi) {
+  const auto down = [](double v) { return static_cast<float>(v - 1e-6 * (1.0 + std::abs(v))); };
+  const auto up = [](double v) { return static_cast<float>(v + 1e-6 * (1.0 + std::abs(v))); };
+  b->lower_x = down(lo.x()), b->lower_y = down(lo.y()), b->lower_z = down(lo.z());
+  b->upper_x = up(hi.x()), b->upper_y = up(hi.y()), b->upper_z = up(hi.z());
+}
+
+// One user-geometry hit, exact: accepted when nearer than what the ray holds (Embree asks primitives in any order).
+void accept(const RTCIntersectFunctionNArguments* args, std::optional<double> t) {
+  if (!t || args->N != 1 || args->valid[0] == 0) return;
+  auto* ctx = reinterpret_cast<ExactContext*>(args->context);
+  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  const float tf = static_cast<float>(*t);
+  if (tf > rh->ray.tfar) return;
+  if (tf == rh->ray.tfar && *t >= ctx->exact) {
+    const auto rank = [&](unsigned geom, unsigned prim) { return std::pair{geom == ctx->spheres_id ? 0 : 1, prim}; };
+    if (*t > ctx->exact || rank(args->geomID, args->primID) >= rank(rh->hit.geomID, rh->hit.primID)) return;
+  }
+  rh->ray.tfar = tf;
+  ctx->exact = *t;
+  rh->hit.geomID = args->geomID;
+  rh->hit.primID = args->primID;
+  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto& s = static_cast<const std::vector<world::SphereObstacle>*>(args->geometryUserPtr)->at(args->primID);
+  store_bounds(args->bounds_o, s.center - Vec3::Constant(s.radius), s.center + Vec3::Constant(s.radius));
+}
+
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+  const auto& s = static_cast<const std::vector<world::SphereObstacle>*>(args->geometryUserPtr)->at(args->primID);
+  const auto* ctx = reinterpret_cast<const ExactContext*>(args->context);
+  accept(args, ray_sphere(*ctx->ray, s.center, s.radius, std::numeric_limits<double>::infinity()));
+}
+
+void cylinder_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto& c = static_cast<const std::vector<world::CylinderObstacle>*>(args->geometryUserPtr)->at(args->primID);
+  store_bounds(args->bounds_o, c.base - Vec3(c.radius, c.radius, 0), c.base + Vec3(c.radius, c.radius, c.height));
+}
+
+void cylinder_intersect(const RTCIntersectFunctionNArguments* args) {
+  const auto& c = static_cast<const std::vector<world::CylinderObstacle>*>(args->geometryUserPtr)->at(args->primID);
+  const auto* ctx = reinterpret_cast<const ExactContext*>(args->context);
+  accept(args, ray_upright_cylinder(*ctx->ray, c.base, c.radius, c.height, std::numeric_limits<double>::infinity()));
+}
+
+}  // namespace
+
+struct StaticRayScene::Impl {
+  const world::Arena& arena;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  unsigned spheres_id = RTC_INVALID_GEOMETRY_ID, cylinders_id = RTC_INVALID_GEOMETRY_ID;
+  std::vector<unsigned> mesh_of_geometry;  // geometry ID -> mesh index (triangle geometries), else -1
+
+  explicit Impl(const world::Arena& a) : arena(a) {
+    // One thread: the scene is built when the Arena's user asks for it, never beside the runs' threads.
+    device = rtcNewDevice("threads=1");
+    if (device == nullptr) throw std::runtime_error("Embree: cannot create a device");
+    scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    const world::MapSpec& map = arena.map();
+    for (std::size_t m = 0; m < arena.meshes().size(); ++m) {
+      const world::TriangleMesh& mesh = arena.meshes()[m];
+      if (mesh.faces.empty()) continue;
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            3 * sizeof(float), mesh.vertices.size()));
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        for (int k = 0; k < 3; ++k) v[3 * i + std::size_t(k)] = static_cast<float>(mesh.vertices[i][k]);
+      }
+      auto* f = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), mesh.faces.size()));
+      for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
+        for (int k = 0; k < 3; ++k) f[3 * i + std::size_t(k)] = static_cast<unsigned>(mesh.faces[i][std::size_t(k)]);
+      }
+      rtcCommitGeometry(g);
+      const unsigned id = rtcAttachGeometry(scene, g);
+      rtcReleaseGeometry(g);
+      if (mesh_of_geometry.size() <= id) mesh_of_geometry.resize(id + 1, ~0u);
+      mesh_of_geometry[id] = static_cast<unsigned>(m);
+    }
+    const auto user = [&](unsigned count, const void* data, RTCBoundsFunction bounds, RTCIntersectFunctionN hit) {
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+      rtcSetGeometryUserPrimitiveCount(g, count);
+      rtcSetGeometryUserData(g, const_cast<void*>(data));
+      rtcSetGeometryBoundsFunction(g, bounds, nullptr);
+      rtcSetGeometryIntersectFunction(g, hit);
+      rtcCommitGeometry(g);
+      const unsigned id = rtcAttachGeometry(scene, g);
+      rtcReleaseGeometry(g);
+      return id;
+    };
+    if (!map.spheres.empty()) spheres_id = user(unsigned(map.spheres.size()), &map.spheres, sphere_bounds, sphere_intersect);
+    if (!map.cylinders.empty()) {
+      cylinders_id = user(unsigned(map.cylinders.size()), &map.cylinders, cylinder_bounds, cylinder_intersect);
+    }
+    rtcCommitScene(scene);
+    if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the static scene failed");
+  }
+
+  ~Impl() {
+    if (scene != nullptr) rtcReleaseScene(scene);
+    if (device != nullptr) rtcReleaseDevice(device);
+  }
+
+  RayHit cast(const Ray& ray, double range) const {
+    ExactContext ctx{{}, &ray, std::numeric_limits<double>::infinity(), spheres_id};
+    rtcInitIntersectContext(&ctx.embree);
+    RTCRayHit rh{};
+    rh.ray.org_x = float(ray.origin.x()), rh.ray.org_y = float(ray.origin.y()), rh.ray.org_z = float(ray.origin.z());
+    rh.ray.dir_x = float(ray.direction.x()), rh.ray.dir_y = float(ray.direction.y()), rh.ray.dir_z = float(ray.direction.z());
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = float(range);
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &ctx.embree, &rh);
+    RayHit best = face_hit(arena.map(), ray, range);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return best;
+    RayHit solid;
+    if (rh.hit.geomID == spheres_id || rh.hit.geomID == cylinders_id) {
+      solid = {ctx.exact, rh.hit.geomID == spheres_id ? RayTarget::kSphere : RayTarget::kCylinder, int(rh.hit.primID)};
+    } else {
+      // The triangle again in double precision, from the ray as given; float may have seen it across an edge
+      // that double does not, and then its float distance stands.
+      const unsigned m = mesh_of_geometry[rh.hit.geomID];
+      const world::TriangleMesh& mesh = arena.meshes()[m];
+      const auto& f = mesh.faces[rh.hit.primID];
+      const auto t = ray_triangle(ray, mesh.vertices[std::size_t(f[0])], mesh.vertices[std::size_t(f[1])],
+                                  mesh.vertices[std::size_t(f[2])], std::numeric_limits<double>::infinity());
+      solid = {t ? *t : double(rh.ray.tfar), RayTarget::kTriangle, int(m)};
+    }
+    if (solid.distance > range) return best;
+    return nearer(best, solid);
+  }
+};
+
+StaticRayScene::StaticRayScene(const world::Arena& arena) : impl_(std::make_unique<Impl>(arena)) {}
+StaticRayScene::~StaticRayScene() = default;
+
+RayHit StaticRayScene::cast(const Ray& ray, double range) const { return impl_->cast(ray, range); }
+
+void StaticRayScene::cast(std::span<const Ray> rays, double range, std::span<RayHit> hits) const {
+  for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = impl_->cast(rays[i], range);
+}
+
+RayHit cast_every_solid(const world::Arena& arena, const Ray& ray, double range) {
+  const world::MapSpec& map = arena.map();
+  RayHit best = face_hit(map, ray, range);
+  const auto consider = [&](std::optional<double> t, RayTarget target, int index) {
+    if (t && *t <= range && (best.target == RayTarget::kNone || *t < best.distance)) best = {*t, target, index};
+  };
+  for (std::size_t i = 0; i < map.spheres.size(); ++i) {
+    consider(ray_sphere(ray, map.spheres[i].center, map.spheres[i].radius, range), RayTarget::kSphere, int(i));
+  }
+  for (std::size_t i = 0; i < map.cylinders.size(); ++i) {
+    const auto& c = map.cylinders[i];
+    consider(ray_upright_cylinder(ray, c.base, c.radius, c.height, range), RayTarget::kCylinder, int(i));
+  }
+  for (std::size_t m = 0; m < arena.meshes().size(); ++m) {
+    const world::TriangleMesh& mesh = arena.meshes()[m];
+    for (const auto& f : mesh.faces) {
+      consider(ray_triangle(ray, mesh.vertices[std::size_t(f[0])], mesh.vertices[std::size_t(f[1])],
+                            mesh.vertices[std::size_t(f[2])], range),
+               RayTarget::kTriangle, int(m));
+    }
+  }
+  return best;
+}
+
+}  // namespace peg3d::sense

@@ -1,0 +1,52 @@
+#pragma once
+// What a range sensor's rays meet among the map's static solids (issue 38): the terrain's triangles, the
+// spheres and cylinders, and the arena's faces the map makes obstacles. Built once per Arena and read by every
+// run at once (casting is const and thread-safe).
+//
+// Embree (Debian's libembree-dev) finds the first solid along a ray: its bounding-volume hierarchy over
+// triangles in single precision, and the spheres and cylinders as user geometry whose intersection is computed
+// by geometry/ray.hpp in double precision from the ray as given. The distance returned is exact in double
+// precision for the solid Embree chose (a triangle's is recomputed in double too); what single precision can
+// change is only which solid that is, where two lie within float spacing of each other along the ray or the ray
+// grazes an edge: see docs/performance.md and tests/sense/static_ray_scene_test.cpp for the bound.
+
+#include <memory>
+#include <span>
+
+#include "geometry/ray.hpp"
+#include "world/arena.hpp"
+
+namespace peg3d::sense {
+
+/// What a ray hit.
+enum class RayTarget { kNone, kTriangle, kSphere, kCylinder, kArenaFace };
+
+struct RayHit {
+  double distance = 0.0;  ///< m along the ray; the ray's range when target is kNone
+  RayTarget target = RayTarget::kNone;
+  int index = -1;  ///< the sphere's or cylinder's index in the map, the triangle's mesh, the face (0..5: -x +x -y +y -z +z)
+};
+
+class StaticRayScene {
+ public:
+  /// Indexes the arena's terrain triangles, spheres and cylinders (about 1 s for a million triangles).
+  explicit StaticRayScene(const world::Arena& arena);
+  ~StaticRayScene();
+  StaticRayScene(const StaticRayScene&) = delete;
+  StaticRayScene& operator=(const StaticRayScene&) = delete;
+
+  /// The first static solid along the ray within `range` (m, > 0).
+  RayHit cast(const Ray& ray, double range) const;
+  /// cast() for each ray, into `hits` (the same length).
+  void cast(std::span<const Ray> rays, double range, std::span<RayHit> hits) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The first static solid along the ray by testing every one of them in double precision: the reference the
+/// tests hold StaticRayScene to, and the answer for scenes too small to index.
+RayHit cast_every_solid(const world::Arena& arena, const Ray& ray, double range);
+
+}  // namespace peg3d::sense
