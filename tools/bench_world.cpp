@@ -13,6 +13,8 @@
 //                                   (sense::StaticRayScene): map 0 maps/valley.yaml (terrain), 1 maps/forest.yaml,
 //                                   2 maps/quarry.yaml (terrain and its static solids), 3 the paper's arena with
 //                                   1000 random spheres and cylinders; items_per_second is rays per second
+//   BM_WorldScan/<map>              the same with the movers where they are at the scan's instant (quarry: 520
+//                                   bodies and 120 scripted movers), scans 0.1 s apart
 // Run: build/bin/peg-bench-world [--benchmark_filter=...]
 
 #include <map>
@@ -31,6 +33,7 @@
 #include "world/bodies/mover_timeline.hpp"
 #include "world/moving_field.hpp"
 #include "sense/static_ray_scene.hpp"
+#include "sense/world_rays.hpp"
 
 namespace {
 
@@ -236,9 +239,11 @@ std::shared_ptr<const Arena> scan_arena(int which) {
   return a = Arena::build(m);
 }
 
-void BM_StaticScan(benchmark::State& state) {
+// Scans of BM_StaticScan/<map>; with `movers`, against the movers too, scan s at time 0.1 s (each step's).
+void scan_benchmark(benchmark::State& state, bool movers) {
   const auto arena = scan_arena(static_cast<int>(state.range(0)));
   const sense::StaticRayScene scene(*arena);
+  const auto timeline = movers ? arena->movers_until(200.0) : nullptr;
   // 2 000 scans along a random walk of 0.1 m steps through free space (as an agent scans at 10 Hz), each about
   // a random heading; made before timing.
   Rng rng(11);
@@ -268,7 +273,12 @@ void BM_StaticScan(benchmark::State& state) {
   long scans = 0, met = 0;
   for (auto _ : state) {
     const std::size_t s = std::size_t(scans % kScans);
-    scene.cast(std::span<const Ray>(rays).subspan(s * kRays, kRays), 20.0, hits);
+    if (timeline) {
+      const double t = 0.1 * static_cast<double>(s);
+      for (int r = 0; r < kRays; ++r) hits[std::size_t(r)] = sense::cast_at(scene, timeline.get(), t, rays[s * kRays + std::size_t(r)], 20.0);
+    } else {
+      scene.cast(std::span<const Ray>(rays).subspan(s * kRays, kRays), 20.0, hits);
+    }
     benchmark::DoNotOptimize(hits.data());
     if (scans < kScans) {
       for (const auto& h : hits) met += h.target != sense::RayTarget::kNone;
@@ -278,7 +288,11 @@ void BM_StaticScan(benchmark::State& state) {
   state.SetItemsProcessed(scans * kRays);  // rays per second; ns per ray = 1e9 / items_per_second
   state.counters["share_hit"] = double(met) / double(std::min<long>(scans, kScans) * kRays);
 }
+void BM_StaticScan(benchmark::State& state) { scan_benchmark(state, false); }
+void BM_WorldScan(benchmark::State& state) { scan_benchmark(state, true); }
 BENCHMARK(BM_StaticScan)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+// Timelines are simulated on first use: a short warm-up pass fills the 200 s the scans reach.
+BENCHMARK(BM_WorldScan)->Arg(2)->Unit(benchmark::kMicrosecond)->MinWarmUpTime(2.0);
 
 }  // namespace
 

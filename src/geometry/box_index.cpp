@@ -206,8 +206,39 @@ void BoxIndex::overlaps(const Level<T>& level, int begin, int n, const float lo[
   }
 }
 
+template <class T>
+int BoxIndex::entered(const Level<T>& level, int begin, int n, const float o[3], const float d[3], float scale,
+                      float widen, float limit, float* t, std::int32_t* out) {
+  int count = 0;
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < n; ++k) {
+    const int i = begin + k;
+    float enter = 0.0f, leave = inf;
+    for (int a = 0; a < 3; ++a) {
+      // Padding boxes have lo > hi, so every branch leaves them empty.
+      const float lo = static_cast<float>(level.lo[a][i]) * scale - widen, hi = static_cast<float>(level.hi[a][i]) * scale + widen;
+      if (d[a] > 0.0f) {
+        enter = std::max(enter, (lo - o[a]) / d[a]);
+        leave = std::min(leave, (hi - o[a]) / d[a]);
+      } else if (d[a] < 0.0f) {
+        enter = std::max(enter, (hi - o[a]) / d[a]);
+        leave = std::min(leave, (lo - o[a]) / d[a]);
+      } else if (!(o[a] >= lo && o[a] <= hi)) {
+        enter = inf;
+      }
+    }
+    t[k] = enter <= leave ? enter : inf;
+    if (t[k] <= limit) out[count++] = k;
+  }
+  return count;
+}
+
 template int BoxIndex::within(const Level<float>&, int, int, const float[3], float, float*, std::int32_t*);
 template int BoxIndex::within(const Level<std::uint16_t>&, int, int, const float[3], float, float*, std::int32_t*);
+template int BoxIndex::entered(const Level<float>&, int, int, const float[3], const float[3], float, float, float, float*,
+                               std::int32_t*);
+template int BoxIndex::entered(const Level<std::uint16_t>&, int, int, const float[3], const float[3], float, float, float,
+                               float*, std::int32_t*);
 template void BoxIndex::overlaps(const Level<float>&, int, int, const float[3], const float[3], std::int32_t*);
 template void BoxIndex::overlaps(const Level<std::uint16_t>&, int, int, const float[3], const float[3], std::int32_t*);
 

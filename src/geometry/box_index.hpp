@@ -65,6 +65,12 @@ class BoxIndex {
   template <class Visit>
   void nearest(const Vec3& p, double bound, Visit&& visit) const { nearest(0, p, bound, visit); }
 
+  /// Visits the boxes of `frame` that the ray from `origin` along the unit `direction` enters within `bound`
+  /// (entry 0 when it starts inside), earlier entries first: visit(box) returns the new bound (the nearest hit
+  /// found so far, or `bound` unchanged), and boxes entered beyond it are skipped. No allocation.
+  template <class Visit>
+  void along(int frame, const Vec3& origin, const Vec3& direction, double bound, Visit&& visit) const;
+
  private:
   static constexpr int kClusterSize = 16;
   static constexpr int kGroupSize = 8;  ///< clusters a group
@@ -97,6 +103,13 @@ class BoxIndex {
   /// q, d2 and limit are in the level's units (m for floats, unit_ for steps).
   template <class T>
   static int within(const Level<T>& level, int begin, int n, const float q[3], float limit, float* d2, std::int32_t* out);
+  /// Where a ray (origin o relative to the index's origin, direction d, both in m) enters each of the boxes
+  /// [begin, begin + n) of a level, widened by `widen` (m): in t[0, n) the entry (0 inside), +inf for a box it
+  /// misses; appends to `out` the k entered within `limit` and returns how many. `scale` turns the level's units
+  /// into m.
+  template <class T>
+  static int entered(const Level<T>& level, int begin, int n, const float o[3], const float d[3], float scale,
+                     float widen, float limit, float* t, std::int32_t* out);
   /// Whether each of the boxes [begin, begin + n) of a level meets [lo, hi] (1 or 0 in `out`).
   template <class T>
   static void overlaps(const Level<T>& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out);
@@ -214,6 +227,63 @@ void BoxIndex::nearest(int frame, const Vec3& p, double bound, Visit&& visit) co
       bound = visit(int(ids[from + k]));
       limit = limit2(bound, reach);
       limit_steps = limit * to_steps2 * (1.0f + 1e-6f);
+    }
+  }
+}
+
+template <class Visit>
+void BoxIndex::along(int frame, const Vec3& origin, const Vec3& direction, double bound, Visit&& visit) const {
+  if (size_ == 0 || !(bound >= 0.0)) return;
+  float o[3];
+  relative(origin, o);
+  const float d[3] = {static_cast<float>(direction.x()), static_cast<float>(direction.y()), static_cast<float>(direction.z())};
+  // Rounding the origin, the direction and the boxes to floats moves them by far less than the slack at the
+  // farthest point the ray reaches.
+  const double reach = (origin - Vec3(origin_.data())).cwiseAbs().maxCoeff() + (std::isfinite(bound) ? bound : extent_);
+  const float widen = static_cast<float>(slack(reach));
+  float limit = static_cast<float>(bound) + widen;
+  const float unit = static_cast<float>(unit_);
+  const Level<std::uint16_t> bx = boxes(frame);
+  const std::int32_t *firsts = first(), *counts = count(), *ids = id();
+  alignas(16) float gt[kMaxGroups], ct[kMaxClusters];
+  std::int32_t entered_groups[kMaxGroups], pending[kMaxClusters];
+  const int g = entered(groups(), 0, group_count_, o, d, 1.0f, widen, limit, gt, entered_groups);
+  int m = 0;
+  const Level<float> cl = clusters();
+  for (int j = 0; j < g; ++j) {
+    const int first_cluster = entered_groups[j] * kGroupSize;
+    std::int32_t in[kGroupSize];
+    const int k = entered(cl, first_cluster, kGroupSize, o, d, 1.0f, widen, limit, ct + first_cluster, in);
+    for (int i = 0; i < k; ++i) pending[m++] = first_cluster + in[i];
+  }
+  // As nearest(): the pending cluster entered first, then its boxes entered first, each visit tightening the
+  // bound.
+  alignas(16) float bt[kClusterSize];
+  while (m > 0) {
+    int at = 0, kept = 0;
+    for (int j = 0; j < m; ++j) {
+      const std::int32_t c = pending[j];
+      const bool within = ct[c] <= limit;
+      pending[kept] = c;
+      at = within && ct[c] < ct[pending[at]] ? kept : at;
+      kept += within;
+    }
+    m = kept;
+    if (m == 0) break;
+    const int c = pending[at];
+    pending[at] = pending[--m];
+    const int from = firsts[c];
+    std::int32_t near[kClusterSize];
+    int h = entered(bx, from, counts[c], o, d, unit, widen, limit, bt, near);
+    while (h > 0) {
+      int best = 0;
+      for (int i = 1; i < h; ++i) best = bt[near[i]] < bt[near[best]] ? i : best;
+      const int k = near[best];
+      if (!(bt[k] <= limit)) break;
+      near[best] = near[--h];
+      if (ids[from + k] < 0) continue;
+      bound = visit(int(ids[from + k]));
+      limit = static_cast<float>(bound) + widen;
     }
   }
 }

@@ -2,6 +2,7 @@
 // box, on random boxes and queries (far from the origin too), duplicates, sizes that leave clusters partly empty,
 // the most boxes an index holds, an index of one box, and boxes that move from frame to frame.
 #include "geometry/box_index.hpp"
+#include "geometry/ray.hpp"
 
 #include <gtest/gtest.h>
 
@@ -124,6 +125,71 @@ TEST(GeometryBoxIndex, NearestFindsTheNearestBoxWithinTheBoundAsAVisitOfEveryBox
       EXPECT_EQ(best_d, expected_d);
       EXPECT_LE(visits, 64) << "nearer boxes first: the bound prunes the rest";
     }
+  }
+}
+
+TEST(GeometryBoxIndex, AlongVisitsEveryBoxTheRayEntersAndFindsTheFirstAsAVisitOfEveryBox) {
+  // Every box the ray enters within the bound is visited (none twice, none far off the ray), in two frames of
+  // different boxes; and a caller that returns the nearest entry so far as the bound ends with the first box
+  // the ray enters, as a visit of every box finds it, after few visits.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> at(-2.0, 32.0), unit(-1.0, 1.0);
+  for (const int n : {1, 5, 16, 17, 1000, int(BoxIndex::kMaxBoxes)}) {
+    std::vector<Box> boxes = random_boxes(rng, n, 30.0);
+    const std::vector<Box> second = random_boxes(rng, n, 30.0);
+    boxes.insert(boxes.end(), second.begin(), second.end());
+    const BoxIndex index(boxes, 2);
+    long visits_total = 0;
+    for (int q = 0; q < 400; ++q) {
+      const int frame = q % 2;
+      const std::span<const Box> frame_boxes(boxes.data() + std::size_t(frame) * std::size_t(n), std::size_t(n));
+      const Vec3 o(at(rng), at(rng), at(rng));
+      Vec3 d(unit(rng), unit(rng), unit(rng));
+      if (q % 7 == 0) d = Vec3(0, 0, unit(rng) < 0 ? -1 : 1);  // along an axis: the slabs of the others are parallel
+      if (d.norm() < 1e-3) continue;
+      d.normalize();
+      const double range = q % 3 == 0 ? 4.0 : 60.0;
+      std::vector<int> found;
+      index.along(frame, o, d, range, [&](int i) {
+        found.push_back(i);
+        return range;
+      });
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(std::adjacent_find(found.begin(), found.end()), found.end()) << "a box visited twice";
+      const double step = 3 * 32.0 / 65000;
+      for (int i = 0; i < n; ++i) {
+        const Box& b = frame_boxes[std::size_t(i)];
+        const bool entered = ray_box({o, d}, b.lo, b.hi, range).has_value();
+        const bool visited = std::binary_search(found.begin(), found.end(), i);
+        if (entered) {
+          ASSERT_TRUE(visited) << "n " << n << " query " << q << ": box " << i << " missed";
+        }
+        if (visited) {
+          ASSERT_TRUE(ray_box({o, d}, b.lo.array() - step, b.hi.array() + step, range + step)) << "box " << i << " far off";
+        }
+      }
+      // The first box entered.
+      int best = -1, visits = 0;
+      double best_t = range;
+      index.along(frame, o, d, range, [&](int i) {
+        ++visits;
+        const Box& b = frame_boxes[std::size_t(i)];
+        const auto t = ray_box({o, d}, b.lo, b.hi, range);
+        if (t && (*t < best_t || (*t == best_t && (best < 0 || i < best)))) best = i, best_t = *t;
+        return best_t;
+      });
+      int expected = -1;
+      double expected_t = range;
+      for (int i = 0; i < n; ++i) {
+        const Box& b = frame_boxes[std::size_t(i)];
+        const auto t = ray_box({o, d}, b.lo, b.hi, range);
+        if (t && (*t < expected_t || (*t == expected_t && (expected < 0 || i < expected)))) expected = i, expected_t = *t;
+      }
+      EXPECT_EQ(best, expected) << "n " << n << " query " << q;
+      EXPECT_EQ(best_t, expected_t);
+      visits_total += visits;
+    }
+    EXPECT_LE(visits_total / 400, 64) << "n " << n << ": earlier boxes first, the bound prunes the rest";
   }
 }
 

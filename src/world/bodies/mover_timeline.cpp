@@ -421,6 +421,34 @@ MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap, int hint)
   return best;
 }
 
+namespace {
+
+// Mover m as the answer of a ray query when the ray meets it nearer (the lower index at one distance).
+void offer_hit(int m, const Shape& shape, const Pose& at, const Ray& ray, MoverHit& best) {
+  const auto t = ray_shape(ray, shape, at, best.distance);
+  if (t && (*t < best.distance || (*t == best.distance && (best.mover < 0 || m < best.mover)))) best = {m, *t};
+}
+
+}  // namespace
+
+MoverHit MoverTimeline::first_along(const Ray& ray, double t, double range) const {
+  if (!indexed(t, t)) return first_along_scan(ray, t, range);
+  MoverHit best{-1, range};
+  const std::size_t b = block_at(t);
+  window(b).along(static_cast<int>(b % kWindowBlocks), ray.origin, ray.direction, range, [&](int leaf) {
+    const int m = queried_[std::size_t(leaf)];
+    offer_hit(m, movers_[std::size_t(m)].shape, pose(m, t), ray, best);
+    return best.distance;
+  });
+  return best;
+}
+
+MoverHit MoverTimeline::first_along_scan(const Ray& ray, double t, double range) const {
+  MoverHit best{-1, range};
+  for (const int m : queried_) offer_hit(m, movers_[std::size_t(m)].shape, pose(m, t), ray, best);
+  return best;
+}
+
 MoverPoint MoverTimeline::nearest_scan(const Vec3& p, double t, double cap) const {
   MoverPoint best;
   best.distance = cap;

@@ -33,6 +33,7 @@
 
 #include "geometry/box_index.hpp"
 #include "geometry/pose.hpp"
+#include "geometry/ray.hpp"
 #include "world/bodies/contact.hpp"
 #include "world/map/map_spec.hpp"
 #include "world/map/movers.hpp"
@@ -45,6 +46,12 @@ struct MoverPoint {
   int mover = -1;             ///< index in MapSpec::movers; -1 when none is within the cap
   double distance = 0.0;      ///< m, >= 0 (0 inside the mover)
   Vec3 point = Vec3::Zero();  ///< the mover's point nearest to the query
+};
+
+/// The first mover a ray meets, at some time.
+struct MoverHit {
+  int mover = -1;         ///< index in MapSpec::movers; -1 when the ray meets none within its range
+  double distance = 0.0;  ///< m along the ray (0 from inside a mover); the range when none
 };
 
 /// Makes mover m (of `shape`, posed at `at`) the `best` answer of a nearest-mover query at p when it is nearer
@@ -124,6 +131,10 @@ class MoverTimeline {
   /// so that the search starts with a tight bound; the answer does not depend on it. No allocation.
   MoverPoint nearest(const Vec3& p, double t, double cap, int hint = -1) const;
 
+  /// The first mover the ray meets at time t within `range` (geometry/ray.hpp: exact in double precision; the
+  /// lowest index among movers met at one distance), found through the window's index. No allocation.
+  MoverHit first_along(const Ray& ray, double t, double range) const;
+
   /// The first contact, during the step [t0, t0 + dt], of a sphere of `radius` moving from `from` to `to` at
   /// constant velocity with any mover (the earliest, the lowest index among equally early ones); nullopt when
   /// it touches none. A search that reaches kMaxAdvancementSteps answers conservatively (Contact::gave_up).
@@ -143,8 +154,9 @@ class MoverTimeline {
   /// they are left out of the queries (for start checks).
   MoverPoint nearest_at_start(const Vec3& p, double cap) const;
 
-  /// nearest() and first_contact() by a visit of every mover: the reference the indexed queries must equal.
+  /// nearest(), first_along() and first_contact() by a visit of every mover: the reference the indexed queries must equal.
   MoverPoint nearest_scan(const Vec3& p, double t, double cap) const;
+  MoverHit first_along_scan(const Ray& ray, double t, double range) const;
   std::optional<Contact> first_contact_scan(const Vec3& from, const Vec3& to, double radius, double t0,
                                                  double dt) const;
 

@@ -109,6 +109,28 @@ TEST(WorldMoverIndex, IndexedQueriesGiveTheAnswersOfAVisitOfEveryMover) {
   EXPECT_GT(contacts, 300);
 }
 
+TEST(WorldMoverIndex, ARayMeetsTheMoverAVisitOfEveryMoverFindsAtTheSameDistance) {
+  // Rays from anywhere in any direction at any time of the crowded map (scripted movers of every shape, slow and
+  // fast, and falling bodies): the indexed query answers the scan's mover at its distance, to the bit.
+  const auto arena = testing::build(crowded());
+  const auto t = arena->movers_until(12.0);
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> n(0.0, 1.0);
+  int met = 0;
+  for (int q = 0; q < 4000; ++q) {
+    const double time = 11.9 * u(rng), range = q % 3 == 0 ? 3.0 : 40.0;
+    const Ray ray{{30 * u(rng), 30 * u(rng), 15 * u(rng)}, Vec3(n(rng), n(rng), n(rng)).normalized()};
+    const MoverHit a = t->first_along(ray, time, range), b = t->first_along_scan(ray, time, range);
+    ASSERT_EQ(a.mover, b.mover) << "query " << q;
+    ASSERT_EQ(std::memcmp(&a.distance, &b.distance, sizeof(double)), 0) << "query " << q << ": " << a.distance << " " << b.distance;
+    met += a.mover >= 0;
+  }
+  std::printf("%d of 4000 rays met a mover\n", met);
+  EXPECT_GT(met, 300);
+  EXPECT_LT(met, 3700);
+}
+
 TEST(WorldMoverIndex, NoPointOfAnyMoverTravelsFartherThanTheBound) {
   // Points of every mover (its centre, a box's corners, a point off the centre) between two instants of a game
   // step: all movers, the bodies alone (bouncing, tumbling and rolling), the scripted movers alone, whose
