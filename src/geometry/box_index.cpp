@@ -209,27 +209,58 @@ void BoxIndex::overlaps(const Level<T>& level, int begin, int n, const float lo[
 template <class T>
 int BoxIndex::entered(const Level<T>& level, int begin, int n, const float o[3], const float d[3], float scale,
                       float widen, float limit, float* t, std::int32_t* out) {
-  int count = 0;
+  // Per axis the plane the ray crosses first (lo when it heads up the axis, hi down it) and the one it leaves by,
+  // each widened outwards. A direction of exactly 0 is taken as a tiny positive one: the slab's planes are then
+  // met at -huge or +huge, which is inside or outside the slab as the origin is (touching at 0 when on it).
+  const T* near[3];
+  const T* far[3];
+  float inv[3], near_widen[3], far_widen[3];
+  for (int a = 0; a < 3; ++a) {
+    const bool up = d[a] >= 0.0f;
+    near[a] = (up ? level.lo[a] : level.hi[a]) + begin;
+    far[a] = (up ? level.hi[a] : level.lo[a]) + begin;
+    inv[a] = 1.0f / (d[a] == 0.0f ? 1e-30f : d[a]);
+    near_widen[a] = up ? -widen : widen;
+    far_widen[a] = up ? widen : -widen;
+  }
   const float inf = std::numeric_limits<float>::infinity();
+  int count = 0;
+#if defined(__SSE2__)
+  const __m128 s = _mm_set1_ps(scale), zero = _mm_setzero_ps(), lim = _mm_set1_ps(limit), never = _mm_set1_ps(inf);
+  __m128 ov[3], iv[3], nw[3], fw[3];
+  for (int a = 0; a < 3; ++a) {
+    ov[a] = _mm_set1_ps(o[a]), iv[a] = _mm_set1_ps(inv[a]);
+    nw[a] = _mm_set1_ps(near_widen[a]), fw[a] = _mm_set1_ps(far_widen[a]);
+  }
+  for (int k = 0; k < n; k += 4) {
+    __m128 enter = zero, leave = never;
+    for (int a = 0; a < 3; ++a) {
+      const __m128 tn = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(_mm_mul_ps(load4(near[a] + k), s), nw[a]), ov[a]), iv[a]);
+      const __m128 tf = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(_mm_mul_ps(load4(far[a] + k), s), fw[a]), ov[a]), iv[a]);
+      enter = _mm_max_ps(enter, tn);
+      leave = _mm_min_ps(leave, tf);
+    }
+    const __m128 met = _mm_cmple_ps(enter, leave);
+    const __m128 at = _mm_or_ps(_mm_and_ps(met, enter), _mm_andnot_ps(met, never));
+    _mm_storeu_ps(t + k, at);
+    for (int bits = _mm_movemask_ps(_mm_cmple_ps(at, lim)); bits != 0; bits &= bits - 1) {
+      out[count++] = k + __builtin_ctz(static_cast<unsigned>(bits));
+    }
+  }
+#else
+  // The same operations one box at a time (max(a, b) as maxps takes it: a > b ? a : b).
+  const auto max = [](float a, float b) { return a > b ? a : b; };
+  const auto min = [](float a, float b) { return a < b ? a : b; };
   for (int k = 0; k < n; ++k) {
-    const int i = begin + k;
     float enter = 0.0f, leave = inf;
     for (int a = 0; a < 3; ++a) {
-      // Padding boxes have lo > hi, so every branch leaves them empty.
-      const float lo = static_cast<float>(level.lo[a][i]) * scale - widen, hi = static_cast<float>(level.hi[a][i]) * scale + widen;
-      if (d[a] > 0.0f) {
-        enter = std::max(enter, (lo - o[a]) / d[a]);
-        leave = std::min(leave, (hi - o[a]) / d[a]);
-      } else if (d[a] < 0.0f) {
-        enter = std::max(enter, (hi - o[a]) / d[a]);
-        leave = std::min(leave, (lo - o[a]) / d[a]);
-      } else if (!(o[a] >= lo && o[a] <= hi)) {
-        enter = inf;
-      }
+      enter = max(enter, ((static_cast<float>(near[a][k]) * scale + near_widen[a]) - o[a]) * inv[a]);
+      leave = min(leave, ((static_cast<float>(far[a][k]) * scale + far_widen[a]) - o[a]) * inv[a]);
     }
     t[k] = enter <= leave ? enter : inf;
     if (t[k] <= limit) out[count++] = k;
   }
+#endif
   return count;
 }
 
