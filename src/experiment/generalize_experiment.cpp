@@ -150,9 +150,9 @@ std::size_t GeneralizeExperiment::episodes_per_run() const {
   return static_cast<std::size_t>(settings_.sweep.episodes) + 1 + games;
 }
 
-TrialResult* GeneralizeExperiment::kept_of(std::size_t i) {
+std::optional<std::size_t> GeneralizeExperiment::kept_slot(std::size_t i) const {
   const std::size_t repeats = static_cast<std::size_t>(settings_.sweep.repeats);
-  return i % repeats == 0 ? &kept_[i / repeats] : nullptr;
+  return i % repeats == 0 ? std::optional<std::size_t>(i / repeats) : std::nullopt;
 }
 
 void GeneralizeExperiment::begin(const sweep::SweepControl& control) {
@@ -173,17 +173,18 @@ void GeneralizeExperiment::run_one(std::size_t i) {
                                      .pool = settings_.pool.get(),
                                      .progress = control.progress});
   per_run_[i] = evaluate_everywhere(t, scenarios[std::size_t(sc)].name, rep, seed, evals_, settings_);
-  if (rep == 0) kept_[std::size_t(sc)] = std::move(t);
+  if (const auto slot = kept_slot(i)) kept_[*slot] = std::move(t);
   if (control.progress) control.progress->run_done();
 }
 
 nlohmann::json GeneralizeExperiment::encode(std::size_t i) const {
-  const std::size_t repeats = static_cast<std::size_t>(settings_.sweep.repeats);
-  return encode_run(per_run_[i], i % repeats == 0 ? &kept_[i / repeats] : nullptr);
+  const auto slot = kept_slot(i);
+  return encode_run(per_run_[i], slot ? &kept_[*slot] : nullptr);
 }
 
 void GeneralizeExperiment::restore(std::size_t i, const nlohmann::json& record) {
-  per_run_[i] = restore_run(record, kept_of(i));
+  const auto slot = kept_slot(i);
+  per_run_[i] = restore_run(record, slot ? &kept_[*slot] : nullptr);
 }
 
 void GeneralizeExperiment::finish(bool root) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -103,8 +104,8 @@ class GeneralizeExperiment : public Experiment {
   const std::vector<GeneralizeRecord>& records() const { return records_; }
 
  private:
-  // Repeat 0's slot of trained models for run i, null for the other repeats.
-  TrialResult* kept_of(std::size_t i);
+  // Run i's slot in kept_ (repeat 0 of its training scenario); nullopt for the other repeats.
+  std::optional<std::size_t> kept_slot(std::size_t i) const;
 
   game::Sim train_;
   std::vector<EvalMap> evals_;

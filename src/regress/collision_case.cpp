@@ -229,14 +229,13 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   std::vector<const AgentDriver*> driver_of(std::size_t(n), nullptr);
   for (const AgentDriver& d : c.drivers) {
     bool found = false;
+    // Cases written before issue 37 name agents as logs then did (game::current_agent_label reads those labels);
+    // the role alone named only the only agent of its role, so in a team it names none.
+    const std::string label = game::current_agent_label(d.label);
+    const bool bare_role = d.label == to_string(game::Role::kPursuer) || d.label == to_string(game::Role::kEvader);
     for (int i = 0; i < n; ++i) {
-      // Cases written before issue 37 name agents as logs then did: the role alone for the only agent of its
-      // role, else role and rank run together ("pursuer1").
-      const game::Role role = game::role_at(i, p);
-      const bool alone = (role == game::Role::kPursuer ? p : n - p) == 1;
-      const bool old_label = d.label == fmt::format("{}{}", to_string(role), game::rank_at(i, p)) ||
-                             (alone && d.label == to_string(role));
-      if (d.label == scenario_label(*scenario, i) || old_label) {
+      const bool alone = (game::role_at(i, p) == game::Role::kPursuer ? p : n - p) == 1;
+      if (label == scenario_label(*scenario, i) && (alone || !bare_role)) {
         driver_of[std::size_t(i)] = &d;
         found = true;
       }
