@@ -110,6 +110,13 @@ class BoxIndex {
   template <class T>
   static int entered(const Level<T>& level, int begin, int n, const float o[3], const float d[3], float scale,
                      float widen, float limit, float* t, std::int32_t* out);
+  /// The branch and bound nearest() and along() share: the groups, then the clusters, then the boxes whose key
+  /// (squared distance, ray entry) is within the limit, clusters and boxes taken smallest key first, each visit
+  /// tightening the limit. `Keys` measures a level's boxes (measure(level, begin, n, key, out) as within() or
+  /// entered() do, against its current limits), gives the current limit for groups and clusters
+  /// (cluster_limit()) and for boxes (box_limit()), and takes a visit's new bound (tighten(bound)).
+  template <class Keys, class Visit>
+  void best_first(int frame, Keys& keys, Visit&& visit) const;
   /// Whether each of the boxes [begin, begin + n) of a level meets [lo, hi] (1 or 0 in `out`).
   template <class T>
   static void overlaps(const Level<T>& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out);
@@ -175,97 +182,84 @@ void BoxIndex::overlapping(int frame, const Box& query, Visit&& visit) const {
 template <class Visit>
 void BoxIndex::nearest(int frame, const Vec3& p, double bound, Visit&& visit) const {
   if (size_ == 0 || !(bound >= 0.0)) return;
-  float q[3];
-  relative(p, q);
-  const double reach = (p - Vec3(origin_.data())).cwiseAbs().maxCoeff();
-  float limit = limit2(bound, reach);
-  // The boxes' level in steps: the point and the bound in them too.
-  const float to_steps = static_cast<float>(1.0 / unit_), to_steps2 = to_steps * to_steps;
-  const float q_steps[3] = {q[0] * to_steps, q[1] * to_steps, q[2] * to_steps};
-  float limit_steps = limit * to_steps2 * (1.0f + 1e-6f);
-  const Level<std::uint16_t> bx = boxes(frame);
-  const std::int32_t *firsts = first(), *counts = count(), *ids = id();
-  // The clusters within the bound, taken nearest first: by then the bound has pruned most of them, so each
-  // round picks the nearest pending one and drops those beyond the bound instead of sorting them all. Branch
-  // free where the outcome is a coin toss (is this box within the bound?).
-  alignas(16) float gd2[kMaxGroups], cd2[kMaxClusters];
-  std::int32_t near_groups[kMaxGroups], pending[kMaxClusters];
-  const int g = within(groups(), 0, group_count_, q, limit, gd2, near_groups);
-  int m = 0;
-  const Level<float> cl = clusters();
-  for (int j = 0; j < g; ++j) {
-    const int first_cluster = near_groups[j] * kGroupSize;
-    std::int32_t in[kGroupSize];
-    const int k = within(cl, first_cluster, kGroupSize, q, limit, cd2 + first_cluster, in);
-    for (int i = 0; i < k; ++i) pending[m++] = first_cluster + in[i];
-  }
-  alignas(16) float bd2[kClusterSize];
-  while (m > 0) {
-    int at = 0, kept = 0;
-    for (int j = 0; j < m; ++j) {
-      const std::int32_t c = pending[j];
-      const bool within = cd2[c] <= limit;
-      pending[kept] = c;
-      at = within && cd2[c] < cd2[pending[at]] ? kept : at;
-      kept += within;
+  // Keys are squared float distances: in m for groups and clusters, in steps for the boxes' level.
+  struct Distances {
+    const BoxIndex& index;
+    float q[3], q_steps[3], to_steps2, limit, limit_steps;
+    double reach;
+    int measure(const Level<float>& level, int begin, int n, float* d2, std::int32_t* out) const {
+      return within(level, begin, n, q, limit, d2, out);
     }
-    m = kept;
-    if (m == 0) break;
-    const int c = pending[at];
-    pending[at] = pending[--m];
-    const int from = firsts[c];
-    // Its boxes within the bound, nearest first, likewise: the first visits tighten the bound.
-    std::int32_t near[kClusterSize];
-    int h = within(bx, from, counts[c], q_steps, limit_steps, bd2, near);
-    while (h > 0) {
-      int best = 0;
-      for (int i = 1; i < h; ++i) best = bd2[near[i]] < bd2[near[best]] ? i : best;
-      const int k = near[best];
-      if (!(bd2[k] <= limit_steps)) break;
-      near[best] = near[--h];
-      if (ids[from + k] < 0) continue;  // a padding slot (only an infinite bound reaches one)
-      bound = visit(int(ids[from + k]));
-      limit = limit2(bound, reach);
+    int measure(const Level<std::uint16_t>& level, int begin, int n, float* d2, std::int32_t* out) const {
+      return within(level, begin, n, q_steps, limit_steps, d2, out);
+    }
+    float cluster_limit() const { return limit; }
+    float box_limit() const { return limit_steps; }
+    void tighten(double b) {
+      limit = index.limit2(b, reach);
       limit_steps = limit * to_steps2 * (1.0f + 1e-6f);
     }
-  }
+  } keys{*this, {}, {}, 0.0f, 0.0f, 0.0f, (p - Vec3(origin_.data())).cwiseAbs().maxCoeff()};
+  relative(p, keys.q);
+  const float to_steps = static_cast<float>(1.0 / unit_);
+  for (int a = 0; a < 3; ++a) keys.q_steps[a] = keys.q[a] * to_steps;
+  keys.to_steps2 = to_steps * to_steps;
+  keys.tighten(bound);
+  best_first(frame, keys, visit);
 }
 
 template <class Visit>
 void BoxIndex::along(int frame, const Vec3& origin, const Vec3& direction, double bound, Visit&& visit) const {
   if (size_ == 0 || !(bound >= 0.0)) return;
-  float o[3];
-  relative(origin, o);
-  const float d[3] = {static_cast<float>(direction.x()), static_cast<float>(direction.y()), static_cast<float>(direction.z())};
-  // Rounding the origin, the direction and the boxes to floats moves them by far less than the slack at the
-  // farthest point the ray reaches.
+  // Keys are the ray's entries (m) into the boxes, widened by a slack: rounding the origin, the direction and
+  // the boxes to floats moves them by far less than that at the farthest point the ray reaches.
+  struct Entries {
+    float o[3], d[3], unit, widen, limit;
+    int measure(const Level<float>& level, int begin, int n, float* t, std::int32_t* out) const {
+      return entered(level, begin, n, o, d, 1.0f, widen, limit, t, out);
+    }
+    int measure(const Level<std::uint16_t>& level, int begin, int n, float* t, std::int32_t* out) const {
+      return entered(level, begin, n, o, d, unit, widen, limit, t, out);
+    }
+    float cluster_limit() const { return limit; }
+    float box_limit() const { return limit; }
+    void tighten(double b) { limit = static_cast<float>(b) + widen; }
+  } keys{{}, {static_cast<float>(direction.x()), static_cast<float>(direction.y()), static_cast<float>(direction.z())},
+         static_cast<float>(unit_), 0.0f, 0.0f};
+  relative(origin, keys.o);
   const double reach = (origin - Vec3(origin_.data())).cwiseAbs().maxCoeff() + (std::isfinite(bound) ? bound : extent_);
-  const float widen = static_cast<float>(slack(reach));
-  float limit = static_cast<float>(bound) + widen;
-  const float unit = static_cast<float>(unit_);
+  keys.widen = static_cast<float>(slack(reach));
+  keys.tighten(bound);
+  best_first(frame, keys, visit);
+}
+
+template <class Keys, class Visit>
+void BoxIndex::best_first(int frame, Keys& keys, Visit&& visit) const {
   const Level<std::uint16_t> bx = boxes(frame);
   const std::int32_t *firsts = first(), *counts = count(), *ids = id();
-  alignas(16) float gt[kMaxGroups], ct[kMaxClusters];
-  std::int32_t entered_groups[kMaxGroups], pending[kMaxClusters];
-  const int g = entered(groups(), 0, group_count_, o, d, 1.0f, widen, limit, gt, entered_groups);
+  alignas(16) float group_key[kMaxGroups], cluster_key[kMaxClusters];
+  std::int32_t kept_groups[kMaxGroups], pending[kMaxClusters];
+  const int g = keys.measure(groups(), 0, group_count_, group_key, kept_groups);
   int m = 0;
   const Level<float> cl = clusters();
   for (int j = 0; j < g; ++j) {
-    const int first_cluster = entered_groups[j] * kGroupSize;
+    const int first_cluster = kept_groups[j] * kGroupSize;
     std::int32_t in[kGroupSize];
-    const int k = entered(cl, first_cluster, kGroupSize, o, d, 1.0f, widen, limit, ct + first_cluster, in);
+    const int k = keys.measure(cl, first_cluster, kGroupSize, cluster_key + first_cluster, in);
     for (int i = 0; i < k; ++i) pending[m++] = first_cluster + in[i];
   }
-  // As nearest(): the pending cluster entered first, then its boxes entered first, each visit tightening the
-  // bound.
-  alignas(16) float bt[kClusterSize];
+  // The pending clusters within the limit, taken smallest key first: by then the limit has pruned most of them,
+  // so each round picks the smallest pending one and drops those beyond the limit instead of sorting them all.
+  // Branch free where the outcome is a coin toss (is this cluster within the limit?).
+  alignas(16) float box_key[kClusterSize];
   while (m > 0) {
     int at = 0, kept = 0;
+    const float limit = keys.cluster_limit();
     for (int j = 0; j < m; ++j) {
       const std::int32_t c = pending[j];
-      const bool within = ct[c] <= limit;
+      const bool within = cluster_key[c] <= limit;
       pending[kept] = c;
-      at = within && ct[c] < ct[pending[at]] ? kept : at;
+      at = within && cluster_key[c] < cluster_key[pending[at]] ? kept : at;
       kept += within;
     }
     m = kept;
@@ -273,17 +267,17 @@ void BoxIndex::along(int frame, const Vec3& origin, const Vec3& direction, doubl
     const int c = pending[at];
     pending[at] = pending[--m];
     const int from = firsts[c];
+    // Its boxes within the limit, smallest key first, likewise: the first visits tighten the limit.
     std::int32_t near[kClusterSize];
-    int h = entered(bx, from, counts[c], o, d, unit, widen, limit, bt, near);
+    int h = keys.measure(bx, from, counts[c], box_key, near);
     while (h > 0) {
       int best = 0;
-      for (int i = 1; i < h; ++i) best = bt[near[i]] < bt[near[best]] ? i : best;
+      for (int i = 1; i < h; ++i) best = box_key[near[i]] < box_key[near[best]] ? i : best;
       const int k = near[best];
-      if (!(bt[k] <= limit)) break;
+      if (!(box_key[k] <= keys.box_limit())) break;
       near[best] = near[--h];
-      if (ids[from + k] < 0) continue;
-      bound = visit(int(ids[from + k]));
-      limit = static_cast<float>(bound) + widen;
+      if (ids[from + k] < 0) continue;  // a padding slot (only an infinite bound reaches one)
+      keys.tighten(visit(int(ids[from + k])));
     }
   }
 }
