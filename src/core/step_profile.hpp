@@ -22,6 +22,7 @@ class StepProfile {
     kConstraints,  ///< bounded steering, motion space, obstacle guard
     kCollisions,   ///< swept collisions with the map's obstacles and between agents (Bullet)
     kMovers,       ///< moving obstacles: contacts on their timeline, the octree that follows them
+    kSensing,      ///< range sensors: casting their rays, noise and dropout
     kObservation,  ///< percepts: opponents, distance-field queries, angle errors
     kRewards,      ///< the reward terms
     kFiring,       ///< fuzzy rule firing of the learners
@@ -71,6 +72,7 @@ inline const char* StepProfile::name(Part p) {
     case kConstraints: return "constraints";
     case kCollisions: return "collisions";
     case kMovers: return "movers";
+    case kSensing: return "sensing";
     case kObservation: return "observation";
     case kRewards: return "rewards";
     case kFiring: return "firing";

@@ -13,6 +13,7 @@
 #include "core/config_fields.hpp"
 #include "fuzzy/facl_learner.hpp"
 #include "geometry/kinematics.hpp"
+#include "sense/lidar.hpp"
 
 namespace peg3d::game {
 
@@ -231,6 +232,7 @@ struct AgentConfig {
   FaclStructure structure = FaclStructure::kPerAngle;
   FaclAction action = FaclAction::kHeadingChange;
   double pn_gain = 3.0;  ///< proportional-navigation constant N, > 0
+  sense::LidarConfig lidar;  ///< its range sensor (none by default)
   bool operator==(const AgentConfig&) const = default;
 };
 
@@ -418,6 +420,7 @@ void visit_fields(V& v, C& c) {
   v.choice("action", c.action, kFaclActionNames,
            "the actor's outputs: the heading change (the paper) or an offset to the turn onto the target line");
   v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
+  v.section("lidar", c.lidar, "the agent's range sensor (sense/lidar.hpp); none by default");
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
             "structure", "per-angle", "needs observation.angles = azimuth-elevation");
   // sets^inputs rules, each a row of the actor and critic: without a bound, 64 sets over 6 inputs asks for 10^11.

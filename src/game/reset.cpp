@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "game/scans.hpp"
 #include "game/sim.hpp"
 #include "game/starts.hpp"
 #include "game/views.hpp"
@@ -110,6 +111,10 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   if (sim.movers() != nullptr && g.mover_sensing == MoverSensing::kOctree) {
     st.moving_field = std::make_unique<world::MovingOccupancyField>(sim.arena());
     st.moving_field->set_time(*sim.movers(), 0.0);
+  }
+  prepare_scans(sim, st, seed);
+  for (int i = 0; i < n; ++i) {
+    if (!st.scans.first.empty() && st.scans.lidar[std::size_t(i)] != nullptr) scan(sim, st, i);
   }
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];

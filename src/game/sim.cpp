@@ -93,6 +93,17 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     substeps_ = static_cast<int>(std::lround(substeps));
     movers_ = arena_->movers_until(config_->time_limit + config_->dt, !pushes_);
   }
+  std::vector<const AgentConfig*> sensing;
+  for (const AgentConfig* a : {&config_->pursuer, &config_->evader}) sensing.push_back(a);
+  for (const auto* list : {&config_->pursuers, &config_->evaders}) {
+    for (const AgentConfig& a : *list) sensing.push_back(&a);
+  }
+  std::erase_if(sensing, [](const AgentConfig* a) { return !a->lidar.enabled(); });
+  if (!sensing.empty()) {
+    auto s = std::make_shared<Sensing>(*arena_);
+    for (const AgentConfig* a : sensing) s->lidars.emplace_back(a, sense::Lidar(a->lidar));
+    sensing_ = std::move(s);
+  }
   if (arena_->map().scenarios.empty()) return;
   world::CollisionWorld world(arena_);
   std::vector<Vec3> positions;
@@ -122,6 +133,27 @@ void Sim::check_scenario(const world::Scenario& s) const {
   check_start(*arena_, *config_, movers_.get(), world, s, positions);
 }
 
+const sense::Lidar* Sim::lidar(Role role, int rank) const {
+  if (!sensing_) return nullptr;
+  const AgentConfig* a = &config_->agent(role, rank);
+  for (const auto& [config, lidar] : sensing_->lidars) {
+    if (config == a) return &lidar;
+  }
+  return nullptr;
+}
+
 SimState::SimState(const Sim& sim) : collider(sim.arena_ptr()) {}
+
+std::span<const double> SimState::ranges(int i) const {
+  if (scans.first.empty()) return {};
+  const auto b = std::size_t(scans.first[std::size_t(i)]), e = std::size_t(scans.first[std::size_t(i) + 1]);
+  return std::span<const double>(scans.ranges).subspan(b, e - b);
+}
+
+std::span<const std::uint8_t> SimState::echoes(int i) const {
+  if (scans.first.empty()) return {};
+  const auto b = std::size_t(scans.first[std::size_t(i)]), e = std::size_t(scans.first[std::size_t(i) + 1]);
+  return std::span<const std::uint8_t>(scans.echo).subspan(b, e - b);
+}
 
 }  // namespace peg3d::game

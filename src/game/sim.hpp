@@ -11,7 +11,7 @@
 // Agents are indexed pursuers first, then evaders, each in the scenario's order. Each step:
 //   every active agent's command -> bounded steering -> motion space -> obstacle guard   (constraints.hpp)
 //   -> move along the heading, clamped to the arena -> swept collision with the map's obstacles
-//   -> (optionally) swept collision between agents -> captures -> new observations -> rewards.
+//   -> (optionally) swept collision between agents -> captures -> lidar scans due -> new observations -> rewards.
 
 #include <array>
 #include <cmath>
@@ -30,6 +30,8 @@
 #include "game/policy.hpp"
 #include "game/reward.hpp"
 #include "game/starts.hpp"
+#include "sense/lidar.hpp"
+#include "sense/world_rays.hpp"
 #include "world/arena.hpp"
 #include "world/collision/collision_world.hpp"
 #include "world/bodies/mover_timeline.hpp"
@@ -159,6 +161,24 @@ class SimState {
   std::unique_ptr<world::PushWorld> push;
   StepEvents events;               ///< what the last step did
 
+  /// Range sensors (AgentConfig::lidar): each agent's latest scan. reset() scans with every lidar; a step scans
+  /// with those whose period has come (the step number a multiple of it), agents in the game, after the move.
+  /// Empty when no agent has a lidar.
+  struct Scans {
+    std::vector<int> first;                  ///< agent i's rays are [first[i], first[i + 1]) of ranges and echo
+    std::vector<double> ranges;              ///< m, each ray's reading (sense::read_out): the range without an echo
+    std::vector<std::uint8_t> echo;          ///< 1 where the ray returned an echo
+    std::vector<int> step;                   ///< the step of agent i's latest scan (-1: none; 0: the reset's)
+    std::vector<Rng> rng;                    ///< agent i's sensor stream, from the reset's seed
+    std::vector<const sense::Lidar*> lidar;  ///< agent i's lidar (null: none)
+    std::vector<Ray> rays;                   ///< scratch: one scan's rays
+    std::vector<sense::RayHit> hits;         ///< scratch: what they met (exact, before noise and dropout)
+    std::vector<sense::Ball> balls;          ///< scratch: the agents' spheres (radius 0 out of the game)
+  } scans;
+  /// Agent i's latest readings and echoes (empty without a lidar).
+  std::span<const double> ranges(int i) const;
+  std::span<const std::uint8_t> echoes(int i) const;
+
   /// Per-step working storage, sized by reset().
   struct Scratch {
     std::vector<Heading> heading;         ///< each agent's heading this step, from the constraint layer
@@ -201,6 +221,10 @@ class Sim {
   bool pushes() const { return pushes_; }
   /// Physics substeps per game step (maps with movers).
   int substeps() const { return substeps_; }
+  /// What range sensors' rays meet among the map's static solids (null when no agent has a lidar).
+  const sense::StaticRayScene* ray_scene() const { return sensing_ ? &sensing_->scene : nullptr; }
+  /// The lidar of agent `rank` of `role` (null: none).
+  const sense::Lidar* lidar(Role role, int rank) const;
 
   /// Throws StartError when an agent of `scenario`, with its configured radius and kept inside the arena,
   /// starts overlapping an obstacle or (when agents collide) another agent; InvalidParameter when the
@@ -214,6 +238,12 @@ class Sim {
   std::shared_ptr<const world::MoverTimeline> movers_;
   bool pushes_ = false;
   int substeps_ = 1;
+  struct Sensing {
+    explicit Sensing(const world::Arena& arena) : scene(arena) {}
+    sense::StaticRayScene scene;
+    std::vector<std::pair<const AgentConfig*, sense::Lidar>> lidars;  // one per configuration with a lidar
+  };
+  std::shared_ptr<const Sensing> sensing_;
 };
 
 /// Puts `state` at the start of `scenario`: positions kept radius inside the arena, headings from the scenario

@@ -7,6 +7,7 @@
 
 #include "core/step_profile.hpp"
 #include "game/constraints.hpp"
+#include "game/scans.hpp"
 #include "game/sim.hpp"
 #include "game/views.hpp"
 #include "geometry/sphere_sweep.hpp"
@@ -387,6 +388,7 @@ const StepEvents& step(const Sim& sim, SimState& st, std::span<const Steering> c
   push_bodies(sim, st);
   commit(sim, st);
   capture(sim, st);
+  scan_due(sim, st);
   observe(sim, st);
   reward_all(sim, st);
   end(sim, st);

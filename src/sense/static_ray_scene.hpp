@@ -19,12 +19,13 @@
 namespace peg3d::sense {
 
 /// What a ray hit.
-enum class RayTarget { kNone, kTriangle, kSphere, kCylinder, kArenaFace, kMover };
+enum class RayTarget { kNone, kTriangle, kSphere, kCylinder, kArenaFace, kMover, kBall };
 
 struct RayHit {
   double distance = 0.0;  ///< m along the ray; the ray's range when target is kNone
   RayTarget target = RayTarget::kNone;
-  /// the sphere's, cylinder's or mover's index in the map, the triangle's mesh, the face (0..5: -x +x -y +y -z +z)
+  /// the sphere's, cylinder's or mover's index in the map, the triangle's mesh, the face (0..5: -x +x -y +y -z +z),
+  /// the ball's index (sense/world_rays.hpp)
   int index = -1;
 };
 

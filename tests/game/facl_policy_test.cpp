@@ -200,19 +200,27 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"].erase("action");
   expect_error(d, "config.action");  // version 5 documents have it
+  d = doc;
+  d["config"].erase("lidar");
+  expect_error(d, "config.lidar");  // version 6 documents have it
 }
 
 TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
-  // Version 1 predates guard.faces, guard.look_ahead, observation.opponent_heading and action, version 2
-  // the look ahead, version 3 the opponent's heading, version 4 the action; their agents played without them
-  // (actions as heading changes).
+  // Version 1 predates guard.faces, guard.look_ahead, observation.opponent_heading, action and lidar, version 2
+  // the look ahead, version 3 the opponent's heading, version 4 the action, version 5 the lidar; their agents
+  // played without them (actions as heading changes, no lidar).
   AgentConfig offset = agent_preset("peg3d", Role::kEvader);
   offset.action = FaclAction::kTargetLineOffset;
+  offset.lidar.azimuth_rays = 8;
   nlohmann::json saved = policy_to_json(FaclModel(offset, Role::kEvader));
-  EXPECT_EQ(saved["version"], 5);
+  EXPECT_EQ(saved["version"], 6);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().action, FaclAction::kTargetLineOffset);
+  EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().lidar, offset.lidar);
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
+  doc["version"] = 5;
+  doc["config"].erase("lidar");
+  EXPECT_FALSE(policy_from_json(doc, "p.json", Role::kEvader)->config().lidar.enabled());
   doc["version"] = 4;
   doc["config"].erase("action");
   const auto four = policy_from_json(doc, "p.json", Role::kEvader);

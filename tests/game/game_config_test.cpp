@@ -56,7 +56,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 36 + 23);  // 36 per agent, 7 game fields, 4 team fields and 12 training fields
+  EXPECT_EQ(leaves, 2 * 47 + 23);  // 47 per agent (11 of its lidar), 7 game fields, 4 team fields and 12 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
@@ -68,6 +68,7 @@ TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
   EXPECT_EQ(config::table_field_count<TrainingConfig>(), static_cast<int>(config::member_count<TrainingConfig>()));
   EXPECT_EQ(config::table_field_count<ObservationConfig>(), static_cast<int>(config::member_count<ObservationConfig>()));
   EXPECT_EQ(config::table_field_count<RewardConfig>(), static_cast<int>(config::member_count<RewardConfig>()));
+  EXPECT_EQ(config::table_field_count<sense::LidarConfig>(), static_cast<int>(config::member_count<sense::LidarConfig>()));
   EXPECT_EQ(config::table_field_count<ObstacleGuard>(), static_cast<int>(config::member_count<ObstacleGuard>()));
   EXPECT_EQ(config::table_field_count<SteeringConfig>(), static_cast<int>(config::member_count<SteeringConfig>()));
   EXPECT_EQ(config::table_field_count<fuzzy::FaclConfig>(), static_cast<int>(config::member_count<fuzzy::FaclConfig>()));

@@ -21,10 +21,21 @@
 namespace peg3d::game {
 namespace {
 
-void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions) {
+void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions, bool lidar = false) {
   const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));
   GameConfig c = preset(preset_name);
   c.team.agent_collisions = collisions;
+  if (lidar) {
+    // 64 rays in 4 rows, with noise and dropouts; the pursuer every step, the evader every other step.
+    for (AgentConfig* a : {&c.pursuer, &c.evader}) {
+      a->lidar.azimuth_rays = 16;
+      a->lidar.elevation_rays = 4;
+      a->lidar.elevation_fov = 60.0;
+      a->lidar.noise = 0.02;
+      a->lidar.dropout = 0.1;
+    }
+    c.evader.lidar.period = 2;
+  }
   const Sim sim(arena, c);
   SimState state(sim);
   const auto& scenarios = arena->map().scenarios;
@@ -63,6 +74,12 @@ TEST(GameNoAllocation, ForestTrainingAndEvaluation) {
 TEST(GameNoAllocation, MovingObstacleMapsTrainingAndEvaluation) {
   expect_no_allocation("maps/patrol.yaml", "peg3d", AgentCollisions::kNone);
   expect_no_allocation("maps/rockfall.yaml", "peg3d", AgentCollisions::kNone);
+}
+
+TEST(GameNoAllocation, LidarScans) {
+  expect_no_allocation("maps/forest.yaml", "peg3d", AgentCollisions::kNone, true);
+  expect_no_allocation("maps/patrol.yaml", "peg3d", AgentCollisions::kNone, true);
+  expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kAll, true);
 }
 
 TEST(GameNoAllocation, TeamsTrainingAndEvaluation) {
