@@ -15,6 +15,11 @@
 //                                   1000 random spheres and cylinders; items_per_second is rays per second
 //   BM_WorldScan/<map>              the same with the movers where they are at the scan's instant (quarry: 520
 //                                   bodies and 120 scripted movers), scans 0.1 s apart
+//   BM_MapInsert/<method>           one 64-ray scan of BM_StaticScan/1 (forest) at 10 m range inserted into an agent's
+//                                   map at 0.25 m: method 0 sense::ScanMap::insert, 1 OctoMap's
+//                                   OcTree::insertPointCloud (the same scans: the same cells); the walk's 2000 scans,
+//                                   then the walk again into the same map; items_per_second is rays per second;
+//                                   counter free_cells_per_ray
 // Run: build/bin/peg-bench-world [--benchmark_filter=...]
 
 #include <map>
@@ -23,9 +28,11 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <octomap/OcTree.h>
 
 #include "cli_common.hpp"
 #include "core/random.hpp"
+#include "sense/scan_map.hpp"
 #include "world/arena.hpp"
 #include "world/collision/collision_world.hpp"
 #include "world/map/map_loader.hpp"
@@ -239,26 +246,26 @@ std::shared_ptr<const Arena> scan_arena(int which) {
   return a = Arena::build(m);
 }
 
-// Scans of BM_StaticScan/<map>; with `movers`, against the movers too, scan s at time 0.1 s (each step's).
-void scan_benchmark(benchmark::State& state, bool movers) {
-  const auto arena = scan_arena(static_cast<int>(state.range(0)));
-  const sense::StaticRayScene scene(*arena);
-  const auto timeline = movers ? arena->movers_until(200.0) : nullptr;
-  // The timeline simulates its blocks on first use: a query at the last instant the scans reach simulates them
-  // all before timing.
-  if (timeline) timeline->nearest(arena->bounds().lo, 199.9, 1.0);
-  // 2 000 scans along a random walk of 0.1 m steps through free space (as an agent scans at 10 Hz), each about
-  // a random heading; made before timing.
+// 2 000 scans of 64 rays along a random walk of 0.1 m steps through free space (as an agent scans at 10 Hz), each
+// about a random heading: 8 x 8 rays over 120 x 40 degrees. The walk starts at the free point nearest the arena's
+// centre on a grid of 0.5 m (forest's old oak stands at the centre).
+constexpr int kScans = 2000, kRays = 64;
+std::vector<Ray> walk_scans(const Arena& arena) {
+  const Box inner = arena.bounds().shrunk(0.5);
+  const Vec3 centre = arena.bounds().lo + 0.5 * arena.bounds().size();
+  Vec3 p = inner.clamp(centre);
+  for (double r = 0.0; arena.nearest_obstacle(p).distance <= 0.5 && r < 20.0; r += 0.5) {
+    for (int k = 0; k < 16 && arena.nearest_obstacle(p).distance <= 0.5; ++k) {
+      p = inner.clamp(centre + r * Vec3(std::cos(k * 3.14159 / 8), std::sin(k * 3.14159 / 8), 0.0));
+    }
+  }
   Rng rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Box inner = arena->bounds().shrunk(0.5);
-  Vec3 p = inner.clamp(arena->bounds().lo + 0.5 * arena->bounds().size());
-  constexpr int kScans = 2000, kRays = 64;
   std::vector<Ray> rays(std::size_t(kScans) * kRays);
   for (int s = 0; s < kScans; ++s) {
     for (int tries = 0; tries < 50; ++tries) {
       const Vec3 next = inner.clamp(p + 0.1 * Vec3(u(rng), u(rng), 0.3 * u(rng)).normalized());
-      if (arena->nearest_obstacle(next).distance > 0.3) {
+      if (arena.nearest_obstacle(next).distance > 0.3) {
         p = next;
         break;
       }
@@ -272,6 +279,18 @@ void scan_benchmark(benchmark::State& state, bool movers) {
       }
     }
   }
+  return rays;
+}
+
+// Scans of BM_StaticScan/<map>; with `movers`, against the movers too, scan s at time 0.1 s (each step's).
+void scan_benchmark(benchmark::State& state, bool movers) {
+  const auto arena = scan_arena(static_cast<int>(state.range(0)));
+  const sense::StaticRayScene scene(*arena);
+  const auto timeline = movers ? arena->movers_until(200.0) : nullptr;
+  // The timeline simulates its blocks on first use: a query at the last instant the scans reach simulates them
+  // all before timing.
+  if (timeline) timeline->nearest(arena->bounds().lo, 199.9, 1.0);
+  const std::vector<Ray> rays = walk_scans(*arena);
   std::vector<sense::RayHit> hits(kRays);
   long scans = 0, met = 0;
   for (auto _ : state) {
@@ -291,6 +310,62 @@ void scan_benchmark(benchmark::State& state, bool movers) {
   state.SetItemsProcessed(scans * kRays);  // rays per second; ns per ray = 1e9 / items_per_second
   state.counters["share_hit"] = double(met) / double(std::min<long>(scans, kScans) * kRays);
 }
+// BM_MapInsert/<method>: the scans' endpoints (an echo's, or one beyond the range) along the forest walk.
+void BM_MapInsert(benchmark::State& state) {
+  const bool octomap_tree = state.range(0) == 1;
+  const auto arena = scan_arena(1);
+  const sense::StaticRayScene scene(*arena);
+  constexpr double kRange = 10.0;
+  const std::vector<Ray> rays = walk_scans(*arena);
+  std::vector<sense::RayHit> hits(kRays);
+  std::vector<Vec3> origins(kScans), points(std::size_t(kScans) * kRays);
+  for (int s = 0; s < kScans; ++s) {
+    const auto scan = std::span<const Ray>(rays).subspan(std::size_t(s) * kRays, kRays);
+    scene.cast(scan, kRange, hits);
+    origins[std::size_t(s)] = scan[0].origin;
+    for (int k = 0; k < kRays; ++k) {
+      const sense::RayHit& h = hits[std::size_t(k)];
+      points[std::size_t(s * kRays + k)] =
+          scan[std::size_t(k)].origin + (h.target != sense::RayTarget::kNone ? h.distance : kRange + 1.0) * scan[std::size_t(k)].direction;
+    }
+  }
+  sense::ScanMapConfig config;
+  sense::ScanMap map(config, arena->bounds().lo, arena->bounds().hi);
+  octomap::OcTree tree(config.resolution);
+  std::vector<octomap::Pointcloud> clouds(kScans);
+  for (int s = 0; s < kScans; ++s) {
+    for (int k = 0; k < kRays; ++k) {
+      const Vec3& q = points[std::size_t(s * kRays + k)];
+      clouds[std::size_t(s)].push_back(float(q.x()), float(q.y()), float(q.z()));
+    }
+  }
+  long scans = 0;
+  for (auto _ : state) {
+    const auto s = std::size_t(scans % kScans);
+    const Vec3& o = origins[s];
+    if (octomap_tree) {
+      tree.insertPointCloud(clouds[s], octomap::point3d(float(o.x()), float(o.y()), float(o.z())), kRange);
+    } else {
+      map.insert(o, std::span<const Vec3>(points).subspan(s * kRays, kRays), kRange);
+    }
+    ++scans;
+  }
+  state.SetItemsProcessed(scans * kRays);
+  // Free cells a ray crosses, from one pass of OctoMap's key arithmetic over the first scans.
+  octomap::KeyRay keys;
+  long free_cells = 0;
+  for (int s = 0; s < 100; ++s) {
+    const Vec3& o = origins[std::size_t(s)];
+    const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
+    for (const octomap::point3d& q : clouds[std::size_t(s)]) {
+      const octomap::point3d end = (q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange);
+      if (tree.computeRayKeys(origin, end, keys)) free_cells += static_cast<long>(keys.size());
+    }
+  }
+  state.counters["free_cells_per_ray"] = double(free_cells) / (100.0 * kRays);
+}
+BENCHMARK(BM_MapInsert)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+
 void BM_StaticScan(benchmark::State& state) { scan_benchmark(state, false); }
 void BM_WorldScan(benchmark::State& state) { scan_benchmark(state, true); }
 BENCHMARK(BM_StaticScan)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);

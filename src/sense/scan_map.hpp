@@ -1,0 +1,117 @@
+#pragma once
+// An agent's own occupancy map, built only from its scans (issue 38, part 2): OctoMap's sensor model, with its
+// cells in a dense grid over the arena instead of a tree.
+//
+// Each scan is inserted as OctoMap's OccupancyOcTreeBase::insertPointCloud(scan, origin, max_range) inserts it:
+// the same float point cloud, the same keys (OctoMap's own computeRayKeys and coordToKeyChecked), the same sets
+// (every cell a ray crosses is free, the cell of an endpoint within max_range is occupied and wins over free, an
+// endpoint beyond max_range carves free space up to max_range only), and the same float log-odds updates with
+// OctoMap's clamping. So every cell's log-odds equals what an octomap::OcTree holds after insertPointCloud of the
+// same scans (tests/sense/scan_map_test.cpp compares them cell by cell). What differs: cells outside the arena's
+// box are not kept (no agent goes there), and a cell is found by an index computation, not a tree descent.
+//
+// Cost: 4 bytes a cell of the arena's box at the resolution (the paper's 35 x 35 x 20 m arena at 0.25 m:
+// 141 x 141 x 81 cells, 6.4 MB), 2 bits a cell for a scan's sets, and OctoMap's key buffer (0.6 MB). Built once;
+// clear() forgets every cell (a memset) and allocates nothing.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/config_fields.hpp"
+#include "geometry/vector.hpp"
+
+namespace octomap {
+class OcTree;
+class KeyRay;
+}  // namespace octomap
+
+namespace peg3d::sense {
+
+/// The most cells an agent's map may have (4 bytes each: 256 MB).
+inline constexpr long long kMaxMapCells = 1LL << 26;
+
+struct ScanMapConfig {
+  bool enabled = false;       ///< the agent builds a map from its lidar's scans (needs a lidar)
+  double resolution = 0.25;   ///< m, in [0.02, 5]: a cell's edge
+  double prob_hit = 0.7;      ///< in (0.5, 1): P(occupied | an endpoint in the cell) (OctoMap's default)
+  double prob_miss = 0.4;     ///< in (0, 0.5): P(occupied | a ray through the cell) (OctoMap's default)
+  double clamp_min = 0.1192;  ///< in (0, 0.5]: the least occupancy probability a cell keeps (OctoMap's default)
+  double clamp_max = 0.971;   ///< in [0.5, 1): the most (OctoMap's default)
+  bool operator==(const ScanMapConfig&) const = default;
+};
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, ScanMapConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.flag("enabled", c.enabled, "the agent builds an occupancy map from its lidar's scans (needs lidar.azimuth_rays > 0)");
+  v.number("resolution", c.resolution, Range::closed(0.02, 5.0), "m", "edge of a map cell");
+  v.number("prob_hit", c.prob_hit, Range{0.5, 1.0, true, true}, "", "occupancy probability an endpoint gives its cell");
+  v.number("prob_miss", c.prob_miss, Range{0.0, 0.5, true, true}, "", "occupancy probability a ray gives a cell it crosses");
+  v.number("clamp_min", c.clamp_min, Range::open_closed(0.0, 0.5), "", "least occupancy probability a cell keeps");
+  v.number("clamp_max", c.clamp_max, Range::closed_open(0.5, 1.0), "", "most occupancy probability a cell keeps");
+}
+
+/// OctoMap's key of a cell: floor(coordinate / resolution) + 32768 on each axis.
+using CellKey = std::array<std::uint16_t, 3>;
+
+class ScanMap {
+ public:
+  /// An empty map of the box [lo, hi] (m). Throws InvalidParameter naming "resolution" when the box has more than
+  /// kMaxMapCells cells at that resolution.
+  ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
+  ~ScanMap();
+  ScanMap(const ScanMap&) = delete;
+  ScanMap& operator=(const ScanMap&) = delete;
+
+  const ScanMapConfig& config() const { return config_; }
+
+  /// Forgets every cell.
+  void clear();
+
+  /// Inserts one scan as insertPointCloud(points, origin, max_range) would (points and origin taken as float, as
+  /// an octomap::Pointcloud holds them). A ray that met nothing is passed as an endpoint beyond max_range. No
+  /// allocation once the map has seen scans as large.
+  void insert(const Vec3& origin, std::span<const Vec3> points, double max_range);
+
+  /// The cell's log-odds (float, as OctoMap keeps it), or NaN when no scan has touched it or it lies outside.
+  float log_odds(const CellKey& key) const;
+  /// The key of the cell holding p (OctoMap's coordToKey), whether or not it lies inside.
+  CellKey key_of(const Vec3& p) const;
+  /// The centre of a cell (OctoMap's keyToCoord).
+  Vec3 centre(const CellKey& key) const;
+
+  /// Cells any scan has touched.
+  long long known_cells() const { return known_; }
+  /// Cells whose occupancy probability is above 0.5 (log-odds > 0, OctoMap's isNodeOccupied at its default).
+  long long occupied_cells() const { return occupied_; }
+  /// Calls f(key, log_odds) for every known cell, in key order (x slowest).
+  template <class F>
+  void for_each_known(F&& f) const {
+    for (std::size_t c = 0; c < cells_.size(); ++c) {
+      if (cells_[c] == cells_[c]) f(key_at(c), cells_[c]);  // not NaN
+    }
+  }
+  /// Bytes the map holds (cells, scan sets and key buffer).
+  std::size_t bytes() const;
+
+ private:
+  CellKey key_at(std::size_t c) const;
+  bool index_of(const CellKey& k, std::size_t& c) const;
+
+  ScanMapConfig config_;
+  std::unique_ptr<octomap::OcTree> keys_;     // an empty tree: OctoMap's key arithmetic and ray keys
+  std::unique_ptr<octomap::KeyRay> ray_;      // computeRayKeys' buffer
+  CellKey k0_{};                              // the key of the grid's first cell
+  std::array<std::size_t, 3> n_{};            // cells per axis
+  std::vector<float> cells_;                  // log-odds, NaN: unknown
+  std::vector<std::uint64_t> free_bits_, hit_bits_;  // a scan's sets
+  std::vector<std::uint32_t> free_list_, hit_list_;  // ... and their cells
+  float hit_ = 0.0f, miss_ = 0.0f, min_ = 0.0f, max_ = 0.0f;  // log-odds
+  long long known_ = 0, occupied_ = 0;
+};
+
+}  // namespace peg3d::sense

@@ -1,0 +1,145 @@
+// An agent's map from its scans (sense/scan_map.hpp) against OctoMap's own insertPointCloud: the same scans, taken
+// by a lidar along a random walk through forest's trunks and valley's terrain, give every cell inside the arena the
+// same log-odds, bit for bit, at several resolutions and sensor models; ranges beyond max_range carve free space
+// only; clear() forgets; a box too fine for memory is refused.
+#include "sense/scan_map.hpp"
+
+#include <gtest/gtest.h>
+#include <octomap/OcTree.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/error.hpp"
+#include "core/random.hpp"
+#include "sense/lidar.hpp"
+#include "sense/world_rays.hpp"
+#include "world/map/map_loader.hpp"
+
+namespace peg3d::sense {
+namespace {
+
+// Every cell OctoMap holds inside the map's box equals the map's, and the map knows no other cell.
+void expect_same_cells(const ScanMap& map, octomap::OcTree& tree, const Vec3& lo, const Vec3& hi, const char* what) {
+  tree.expand();  // pruned nodes become their cells
+  const CellKey a = map.key_of(lo), b = map.key_of(hi);
+  long long inside = 0, mismatches = 0;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    ASSERT_EQ(it.getDepth(), tree.getTreeDepth());
+    const octomap::OcTreeKey k = it.getKey();
+    bool in = true;
+    for (int d = 0; d < 3; ++d) in = in && k[d] >= a[std::size_t(d)] && k[d] <= b[std::size_t(d)];
+    if (!in) continue;
+    ++inside;
+    const float mine = map.log_odds({k[0], k[1], k[2]});
+    if (mine != it->getLogOdds()) {
+      if (++mismatches <= 5) ADD_FAILURE() << what << ": cell " << k[0] << "," << k[1] << "," << k[2] << " octomap "
+                                           << it->getLogOdds() << " map " << mine;
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << what;
+  EXPECT_EQ(map.known_cells(), inside) << what;
+  tree.prune();
+}
+
+struct Walk {
+  const char* map;
+  double resolution;
+  ScanMapConfig model;
+};
+
+TEST(ScanMap, EveryCellEqualsOctomapsInsertPointCloud) {
+  ScanMapConfig sharp;
+  sharp.prob_hit = 0.9, sharp.prob_miss = 0.2, sharp.clamp_min = 0.05, sharp.clamp_max = 0.99;
+  for (const Walk& w : {Walk{"maps/forest.yaml", 0.25, {}}, Walk{"maps/forest.yaml", 0.1, sharp},
+                        Walk{"maps/valley.yaml", 0.4, {}}, Walk{"maps/valley.yaml", 0.25, sharp}}) {
+    const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + w.map));
+    const StaticRayScene scene(*arena);
+    const Vec3 lo = arena->bounds().lo, hi = arena->bounds().hi;
+    ScanMapConfig config = w.model;
+    config.resolution = w.resolution;
+    ScanMap map(config, lo, hi);
+    octomap::OcTree tree(config.resolution);
+    tree.setProbHit(config.prob_hit), tree.setProbMiss(config.prob_miss);
+    tree.setClampingThresMin(config.clamp_min), tree.setClampingThresMax(config.clamp_max);
+    LidarConfig lc;
+    lc.azimuth_rays = 16, lc.elevation_rays = 4, lc.elevation_fov = 60.0, lc.range = 10.0;
+    const Lidar lidar(lc);
+    std::vector<Ray> rays(std::size_t(lidar.rays()));
+    std::vector<RayHit> hits(rays.size());
+    std::vector<Vec3> points(rays.size());
+    Rng rng(17);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Vec3 at = lo + (hi - lo).cwiseProduct(Vec3(0.5, 0.5, 0.6));
+    Heading h{0.0, kPi / 2};
+    int echoes = 0, beyond = 0;
+    for (int s = 0; s < 150; ++s) {
+      // A random walk that stays inside the arena's middle.
+      h.alpha += uniform(rng, -0.6, 0.6), h.theta = kPi / 2 + uniform(rng, -0.3, 0.3);
+      at += 0.8 * direction(h);
+      for (int d = 0; d < 3; ++d) at[d] = std::clamp(at[d], lo[d] + 0.3 * (hi[d] - lo[d]), hi[d] - 0.2 * (hi[d] - lo[d]));
+      lidar.rays_at(at, h, rays);
+      scene.cast(rays, lc.range, hits);
+      octomap::Pointcloud cloud;
+      for (std::size_t k = 0; k < rays.size(); ++k) {
+        const bool echo = hits[k].target != RayTarget::kNone;
+        // No echo: an endpoint beyond the range, which carves free space up to it; now and then exactly at it.
+        const double d = echo ? hits[k].distance : (u(rng) < 0.1 ? lc.range : lc.range + 1.0);
+        points[k] = at + d * rays[k].direction;
+        cloud.push_back(float(points[k].x()), float(points[k].y()), float(points[k].z()));
+        echoes += echo, beyond += !echo;
+      }
+      map.insert(at, points, lc.range);
+      tree.insertPointCloud(cloud, octomap::point3d(float(at.x()), float(at.y()), float(at.z())), lc.range);
+      if (s % 50 == 49) expect_same_cells(map, tree, lo, hi, w.map);
+      if (::testing::Test::HasFailure()) return;
+    }
+    std::printf("%s at %.2f m: %lld known cells, %lld occupied; %d echoes, %d beyond range\n", w.map, w.resolution,
+                map.known_cells(), map.occupied_cells(), echoes, beyond);
+    EXPECT_GT(map.occupied_cells(), 50);
+    EXPECT_GT(echoes, 1000);
+    EXPECT_GT(beyond, 500);
+  }
+}
+
+TEST(ScanMap, ARayBeyondRangeCarvesFreeSpaceOnlyAndAnEndpointWinsOverFree) {
+  ScanMapConfig c;
+  c.resolution = 0.5;
+  ScanMap map(c, Vec3::Zero(), Vec3(20, 20, 20));
+  const Vec3 o(1.1, 5.2, 5.3);
+  // Along +x: an echo at 4 m, and a ray beyond its 6 m range.
+  map.insert(o, std::vector<Vec3>{o + Vec3(4.0, 0, 0)}, 6.0);
+  const float hit = std::log(0.7f / 0.3f), miss = std::log(0.4f / 0.6f);
+  EXPECT_NEAR(map.log_odds(map.key_of(o + Vec3(4.0, 0, 0))), hit, 1e-6);
+  EXPECT_NEAR(map.log_odds(map.key_of(o + Vec3(2.0, 0, 0))), miss, 1e-6);
+  EXPECT_TRUE(std::isnan(map.log_odds(map.key_of(o + Vec3(4.6, 0, 0)))));
+  ScanMap far(c, Vec3::Zero(), Vec3(20, 20, 20));
+  far.insert(o, std::vector<Vec3>{o + Vec3(9.0, 0, 0)}, 6.0);
+  EXPECT_NEAR(far.log_odds(far.key_of(o + Vec3(5.6, 0, 0))), miss, 1e-6);
+  EXPECT_TRUE(std::isnan(far.log_odds(far.key_of(o + Vec3(6.6, 0, 0)))));
+  EXPECT_EQ(far.occupied_cells(), 0);
+  // Two rays of one scan: one ends in a cell the other crosses; the cell is occupied, once.
+  ScanMap both(c, Vec3::Zero(), Vec3(20, 20, 20));
+  both.insert(o, std::vector<Vec3>{o + Vec3(2.0, 0, 0), o + Vec3(4.0, 0, 0)}, 6.0);
+  EXPECT_NEAR(both.log_odds(both.key_of(o + Vec3(2.0, 0, 0))), hit, 1e-6);
+  // Repeated scans clamp.
+  for (int k = 0; k < 20; ++k) both.insert(o, std::vector<Vec3>{o + Vec3(4.0, 0, 0)}, 6.0);
+  EXPECT_EQ(both.log_odds(both.key_of(o + Vec3(4.0, 0, 0))), float(std::log(0.971 / 0.029)));
+  EXPECT_EQ(both.log_odds(both.key_of(o + Vec3(1.0, 0, 0))), float(std::log(0.1192 / 0.8808)));
+  both.clear();
+  EXPECT_EQ(both.known_cells(), 0);
+  EXPECT_TRUE(std::isnan(both.log_odds(both.key_of(o + Vec3(4.0, 0, 0)))));
+}
+
+TEST(ScanMap, ABoxTooFineForMemoryIsRefused) {
+  ScanMapConfig c;
+  c.resolution = 0.02;
+  EXPECT_THROW(ScanMap(c, Vec3::Zero(), Vec3(35, 35, 20)), InvalidParameter);
+  c.resolution = 0.25;
+  const ScanMap paper(c, Vec3::Zero(), Vec3(35, 35, 20));
+  std::printf("paper arena at 0.25 m: %.1f MB\n", double(paper.bytes()) / 1e6);
+  EXPECT_LT(paper.bytes(), 8u << 20);
+}
+
+}  // namespace
+}  // namespace peg3d::sense
