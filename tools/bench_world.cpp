@@ -20,6 +20,8 @@
 //                                   OcTree::insertPointCloud (the same scans: the same cells); the walk's 2000 scans,
 //                                   then the walk again into the same map; items_per_second is rays per second;
 //                                   counter free_cells_per_ray
+//   BM_MapNearest/<cap_m>           the nearest occupied cell of that map (all 2000 scans in) from the walk's points,
+//                                   within cap_m
 // Run: build/bin/peg-bench-world [--benchmark_filter=...]
 
 #include <map>
@@ -365,6 +367,38 @@ void BM_MapInsert(benchmark::State& state) {
   state.counters["free_cells_per_ray"] = double(free_cells) / (100.0 * kRays);
 }
 BENCHMARK(BM_MapInsert)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+
+// BM_MapNearest/<cap_m>: the nearest occupied cell of the map BM_MapInsert/0 builds from the walk's 2000 scans, from
+// each scan's origin in turn, within cap_m.
+void BM_MapNearest(benchmark::State& state) {
+  const double cap = double(state.range(0));
+  const auto arena = scan_arena(1);
+  const sense::StaticRayScene scene(*arena);
+  constexpr double kRange = 10.0;
+  const std::vector<Ray> rays = walk_scans(*arena);
+  std::vector<sense::RayHit> hits(kRays);
+  std::vector<Vec3> points(kRays);
+  sense::ScanMap map(sense::ScanMapConfig{}, arena->bounds().lo, arena->bounds().hi);
+  for (int s = 0; s < kScans; ++s) {
+    const auto scan = std::span<const Ray>(rays).subspan(std::size_t(s) * kRays, kRays);
+    scene.cast(scan, kRange, hits);
+    for (int k = 0; k < kRays; ++k) {
+      const sense::RayHit& h = hits[std::size_t(k)];
+      points[std::size_t(k)] = scan[std::size_t(k)].origin + (h.target != sense::RayTarget::kNone ? h.distance : kRange + 1.0) * scan[std::size_t(k)].direction;
+    }
+    map.insert(scan[0].origin, points, kRange);
+  }
+  long queries = 0, found = 0;
+  for (auto _ : state) {
+    const sense::OccupiedPoint n = map.nearest_occupied(rays[std::size_t(queries % kScans) * kRays].origin, cap);
+    benchmark::DoNotOptimize(n);
+    found += n.found;
+    ++queries;
+  }
+  state.counters["share_found"] = double(found) / double(queries);
+  state.counters["occupied_cells"] = double(map.occupied_cells());
+}
+BENCHMARK(BM_MapNearest)->Arg(2)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond);
 
 void BM_StaticScan(benchmark::State& state) { scan_benchmark(state, false); }
 void BM_WorldScan(benchmark::State& state) { scan_benchmark(state, true); }

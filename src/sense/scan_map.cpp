@@ -2,6 +2,7 @@
 
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -46,6 +47,9 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
                            "gives the arena's map " + std::to_string(cells) + " cells, more than 2^26 (256 MB): choose a coarser one");
   }
   cells_.assign(std::size_t(cells), kUnknown);
+  for (int d = 0; d < 3; ++d) bricks_[std::size_t(d)] = (n_[std::size_t(d)] + kBrick - 1) / kBrick;
+  brick_occupied_.assign(bricks_[0] * bricks_[1] * bricks_[2], 0);
+  corner_ = centre(k0_) - Vec3::Constant(0.5 * config.resolution);
   free_bits_.assign((std::size_t(cells) + 63) / 64, 0);
   hit_bits_.assign(free_bits_.size(), 0);
 }
@@ -54,6 +58,7 @@ ScanMap::~ScanMap() = default;
 
 void ScanMap::clear() {
   std::fill(cells_.begin(), cells_.end(), kUnknown);
+  std::fill(brick_occupied_.begin(), brick_occupied_.end(), 0);
   known_ = occupied_ = 0;
 }
 
@@ -63,8 +68,8 @@ CellKey ScanMap::key_of(const Vec3& p) const {
 }
 
 Vec3 ScanMap::centre(const CellKey& key) const {
-  const octomap::point3d c = keys_->keyToCoord(octomap::OcTreeKey(key[0], key[1], key[2]));
-  return {c.x(), c.y(), c.z()};
+  // Per axis, in double (the point3d overload rounds to float).
+  return {keys_->keyToCoord(key[0]), keys_->keyToCoord(key[1]), keys_->keyToCoord(key[2])};
 }
 
 CellKey ScanMap::key_at(std::size_t c) const {
@@ -119,7 +124,12 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     if (next > max_) next = max_;
     v = next;
     known_ += !was_known;
-    occupied_ += int(next > 0.0f) - int(was_occupied);
+    const int change_occupied = int(next > 0.0f) - int(was_occupied);
+    if (change_occupied != 0) {
+      occupied_ += change_occupied;
+      const std::size_t z = c % n_[2], y = (c / n_[2]) % n_[1], x = c / (n_[2] * n_[1]);
+      brick_occupied_[((x / kBrick) * bricks_[1] + y / kBrick) * bricks_[2] + z / kBrick] += std::uint8_t(change_occupied);
+    }
   };
   for (std::uint32_t c : free_list_) {
     if (!test(hit_bits_, c)) update(c, miss_);
@@ -131,8 +141,52 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   }
 }
 
+OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
+  OccupiedPoint best{cap, Vec3::Zero(), false};
+  if (occupied_ == 0) return best;
+  const double res = config_.resolution, edge = kBrick * res, half = 0.5 * res;
+  const Vec3 rel = (p - corner_) / edge;
+  const long b0[3] = {long(std::floor(rel.x())), long(std::floor(rel.y())), long(std::floor(rel.z()))};
+  const long nb[3] = {long(bricks_[0]), long(bricks_[1]), long(bricks_[2])};
+  std::size_t best_cell = 0;
+  // Visits brick (bx, by, bz): its cubes, when the brick holds occupied cells and could hold a nearer one.
+  const auto visit = [&](long bx, long by, long bz) {
+    if (bx < 0 || by < 0 || bz < 0 || bx >= nb[0] || by >= nb[1] || bz >= nb[2]) return;
+    if (brick_occupied_[(std::size_t(bx) * bricks_[1] + std::size_t(by)) * bricks_[2] + std::size_t(bz)] == 0) return;
+    const Vec3 lo = corner_ + edge * Vec3(double(bx), double(by), double(bz));
+    const Vec3 q = p.cwiseMax(lo).cwiseMin(lo + Vec3::Constant(edge));
+    if ((q - p).norm() > best.distance) return;
+    for (std::size_t x = std::size_t(bx) * kBrick; x < std::min(n_[0], std::size_t(bx + 1) * kBrick); ++x) {
+      for (std::size_t y = std::size_t(by) * kBrick; y < std::min(n_[1], std::size_t(by + 1) * kBrick); ++y) {
+        for (std::size_t z = std::size_t(bz) * kBrick; z < std::min(n_[2], std::size_t(bz + 1) * kBrick); ++z) {
+          const std::size_t c = (x * n_[1] + y) * n_[2] + z;
+          if (!(cells_[c] > 0.0f)) continue;
+          const Vec3 centre = corner_ + res * Vec3(double(x), double(y), double(z)) + Vec3::Constant(half);
+          const Vec3 point = p.cwiseMax(centre - Vec3::Constant(half)).cwiseMin(centre + Vec3::Constant(half));
+          const double d = (point - p).norm();
+          if (d < best.distance || (d == best.distance && best.found && c < best_cell)) {
+            best = {d, point, true};
+            best_cell = c;
+          }
+        }
+      }
+    }
+  };
+  // Shells of bricks about p's: every brick of shell r lies at least (r - 1) brick edges from p.
+  const long last = long(std::ceil(cap / edge)) + 1;
+  for (long r = 0; r <= last && double(r - 1) * edge <= best.distance; ++r) {
+    for (long dx = -r; dx <= r; ++dx) {
+      for (long dy = -r; dy <= r; ++dy) {
+        const bool face = std::abs(dx) == r || std::abs(dy) == r;
+        for (long dz = -r; dz <= r; dz += face || r == 0 ? 1 : 2 * r) visit(b0[0] + dx, b0[1] + dy, b0[2] + dz);
+      }
+    }
+  }
+  return best;
+}
+
 std::size_t ScanMap::bytes() const {
-  return cells_.capacity() * sizeof(float) + (free_bits_.capacity() + hit_bits_.capacity()) * sizeof(std::uint64_t) +
+  return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() + (free_bits_.capacity() + hit_bits_.capacity()) * sizeof(std::uint64_t) +
          (free_list_.capacity() + hit_list_.capacity()) * sizeof(std::uint32_t) +
          ray_->sizeMax() * sizeof(octomap::OcTreeKey);
 }

@@ -11,8 +11,8 @@
 // box are not kept (no agent goes there), and a cell is found by an index computation, not a tree descent.
 //
 // Cost: 4 bytes a cell of the arena's box at the resolution (the paper's 35 x 35 x 20 m arena at 0.25 m:
-// 141 x 141 x 81 cells, 6.4 MB), 2 bits a cell for a scan's sets, and OctoMap's key buffer (0.6 MB). Built once;
-// clear() forgets every cell (a memset) and allocates nothing.
+// 141 x 141 x 81 cells, 6.4 MB), 2 bits a cell for a scan's sets, a byte per 64 cells for the occupied index, and
+// OctoMap's key buffer (0.6 MB). Built once; clear() forgets every cell (a memset) and allocates nothing.
 
 #include <array>
 #include <cstdint>
@@ -58,6 +58,13 @@ void visit_fields(V& v, C& c) {
 /// OctoMap's key of a cell: floor(coordinate / resolution) + 32768 on each axis.
 using CellKey = std::array<std::uint16_t, 3>;
 
+/// The nearest occupied cell to a point.
+struct OccupiedPoint {
+  double distance = 0.0;      ///< m from the point to the cell's cube (0 inside it); the cap when none was found
+  Vec3 point = Vec3::Zero();  ///< the cube's point nearest to the query point
+  bool found = false;         ///< an occupied cell lies within the cap
+};
+
 class ScanMap {
  public:
   /// An empty map of the box [lo, hi] (m). Throws InvalidParameter naming "resolution" when the box has more than
@@ -84,6 +91,11 @@ class ScanMap {
   /// The centre of a cell (OctoMap's keyToCoord).
   Vec3 centre(const CellKey& key) const;
 
+  /// The occupied cell (log-odds > 0) nearest to p within `cap` (m), measured to its cube; among equally near
+  /// ones the first in key order (x slowest). Searched brick by brick (4 x 4 x 4 cells, each with its count of
+  /// occupied cells) in shells about p until no nearer brick can remain. No allocation.
+  OccupiedPoint nearest_occupied(const Vec3& p, double cap) const;
+
   /// Cells any scan has touched.
   long long known_cells() const { return known_; }
   /// Cells whose occupancy probability is above 0.5 (log-odds > 0, OctoMap's isNodeOccupied at its default).
@@ -108,6 +120,10 @@ class ScanMap {
   CellKey k0_{};                              // the key of the grid's first cell
   std::array<std::size_t, 3> n_{};            // cells per axis
   std::vector<float> cells_;                  // log-odds, NaN: unknown
+  static constexpr int kBrick = 4;            // cells per brick edge
+  std::array<std::size_t, 3> bricks_{};       // bricks per axis
+  std::vector<std::uint8_t> brick_occupied_;  // occupied cells per brick
+  Vec3 corner_ = Vec3::Zero();                // m, the lower corner of the grid's first cell
   std::vector<std::uint64_t> free_bits_, hit_bits_;  // a scan's sets
   std::vector<std::uint32_t> free_list_, hit_list_;  // ... and their cells
   float hit_ = 0.0f, miss_ = 0.0f, min_ = 0.0f, max_ = 0.0f;  // log-odds

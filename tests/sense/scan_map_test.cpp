@@ -73,7 +73,7 @@ TEST(ScanMap, EveryCellEqualsOctomapsInsertPointCloud) {
     Vec3 at = lo + (hi - lo).cwiseProduct(Vec3(0.5, 0.5, 0.6));
     Heading h{0.0, kPi / 2};
     int echoes = 0, beyond = 0;
-    for (int s = 0; s < 150; ++s) {
+    for (int s = 0; s < 100; ++s) {
       // A random walk that stays inside the arena's middle.
       h.alpha += uniform(rng, -0.6, 0.6), h.theta = kPi / 2 + uniform(rng, -0.3, 0.3);
       at += 0.8 * direction(h);
@@ -99,6 +99,68 @@ TEST(ScanMap, EveryCellEqualsOctomapsInsertPointCloud) {
     EXPECT_GT(map.occupied_cells(), 50);
     EXPECT_GT(echoes, 1000);
     EXPECT_GT(beyond, 500);
+  }
+}
+
+TEST(ScanMap, TheNearestOccupiedCellEqualsTestingEveryCell) {
+  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/forest.yaml"));
+  const StaticRayScene scene(*arena);
+  const Vec3 lo = arena->bounds().lo, hi = arena->bounds().hi;
+  Rng rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const double resolution : {0.25, 0.15, 0.5}) {
+    ScanMapConfig config;
+    config.resolution = resolution;
+    ScanMap map(config, lo, hi);
+    EXPECT_FALSE(map.nearest_occupied(lo + 0.5 * (hi - lo), 100.0).found);
+    LidarConfig lc;
+    lc.azimuth_rays = 32, lc.elevation_rays = 4, lc.elevation_fov = 60.0, lc.range = 8.0;
+    const Lidar lidar(lc);
+    std::vector<Ray> rays(std::size_t(lidar.rays()));
+    std::vector<RayHit> hits(rays.size());
+    std::vector<Vec3> points(rays.size());
+    int checked = 0, found = 0;
+    for (int s = 0; s < 25; ++s) {
+      const Vec3 at = lo + (hi - lo).cwiseProduct(Vec3(0.1 + 0.8 * u(rng), 0.1 + 0.8 * u(rng), 0.05 + 0.5 * u(rng)));
+      lidar.rays_at(at, Heading{2 * kPi * u(rng), kPi / 2 + 0.3 * (u(rng) - 0.5)}, rays);
+      scene.cast(rays, lc.range, hits);
+      for (std::size_t k = 0; k < rays.size(); ++k) {
+        points[k] = at + (hits[k].target != RayTarget::kNone ? hits[k].distance : lc.range + 1.0) * rays[k].direction;
+      }
+      map.insert(at, points, lc.range);
+      std::vector<Vec3> occupied;
+      map.for_each_known([&](const CellKey& key, float log_odds) {
+        if (log_odds > 0.0f) occupied.push_back(map.centre(key));
+      });
+      // Queries near the scans, anywhere in the arena and a little outside it, with caps short and long.
+      for (int q = 0; q < 40; ++q) {
+        const Vec3 p = q % 2 == 0 ? Vec3(at + 3.0 * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5))
+                                  : Vec3(lo - Vec3::Constant(1.0) + (hi - lo + Vec3::Constant(2.0)).cwiseProduct(Vec3(u(rng), u(rng), u(rng))));
+        const double cap = q % 3 == 0 ? 1.0 : q % 3 == 1 ? 5.0 : 60.0;
+        double want = cap;
+        bool want_found = false;
+        for (const Vec3& c : occupied) {
+          const Vec3 h = Vec3::Constant(0.5 * resolution);
+          const double d = (p.cwiseMax(c - h).cwiseMin(c + h) - p).norm();
+          if (d <= cap && (!want_found || d < want)) want = d, want_found = true;
+        }
+        const OccupiedPoint got = map.nearest_occupied(p, cap);
+        ASSERT_EQ(got.found, want_found) << "query " << q << " at scan " << s;
+        ASSERT_NEAR(got.distance, want, 1e-12) << "query " << q << " at scan " << s;
+        if (got.found) {
+          // The point lies on an occupied cell's cube at that distance.
+          const CellKey k = map.key_of(got.point + 1e-9 * (got.point - p).normalized());
+          EXPECT_NEAR((got.point - p).norm(), got.distance, 1e-12);
+          if (got.distance > 1e-6) {
+            EXPECT_GT(map.log_odds(k), 0.0f) << "query " << q;
+          }
+        }
+        ++checked, found += got.found;
+      }
+    }
+    std::printf("at %.2f m: %d queries, %d found; %lld occupied cells\n", resolution, checked, found, map.occupied_cells());
+    EXPECT_GT(found, checked / 3);
+    EXPECT_LT(found, checked);
   }
 }
 
