@@ -14,6 +14,7 @@
 #include "fuzzy/facl_learner.hpp"
 #include "geometry/kinematics.hpp"
 #include "sense/lidar.hpp"
+#include "sense/scan_map.hpp"
 
 namespace peg3d::game {
 
@@ -172,6 +173,15 @@ enum class MoverDynamics {
 inline constexpr config::EnumNames<MoverDynamics, 2> kMoverDynamicsNames{
     {{MoverDynamics::kShared, "shared"}, {MoverDynamics::kPush, "push"}}};
 
+/// Where an agent's nearest-obstacle inputs (d_O and its angles, the Python entries 3-5 and 17-19) and its
+/// obstacle guard come from.
+enum class ObstacleSource {
+  kWorld,   ///< the world as it is: the map's distance field and the movers where they are (today's default)
+  kOwnMap,  ///< the agent's own map built from its scans (AgentConfig::map): the nearest occupied cell
+};
+inline constexpr config::EnumNames<ObstacleSource, 2> kObstacleSourceNames{
+    {{ObstacleSource::kWorld, "world"}, {ObstacleSource::kOwnMap, "own-map"}}};
+
 struct ObservationConfig {
   AngleInputs angles = AngleInputs::kAzimuthElevation;
   EvaderReference evader_reference = EvaderReference::kAwayFromPursuer;
@@ -183,6 +193,9 @@ struct ObservationConfig {
   double target_range = 35.0;        ///< m, d_PE partition [0, target_range], > 0 (paper 35)
   double obstacle_range = 5.0;       ///< m, d_O partition [0, obstacle_range], > 0 (paper 35)
   int sets = 5;                      ///< triangular sets per input, in [2, 64] (paper 5)
+  /// The nearest obstacle: the world's, or the agent's own map's (needs map.enabled). The arena's faces stay
+  /// known to the agent either way (boundary_is_obstacle).
+  ObstacleSource obstacles = ObstacleSource::kWorld;
   bool operator==(const ObservationConfig&) const = default;
 };
 
@@ -233,6 +246,7 @@ struct AgentConfig {
   FaclAction action = FaclAction::kHeadingChange;
   double pn_gain = 3.0;  ///< proportional-navigation constant N, > 0
   sense::LidarConfig lidar;  ///< its range sensor (none by default)
+  sense::ScanMapConfig map;  ///< its own occupancy map, built from its lidar's scans (none by default)
   bool operator==(const AgentConfig&) const = default;
 };
 
@@ -370,6 +384,8 @@ void visit_fields(V& v, C& c) {
   v.number("obstacle_range", c.obstacle_range, Range::positive(), "m",
            "d_O is partitioned over [0, obstacle_range] (paper 35)");
   v.integer("sets", c.sets, 2, 64, "", "triangular fuzzy sets per input (paper 5)");
+  v.choice("obstacles", c.obstacles, kObstacleSourceNames,
+           "the nearest obstacle of the inputs and the guard: the world's, or the agent's own map's (needs map.enabled)");
 }
 
 template <class V, class C>
@@ -421,6 +437,10 @@ void visit_fields(V& v, C& c) {
            "the actor's outputs: the heading change (the paper) or an offset to the turn onto the target line");
   v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
   v.section("lidar", c.lidar, "the agent's range sensor (sense/lidar.hpp); none by default");
+  v.section("map", c.map, "the agent's occupancy map from its own scans (sense/scan_map.hpp); none by default");
+  v.require(!c.map.enabled || c.lidar.enabled(), "map.enabled", "true", "needs a lidar (lidar.azimuth_rays > 0)");
+  v.require(c.observation.obstacles != ObstacleSource::kOwnMap || c.map.enabled, "observation.obstacles", "own-map",
+            "needs map.enabled");
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
             "structure", "per-angle", "needs observation.angles = azimuth-elevation");
   // sets^inputs rules, each a row of the actor and critic: without a bound, 64 sets over 6 inputs asks for 10^11.

@@ -89,7 +89,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     nlohmann::json image = member(doc, "config", file, "config");
     // Fields that older versions predate, as those agents played: version 1 without guard.faces, versions
     // 1 and 2 without guard.look_ahead, versions 1 to 3 without observation.opponent_heading, versions 1 to
-    // 4 without action, versions 1 to 5 without lidar.
+    // 4 without action, versions 1 to 5 without lidar, map and observation.obstacles.
     if (image.is_object() && image.contains("guard") && image["guard"].is_object()) {
       nlohmann::json& guard = image["guard"];
       if (version.get<long long>() < 2 && !guard.contains("faces")) guard["faces"] = false;
@@ -104,8 +104,12 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     if (image.is_object() && version.get<long long>() < 5 && !image.contains("action")) {
       image["action"] = config::enum_name(kFaclActionNames, FaclAction::kHeadingChange);
     }
-    if (image.is_object() && version.get<long long>() < 6 && !image.contains("lidar")) {
-      image["lidar"] = config::to_json(sense::LidarConfig{});
+    if (image.is_object() && version.get<long long>() < 6) {
+      if (!image.contains("lidar")) image["lidar"] = config::to_json(sense::LidarConfig{});
+      if (!image.contains("map")) image["map"] = config::to_json(sense::ScanMapConfig{});
+      if (image.contains("observation") && image["observation"].is_object() && !image["observation"].contains("obstacles")) {
+        image["observation"]["obstacles"] = config::enum_name(kObstacleSourceNames, ObstacleSource::kWorld);
+      }
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);

@@ -7,7 +7,8 @@
 //    "channels": [{"rules": 625, "actions": 1, "actor": [...], "critic": [...]}, ...]}
 //
 // Versions: 2 added config.guard.faces, 3 config.guard.look_ahead, 4 config.observation.opponent_heading,
-// 5 config.action, 6 config.lidar. Older documents still load, read as their agents played: without a lidar,
+// 5 config.action, 6 config.lidar, config.map and config.observation.obstacles. Older documents still load, read
+// as their agents played: without a lidar or a map, sensing the world,
 // actions as heading changes,
 // without the opponent's heading (false), without the look ahead (guard.look_ahead = 0) and, version 1,
 // without guard.faces (false).

@@ -19,6 +19,7 @@ void prepare_scans(const Sim& sim, SimState& st, std::uint64_t seed) {
   const auto n = std::size_t(st.agent_count());
   s.first.resize(n + 1);
   s.lidar.resize(n);
+  if (s.maps.size() < n) s.maps.resize(n);  // never shrunk: a later scenario with more agents reuses their maps
   s.step.assign(n, -1);
   s.rng.resize(n);
   s.balls.resize(n);
@@ -31,12 +32,25 @@ void prepare_scans(const Sim& sim, SimState& st, std::uint64_t seed) {
     total += rays;
     most = std::max(most, rays);
     if (rays > 0) s.rng[i].seed(derive_seed(seed, {kSensorStream, i}));
+    // Agent i's map: made when first needed (or when its settings change), else cleared; a map an agent does
+    // not use now is kept for a later scenario that gives it one again.
+    const sense::ScanMapConfig& mc = a.config->map;
+    std::unique_ptr<sense::ScanMap>& map = s.maps[i];
+    if (mc.enabled) {
+      if (!map || map->config() != mc) {
+        map = std::make_unique<sense::ScanMap>(mc, sim.arena().bounds().lo, sim.arena().bounds().hi);
+      } else {
+        map->clear();
+      }
+      map->reserve(rays, s.lidar[i]->config().range);
+    }
   }
   s.first[n] = total;
   s.ranges.assign(std::size_t(total), 0.0);
   s.echo.assign(std::size_t(total), 0);
   s.rays.resize(std::size_t(most));
   s.hits.resize(std::size_t(most));
+  s.points.resize(std::size_t(most));
 }
 
 void scan(const Sim& sim, SimState& st, int i) {
@@ -63,9 +77,18 @@ void scan(const Sim& sim, SimState& st, int i) {
   }
   sense::cast_all(w, ray_span, lidar.config().range, i, hits);
   const auto first = std::size_t(s.first[std::size_t(i)]);
-  sense::read_out(lidar.config(), hits, s.rng[std::size_t(i)], std::span<double>(s.ranges).subspan(first, rays),
-                  std::span<std::uint8_t>(s.echo).subspan(first, rays));
+  const std::span<double> ranges = std::span<double>(s.ranges).subspan(first, rays);
+  const std::span<std::uint8_t> echo = std::span<std::uint8_t>(s.echo).subspan(first, rays);
+  sense::read_out(lidar.config(), hits, s.rng[std::size_t(i)], ranges, echo);
   s.step[std::size_t(i)] = st.step;
+  if (sense::ScanMap* map = a.config->map.enabled ? s.maps[std::size_t(i)].get() : nullptr) {
+    // The scan as a point cloud: an echo's endpoint, or a point beyond the range that carves free space only.
+    const double range = lidar.config().range, beyond = range + 2.0 * map->config().resolution;
+    for (std::size_t k = 0; k < rays; ++k) {
+      s.points[k] = ray_span[k].origin + (echo[k] != 0 ? ranges[k] : beyond) * ray_span[k].direction;
+    }
+    map->insert(a.kinematics.position, std::span<const Vec3>(s.points).first(rays), range);
+  }
 }
 
 void scan_due(const Sim& sim, SimState& st) {

@@ -93,12 +93,21 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     substeps_ = static_cast<int>(std::lround(substeps));
     movers_ = arena_->movers_until(config_->time_limit + config_->dt, !pushes_);
   }
-  std::vector<const AgentConfig*> sensing;
-  for (const AgentConfig* a : {&config_->pursuer, &config_->evader}) sensing.push_back(a);
-  for (const auto* list : {&config_->pursuers, &config_->evaders}) {
-    for (const AgentConfig& a : *list) sensing.push_back(&a);
+  std::vector<std::pair<std::string, const AgentConfig*>> agents{{"pursuer", &config_->pursuer}, {"evader", &config_->evader}};
+  for (const auto& [name, list] : {std::pair{"pursuers", &config_->pursuers}, std::pair{"evaders", &config_->evaders}}) {
+    for (std::size_t k = 0; k < list->size(); ++k) agents.emplace_back(fmt::format("{}.{}", name, k), &(*list)[k]);
   }
-  std::erase_if(sensing, [](const AgentConfig* a) { return !a->lidar.enabled(); });
+  std::vector<const AgentConfig*> sensing;
+  for (const auto& [name, a] : agents) {
+    if (!a->lidar.enabled()) continue;
+    sensing.push_back(a);
+    // An agent's map covers the arena: refused here, before any run, when it would not fit.
+    const long long cells = a->map.enabled ? sense::ScanMap::cells(a->map, arena_->bounds().lo, arena_->bounds().hi) : 0;
+    if (cells > sense::kMaxMapCells) {
+      throw InvalidParameter(name + ".map.resolution", fmt::format("{}", a->map.resolution),
+                             fmt::format("gives this arena's map {} cells, more than 2^26 (256 MB): choose a coarser one", cells));
+    }
+  }
   if (!sensing.empty()) {
     auto s = std::make_shared<Sensing>(*arena_);
     for (const AgentConfig* a : sensing) s->lidars.emplace_back(a, sense::Lidar(a->lidar));

@@ -31,6 +31,7 @@
 #include "game/reward.hpp"
 #include "game/starts.hpp"
 #include "sense/lidar.hpp"
+#include "sense/scan_map.hpp"
 #include "sense/world_rays.hpp"
 #include "world/arena.hpp"
 #include "world/collision/collision_world.hpp"
@@ -171,6 +172,10 @@ class SimState {
     std::vector<int> step;                   ///< the step of agent i's latest scan (-1: none; 0: the reset's)
     std::vector<Rng> rng;                    ///< agent i's sensor stream, from the reset's seed
     std::vector<const sense::Lidar*> lidar;  ///< agent i's lidar (null: none)
+    /// Agent i's own map, built from its scans (AgentConfig::map; null: none). Made by the first reset that
+    /// needs it, cleared by every reset: a map lives for one episode.
+    std::vector<std::unique_ptr<sense::ScanMap>> maps;
+    std::vector<Vec3> points;                ///< scratch: one scan's endpoints for its map
     std::vector<Ray> rays;                   ///< scratch: one scan's rays
     std::vector<sense::RayHit> hits;         ///< scratch: what they met (exact, before noise and dropout)
     std::vector<sense::Ball> balls;          ///< scratch: the agents' spheres (radius 0 out of the game)
@@ -178,6 +183,10 @@ class SimState {
   /// Agent i's latest readings and echoes (empty without a lidar).
   std::span<const double> ranges(int i) const;
   std::span<const std::uint8_t> echoes(int i) const;
+  /// Agent i's own map (null: none).
+  const sense::ScanMap* map(int i) const {
+    return !scans.first.empty() && agents[std::size_t(i)].config->map.enabled ? scans.maps[std::size_t(i)].get() : nullptr;
+  }
 
   /// Per-step working storage, sized by reset().
   struct Scratch {

@@ -56,7 +56,8 @@ Vec3 stopped_at(const Vec3& from, const Vec3& to, double t) {
 // the guard's last resort. Queried only where the field cannot rule them out.
 std::span<const world::NearPoint> near_obstacles(const Sim& sim, SimState& st, const AgentState& a) {
   const AgentConfig& c = *a.config;
-  if (!c.guard.enabled) return {};
+  // An agent that senses through its own map avoids only what it has seen: no exact last resort.
+  if (!c.guard.enabled || c.observation.obstacles == ObstacleSource::kOwnMap) return {};
   const Vec3& p = a.kinematics.position;
   const double range = hold_range(c, sim.config().dt);
   if (!(sim.arena().clearance_lower_bound(p) < range)) return {};
@@ -91,7 +92,7 @@ void constrain(const Sim& sim, SimState& st) {
     const StepProfile::Scope profiled(StepProfile::kConstraints);
     const AgentState& a = st.agents[std::size_t(i)];
     if (!a.active) continue;
-    const StateProbe probe(sim, st, a.nearest_mover);
+    const StateProbe probe(sim, st, i, a.nearest_mover);
     const AgentState& o = st.agents[std::size_t(a.opponent)];
     st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;

@@ -21,6 +21,11 @@ ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p, 
   return {n.distance, n.point, n.found};
 }
 
+ObstacleSense sense_own_map(const Sim& sim, const SimState& st, int i, const Vec3& p) {
+  const sense::OccupiedPoint n = st.map(i)->nearest_occupied(p, sim.arena().max_distance());
+  return {n.distance, n.point, n.found};
+}
+
 void update_view(const Sim& sim, SimState& st, int i) {
   AgentState& a = st.agents[std::size_t(i)];
   const AgentState& o = st.agents[std::size_t(a.opponent)];
@@ -35,9 +40,11 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.dt = sim.config().dt;
   v.time = st.time;
   v.arena = sim.arena().bounds();
-  v.field = sense_obstacle(sim, st, a.kinematics.position, std::numeric_limits<double>::infinity(), &a.nearest_mover);
+  const bool own_map = a.config->observation.obstacles == ObstacleSource::kOwnMap;
+  v.field = own_map ? sense_own_map(sim, st, i, a.kinematics.position)
+                    : sense_obstacle(sim, st, a.kinematics.position, std::numeric_limits<double>::infinity(), &a.nearest_mover);
   // Exactly sensed, the field's distance bounds every mover's from below (sense_obstacle): kept for the step.
-  const bool exact = sim.movers() != nullptr && !st.moving_field;
+  const bool exact = sim.movers() != nullptr && !st.moving_field && !own_map;
   a.mover_clearance = {a.kinematics.position, exact ? st.time : -1.0, v.field.distance};
   v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());

@@ -18,11 +18,19 @@ namespace peg3d::game {
 ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& p,
                              double reach = std::numeric_limits<double>::infinity(), int* mover = nullptr);
 
-/// The guard's look ahead senses as the agent does, starting from the mover its view found nearest (`hint`).
+/// The nearest occupied cell of agent i's own map to p (observation.obstacles = own-map), within the map's
+/// distance cap (the field's, world::Arena::max_distance).
+ObstacleSense sense_own_map(const Sim& sim, const SimState& state, int i, const Vec3& p);
+
+/// The guard's look ahead senses as agent i does: in its own map, or in the world starting from the mover its
+/// view found nearest (`hint`).
 class StateProbe final : public ObstacleProbe {
  public:
-  StateProbe(const Sim& sim, const SimState& state, int hint) : sim_(sim), state_(state), hint_(hint) {}
+  StateProbe(const Sim& sim, const SimState& state, int i, int hint) : sim_(sim), state_(state), i_(i), hint_(hint) {}
   ObstacleSense nearest(const Vec3& p, double reach) const override {
+    if (state_.map(i_) != nullptr && state_.agents[std::size_t(i_)].config->observation.obstacles == ObstacleSource::kOwnMap) {
+      return sense_own_map(sim_, state_, i_, p);
+    }
     int hint = hint_;
     return sense_obstacle(sim_, state_, p, reach, &hint);
   }
@@ -30,6 +38,7 @@ class StateProbe final : public ObstacleProbe {
  private:
   const Sim& sim_;
   const SimState& state_;
+  int i_;
   int hint_;
 };
 

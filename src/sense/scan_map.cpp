@@ -48,18 +48,49 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
   }
   cells_.assign(std::size_t(cells), kUnknown);
   for (int d = 0; d < 3; ++d) bricks_[std::size_t(d)] = (n_[std::size_t(d)] + kBrick - 1) / kBrick;
-  brick_occupied_.assign(bricks_[0] * bricks_[1] * bricks_[2], 0);
   corner_ = centre(k0_) - Vec3::Constant(0.5 * config.resolution);
+  brick_occupied_.resize(bricks_[0] * bricks_[1] * bricks_[2]);
+  clear();
   free_bits_.assign((std::size_t(cells) + 63) / 64, 0);
   hit_bits_.assign(free_bits_.size(), 0);
 }
 
 ScanMap::~ScanMap() = default;
 
+long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
+  // OctoMap's coordToKey: floor(coordinate * (1 / resolution)).
+  const double factor = 1.0 / config.resolution;
+  long long cells = 1;
+  for (int d = 0; d < 3; ++d) cells *= static_cast<long long>(std::floor(factor * hi[d]) - std::floor(factor * lo[d])) + 1;
+  return cells;
+}
+
 void ScanMap::clear() {
   std::fill(cells_.begin(), cells_.end(), kUnknown);
-  std::fill(brick_occupied_.begin(), brick_occupied_.end(), 0);
+  if (config_.unknown_is_occupied) {
+    // Every cell is unknown, so blocked: a brick counts the cells it holds.
+    for (std::size_t bx = 0; bx < bricks_[0]; ++bx) {
+      for (std::size_t by = 0; by < bricks_[1]; ++by) {
+        for (std::size_t bz = 0; bz < bricks_[2]; ++bz) {
+          const auto span = [&](std::size_t b, std::size_t n) { return std::min(n, (b + 1) * kBrick) - b * kBrick; };
+          brick_occupied_[(bx * bricks_[1] + by) * bricks_[2] + bz] =
+              std::uint8_t(span(bx, n_[0]) * span(by, n_[1]) * span(bz, n_[2]));
+        }
+      }
+    }
+  } else {
+    std::fill(brick_occupied_.begin(), brick_occupied_.end(), 0);
+  }
   known_ = occupied_ = 0;
+}
+
+void ScanMap::reserve(int rays, double range) {
+  // A ray crosses at most 3 cells per resolution of its length, and a few at its ends; a scan's lists hold each
+  // cell once.
+  const double per_ray = 3.0 * std::ceil(range / config_.resolution) + 4.0;
+  const auto most = std::size_t(std::min(double(cells_.size()), double(rays) * per_ray));
+  free_list_.reserve(most);
+  hit_list_.reserve(std::min(cells_.size(), std::size_t(rays)));
 }
 
 CellKey ScanMap::key_of(const Vec3& p) const {
@@ -125,10 +156,12 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     v = next;
     known_ += !was_known;
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
-    if (change_occupied != 0) {
-      occupied_ += change_occupied;
+    occupied_ += change_occupied;
+    // The brick's count of blocked cells: occupied ones, and with unknown_is_occupied the unknown ones too.
+    const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
+    if (change_blocked != 0) {
       const std::size_t z = c % n_[2], y = (c / n_[2]) % n_[1], x = c / (n_[2] * n_[1]);
-      brick_occupied_[((x / kBrick) * bricks_[1] + y / kBrick) * bricks_[2] + z / kBrick] += std::uint8_t(change_occupied);
+      brick_occupied_[((x / kBrick) * bricks_[1] + y / kBrick) * bricks_[2] + z / kBrick] += std::uint8_t(change_blocked);
     }
   };
   for (std::uint32_t c : free_list_) {
@@ -143,7 +176,8 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
 
 OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
   OccupiedPoint best{cap, Vec3::Zero(), false};
-  if (occupied_ == 0) return best;
+  const bool unknown_blocks = config_.unknown_is_occupied;
+  if (occupied_ == 0 && !unknown_blocks) return best;
   const double res = config_.resolution, edge = kBrick * res, half = 0.5 * res;
   const Vec3 rel = (p - corner_) / edge;
   const long b0[3] = {long(std::floor(rel.x())), long(std::floor(rel.y())), long(std::floor(rel.z()))};
@@ -160,7 +194,8 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
       for (std::size_t y = std::size_t(by) * kBrick; y < std::min(n_[1], std::size_t(by + 1) * kBrick); ++y) {
         for (std::size_t z = std::size_t(bz) * kBrick; z < std::min(n_[2], std::size_t(bz + 1) * kBrick); ++z) {
           const std::size_t c = (x * n_[1] + y) * n_[2] + z;
-          if (!(cells_[c] > 0.0f)) continue;
+          const float v = cells_[c];
+          if (!(v > 0.0f) && !(unknown_blocks && v != v)) continue;
           const Vec3 centre = corner_ + res * Vec3(double(x), double(y), double(z)) + Vec3::Constant(half);
           const Vec3 point = p.cwiseMax(centre - Vec3::Constant(half)).cwiseMin(centre + Vec3::Constant(half));
           const double d = (point - p).norm();

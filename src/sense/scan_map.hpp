@@ -40,6 +40,8 @@ struct ScanMapConfig {
   double prob_miss = 0.4;     ///< in (0, 0.5): P(occupied | a ray through the cell) (OctoMap's default)
   double clamp_min = 0.1192;  ///< in (0, 0.5]: the least occupancy probability a cell keeps (OctoMap's default)
   double clamp_max = 0.971;   ///< in [0.5, 1): the most (OctoMap's default)
+  /// Cells no scan has touched count as occupied for nearest_occupied (the cautious reading); by default free.
+  bool unknown_is_occupied = false;
   bool operator==(const ScanMapConfig&) const = default;
 };
 
@@ -53,6 +55,8 @@ void visit_fields(V& v, C& c) {
   v.number("prob_miss", c.prob_miss, Range{0.0, 0.5, true, true}, "", "occupancy probability a ray gives a cell it crosses");
   v.number("clamp_min", c.clamp_min, Range::open_closed(0.0, 0.5), "", "least occupancy probability a cell keeps");
   v.number("clamp_max", c.clamp_max, Range::closed_open(0.5, 1.0), "", "most occupancy probability a cell keeps");
+  v.flag("unknown_is_occupied", c.unknown_is_occupied,
+         "cells no scan has touched count as obstacles for the agent's inputs (default: as free space)");
 }
 
 /// OctoMap's key of a cell: floor(coordinate / resolution) + 32768 on each axis.
@@ -76,8 +80,14 @@ class ScanMap {
 
   const ScanMapConfig& config() const { return config_; }
 
+  /// The cells a map of the box [lo, hi] has at the configuration's resolution.
+  static long long cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
+
   /// Forgets every cell.
   void clear();
+
+  /// Makes room for scans of `rays` rays of at most `range` m, so that inserting them allocates nothing.
+  void reserve(int rays, double range);
 
   /// Inserts one scan as insertPointCloud(points, origin, max_range) would (points and origin taken as float, as
   /// an octomap::Pointcloud holds them). A ray that met nothing is passed as an endpoint beyond max_range. No
@@ -91,9 +101,10 @@ class ScanMap {
   /// The centre of a cell (OctoMap's keyToCoord).
   Vec3 centre(const CellKey& key) const;
 
-  /// The occupied cell (log-odds > 0) nearest to p within `cap` (m), measured to its cube; among equally near
-  /// ones the first in key order (x slowest). Searched brick by brick (4 x 4 x 4 cells, each with its count of
-  /// occupied cells) in shells about p until no nearer brick can remain. No allocation.
+  /// The occupied cell (log-odds > 0; with unknown_is_occupied, or unknown) nearest to p within `cap` (m),
+  /// measured to its cube; among equally near ones the first in key order (x slowest). Searched brick by brick
+  /// (4 x 4 x 4 cells, each with its count of such cells) in shells about p until no nearer brick can remain. No
+  /// allocation.
   OccupiedPoint nearest_occupied(const Vec3& p, double cap) const;
 
   /// Cells any scan has touched.
@@ -122,7 +133,7 @@ class ScanMap {
   std::vector<float> cells_;                  // log-odds, NaN: unknown
   static constexpr int kBrick = 4;            // cells per brick edge
   std::array<std::size_t, 3> bricks_{};       // bricks per axis
-  std::vector<std::uint8_t> brick_occupied_;  // occupied cells per brick
+  std::vector<std::uint8_t> brick_occupied_;  // occupied cells per brick (with unknown_is_occupied: or unknown)
   Vec3 corner_ = Vec3::Zero();                // m, the lower corner of the grid's first cell
   std::vector<std::uint64_t> free_bits_, hit_bits_;  // a scan's sets
   std::vector<std::uint32_t> free_list_, hit_list_;  // ... and their cells

@@ -26,7 +26,7 @@ nlohmann::json changed(const std::string& key, const nlohmann::json& old) {
            {"toward-pursuer", "away-from-pursuer"}, {"joint", "per-angle"}, {"potential-field", "distance-only"},
            {"negate", "mirror"}, {"terminate", "penalize"}, {"chase", "facing"}, {"nearest", "assigned"},
            {"none", "all"}, {"individual", "team"}, {"exact", "octree"}, {"shared", "push"}, {"co-learning", "opponent-pool"},
-           {"heading-change", "target-line-offset"}}) {
+           {"heading-change", "target-line-offset"}, {"world", "own-map"}}) {
     for (std::size_t i = 0; i < candidates.size(); ++i)
       if (candidates[i] == text) return candidates[1 - i];
   }
@@ -56,7 +56,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 47 + 23);  // 47 per agent (11 of its lidar), 7 game fields, 4 team fields and 12 training fields
+  EXPECT_EQ(leaves, 2 * 55 + 23);  // 55 per agent (11 of its lidar, 7 of its map), 7 game, 4 team and 12 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
@@ -69,6 +69,7 @@ TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
   EXPECT_EQ(config::table_field_count<ObservationConfig>(), static_cast<int>(config::member_count<ObservationConfig>()));
   EXPECT_EQ(config::table_field_count<RewardConfig>(), static_cast<int>(config::member_count<RewardConfig>()));
   EXPECT_EQ(config::table_field_count<sense::LidarConfig>(), static_cast<int>(config::member_count<sense::LidarConfig>()));
+  EXPECT_EQ(config::table_field_count<sense::ScanMapConfig>(), static_cast<int>(config::member_count<sense::ScanMapConfig>()));
   EXPECT_EQ(config::table_field_count<ObstacleGuard>(), static_cast<int>(config::member_count<ObstacleGuard>()));
   EXPECT_EQ(config::table_field_count<SteeringConfig>(), static_cast<int>(config::member_count<SteeringConfig>()));
   EXPECT_EQ(config::table_field_count<fuzzy::FaclConfig>(), static_cast<int>(config::member_count<fuzzy::FaclConfig>()));

@@ -21,7 +21,8 @@
 namespace peg3d::game {
 namespace {
 
-void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions, bool lidar = false) {
+void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions, bool lidar = false,
+                          bool own_map = false) {
   const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));
   GameConfig c = preset(preset_name);
   c.team.agent_collisions = collisions;
@@ -35,6 +36,9 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
       a->lidar.dropout = 0.1;
     }
     c.evader.lidar.period = 2;
+    if (own_map) {
+      for (AgentConfig* a : {&c.pursuer, &c.evader}) a->map.enabled = true, a->observation.obstacles = ObstacleSource::kOwnMap;
+    }
   }
   const Sim sim(arena, c);
   SimState state(sim);
@@ -80,6 +84,11 @@ TEST(GameNoAllocation, LidarScans) {
   expect_no_allocation("maps/forest.yaml", "peg3d", AgentCollisions::kNone, true);
   expect_no_allocation("maps/patrol.yaml", "peg3d", AgentCollisions::kNone, true);
   expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kAll, true);
+}
+
+TEST(GameNoAllocation, OwnMaps) {
+  expect_no_allocation("maps/forest.yaml", "peg3d", AgentCollisions::kNone, true, true);
+  expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kNone, true, true);
 }
 
 TEST(GameNoAllocation, TeamsTrainingAndEvaluation) {

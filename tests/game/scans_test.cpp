@@ -203,6 +203,115 @@ TEST(Scans, ALidarThatOnlyObservesChangesNothingOfTheGame) {
   }
 }
 
+// A configuration whose agents sense obstacles through their own maps, built from 64-ray lidars.
+GameConfig own_map_config() {
+  GameConfig c = preset("peg3d");
+  for (AgentConfig* a : {&c.pursuer, &c.evader}) {
+    a->lidar = lidar(16, 4, 60.0, 10.0);
+    a->map.enabled = true;
+    a->observation.obstacles = ObstacleSource::kOwnMap;
+  }
+  return c;
+}
+
+TEST(Scans, OwnMapInputsAreTheNearestOccupiedCellOfTheMapTheScansBuilt) {
+  const auto arena = map_arena("maps/forest.yaml");
+  const Sim sim(arena, own_map_config());
+  SimState st(sim);
+  Rng rng(4);
+  const world::Scenario& s = arena->map().scenarios.front();
+  reset(sim, st, s, 3);
+  // A map of the agent's own, fed the same scans from the readings, beside the state's.
+  sense::ScanMap mine(sim.config().pursuer.map, arena->bounds().lo, arena->bounds().hi);
+  std::vector<Ray> rays(64);
+  std::vector<Vec3> points(64);
+  int found = 0;
+  std::vector<Steering> u(2);
+  for (int k = 0; k < 200 && !st.done; ++k) {
+    const AgentState& a = st.agents[0];
+    sim.lidar(Role::kPursuer, 0)->rays_at(a.kinematics.position, a.kinematics.heading, rays);
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+      const double d = st.echoes(0)[r] != 0 ? st.ranges(0)[r] : 10.0 + 0.5;
+      points[r] = a.kinematics.position + d * rays[r].direction;
+    }
+    mine.insert(a.kinematics.position, points, 10.0);
+    ASSERT_EQ(st.map(0)->known_cells(), mine.known_cells()) << "step " << st.step;
+    ASSERT_EQ(st.map(0)->occupied_cells(), mine.occupied_cells()) << "step " << st.step;
+    const sense::OccupiedPoint want = mine.nearest_occupied(a.kinematics.position, arena->max_distance());
+    const ObstacleSense& got = observe(st, 0).field;
+    ASSERT_EQ(got.found, want.found) << "step " << st.step;
+    ASSERT_EQ(got.distance, want.distance) << "step " << st.step;
+    found += got.found;
+    for (Steering& c : u) c = {uniform(rng, -0.3, 0.3), uniform(rng, -0.2, 0.2)};
+    step(sim, st, u);
+  }
+  EXPECT_GT(found, 20);
+  // The next episode starts from an empty map: after the reset's scan it knows only what that scan saw.
+  reset(sim, st, s, 4);
+  EXPECT_LT(st.map(0)->known_cells(), mine.known_cells() / 4);
+}
+
+TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {
+  // A ball between the pursuer and a motionless evader: pure pursuit flies straight at it. The guard, fed by the
+  // world, or by a map from a lidar that looks ahead, turns away; fed by a map from a lidar that looks back, it
+  // never learns of the ball, and the pursuer runs into it (collisions stay with the world).
+  world::Scenario s = testing::scenario("s", Vec3(4, 10, 10), Vec3(26, 10, 10));
+  const auto arena = testing::make_arena(Vec3(30, 20, 20), {{Vec3(15, 10, 10), 1.5}}, {s});
+  const auto collisions = [&](bool own_map, double mount_azimuth) {
+    GameConfig c = preset("peg3d");
+    c.collision = CollisionMode::kPenalize;
+    c.time_limit = 20.0;
+    c.pursuer.policy = PolicyKind::kPurePursuit;
+    c.evader.policy = PolicyKind::kFlee;
+    c.evader.speed = 0.0;
+    if (own_map) {
+      c.pursuer.lidar = lidar(12, 3, 30.0, 8.0);
+      c.pursuer.lidar.azimuth_fov = 90.0;
+      c.pursuer.lidar.mount_azimuth = mount_azimuth;
+      c.pursuer.map.enabled = true;
+      c.pursuer.observation.obstacles = ObstacleSource::kOwnMap;
+    }
+    const Sim sim(arena, c);
+    return testing::play_once(sim, s, 1).collisions;
+  };
+  EXPECT_EQ(collisions(false, 0.0), 0);
+  EXPECT_EQ(collisions(true, 0.0), 0);
+  EXPECT_GT(collisions(true, 180.0), 0);
+}
+
+// A game of FACL agents sensing through their own maps on forest, hashed: positions of every agent every step.
+std::uint64_t own_map_game_hash(const Sim& sim, std::uint64_t seed) {
+  Fnv1a h;
+  for (const world::Scenario& s : sim.arena().map().scenarios) {
+    Trace t;
+    testing::play_once(sim, s, seed, &t);
+    for (int f = 0; f < t.frame_count(); ++f) {
+      for (int i = 0; i < s.agents(); ++i) h.add_value(t.at(f, i).state.position);
+    }
+  }
+  return h.value();
+}
+
+TEST(Scans, AnOwnMapGameIsTheSameOnAnyThreadCount) {
+  GameConfig c = own_map_config();
+  c.pursuer.lidar.noise = c.evader.lidar.noise = 0.02;
+  c.time_limit = 30.0;
+  const Sim sim(map_arena("maps/forest.yaml"), c);
+  const std::uint64_t here = own_map_game_hash(sim, 5);
+  for (const int threads : {2, 4}) {
+    std::vector<std::uint64_t> got(static_cast<std::size_t>(threads));
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back([&, t] { got[std::size_t(t)] = own_map_game_hash(sim, 5); });
+    for (std::thread& t : pool) t.join();
+    for (std::uint64_t g : got) EXPECT_EQ(g, here) << threads << " threads";
+  }
+  // Sensing through the map moves the agents: the game differs from the one that senses the world.
+  GameConfig world = c;
+  world.pursuer.observation.obstacles = world.evader.observation.obstacles = ObstacleSource::kWorld;
+  EXPECT_NE(own_map_game_hash(Sim(map_arena("maps/forest.yaml"), world), 5), here);
+  EXPECT_EQ(here, 0x25136473e560476cull) << std::hex << here;
+}
+
 // A sensing game's readings, hashed step by step: quarry's movers, agents seen, noise and dropouts.
 std::uint64_t sensing_game_hash(const Sim& sim, std::uint64_t seed) {
   SimState st(sim);
