@@ -12,21 +12,14 @@ namespace peg3d::sense {
 namespace {
 
 constexpr float kUnknown = std::numeric_limits<float>::quiet_NaN();
+// Cells of a brick that lie beyond the box: neither unknown nor known.
+constexpr float kOutside = -std::numeric_limits<float>::infinity();
 
-bool test_and_set(std::vector<std::uint64_t>& bits, std::size_t c) {
-  std::uint64_t& word = bits[c >> 6];
-  const std::uint64_t bit = std::uint64_t{1} << (c & 63);
-  const bool was = (word & bit) != 0;
-  word |= bit;
-  return was;
-}
-
-bool test(const std::vector<std::uint64_t>& bits, std::size_t c) { return (bits[c >> 6] >> (c & 63)) & 1; }
 
 }  // namespace
 
 ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
-    : config_(config), keys_(std::make_unique<octomap::OcTree>(config.resolution)), ray_(std::make_unique<octomap::KeyRay>()) {
+    : config_(config), keys_(std::make_unique<octomap::OcTree>(config.resolution)) {
   keys_->setProbHit(config.prob_hit);
   keys_->setProbMiss(config.prob_miss);
   keys_->setClampingThresMin(config.clamp_min);
@@ -46,13 +39,15 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
     throw InvalidParameter("resolution", std::to_string(config.resolution),
                            "gives the arena's map " + std::to_string(cells) + " cells, more than 2^26 (256 MB): choose a coarser one");
   }
-  cells_.assign(std::size_t(cells), kUnknown);
   for (int d = 0; d < 3; ++d) bricks_[std::size_t(d)] = (n_[std::size_t(d)] + kBrick - 1) / kBrick;
+  const std::size_t bricks = bricks_[0] * bricks_[1] * bricks_[2];
+  cells_.resize(bricks * kBrickCells);
+  brick_occupied_.resize(bricks);
+  free_bits_.assign(bricks, 0);
+  hit_bits_.assign(bricks, 0);
+  at_min_.assign(bricks, 0);
   corner_ = centre(k0_) - Vec3::Constant(0.5 * config.resolution);
-  brick_occupied_.resize(bricks_[0] * bricks_[1] * bricks_[2]);
   clear();
-  free_bits_.assign((std::size_t(cells) + 63) / 64, 0);
-  hit_bits_.assign(free_bits_.size(), 0);
 }
 
 ScanMap::~ScanMap() = default;
@@ -66,20 +61,26 @@ long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3
 }
 
 void ScanMap::clear() {
+  // Every cell unknown; the cells of the last bricks that lie beyond the box are marked kOutside, never known.
   std::fill(cells_.begin(), cells_.end(), kUnknown);
-  if (config_.unknown_is_occupied) {
-    // Every cell is unknown, so blocked: a brick counts the cells it holds.
-    for (std::size_t bx = 0; bx < bricks_[0]; ++bx) {
-      for (std::size_t by = 0; by < bricks_[1]; ++by) {
-        for (std::size_t bz = 0; bz < bricks_[2]; ++bz) {
-          const auto span = [&](std::size_t b, std::size_t n) { return std::min(n, (b + 1) * kBrick) - b * kBrick; };
-          brick_occupied_[(bx * bricks_[1] + by) * bricks_[2] + bz] =
-              std::uint8_t(span(bx, n_[0]) * span(by, n_[1]) * span(bz, n_[2]));
+  std::fill(at_min_.begin(), at_min_.end(), 0);
+  for (std::size_t bx = 0; bx < bricks_[0]; ++bx) {
+    for (std::size_t by = 0; by < bricks_[1]; ++by) {
+      for (std::size_t bz = 0; bz < bricks_[2]; ++bz) {
+        const std::size_t b = (bx * bricks_[1] + by) * bricks_[2] + bz;
+        int inside = kBrickCells;
+        if ((bx + 1) * kBrick > n_[0] || (by + 1) * kBrick > n_[1] || (bz + 1) * kBrick > n_[2]) {
+          inside = 0;
+          for (std::size_t l = 0; l < kBrickCells; ++l) {
+            const bool in = bx * kBrick + (l >> 4) < n_[0] && by * kBrick + ((l >> 2) & 3) < n_[1] && bz * kBrick + (l & 3) < n_[2];
+            if (!in) cells_[b * kBrickCells + l] = kOutside;
+            inside += in;
+          }
         }
+        // The brick's count of blocked cells: none is occupied; with unknown_is_occupied every inside one is.
+        brick_occupied_[b] = config_.unknown_is_occupied ? std::uint8_t(inside) : 0;
       }
     }
-  } else {
-    std::fill(brick_occupied_.begin(), brick_occupied_.end(), 0);
   }
   known_ = occupied_ = 0;
 }
@@ -104,16 +105,10 @@ Vec3 ScanMap::centre(const CellKey& key) const {
 }
 
 CellKey ScanMap::key_at(std::size_t c) const {
-  const std::size_t z = c % n_[2], y = (c / n_[2]) % n_[1], x = c / (n_[2] * n_[1]);
-  return {std::uint16_t(k0_[0] + x), std::uint16_t(k0_[1] + y), std::uint16_t(k0_[2] + z)};
-}
-
-bool ScanMap::index_of(const CellKey& k, std::size_t& c) const {
-  // Unsigned differences: a key below the grid's first wraps to a large value and fails the bound too.
-  const std::size_t x = std::uint16_t(k[0] - k0_[0]), y = std::uint16_t(k[1] - k0_[1]), z = std::uint16_t(k[2] - k0_[2]);
-  if (x >= n_[0] || y >= n_[1] || z >= n_[2]) return false;
-  c = (x * n_[1] + y) * n_[2] + z;
-  return true;
+  const std::size_t b = c / kBrickCells, l = c % kBrickCells;
+  const std::size_t bz = b % bricks_[2], by = (b / bricks_[2]) % bricks_[1], bx = b / (bricks_[2] * bricks_[1]);
+  return {std::uint16_t(k0_[0] + bx * kBrick + (l >> 4)), std::uint16_t(k0_[1] + by * kBrick + ((l >> 2) & 3)),
+          std::uint16_t(k0_[2] + bz * kBrick + (l & 3))};
 }
 
 float ScanMap::log_odds(const CellKey& key) const {
@@ -121,32 +116,57 @@ float ScanMap::log_odds(const CellKey& key) const {
   return index_of(key, c) ? cells_[c] : kUnknown;
 }
 
+template <class F>
+void ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& end, F&& visit) const {
+  // OcTreeBaseImpl::computeRayKeys (Amanatides and Woo's traversal) step for step, in the same types and the same
+  // operations, so that it meets the same keys; each is visited as it is met instead of stored.
+  octomap::OcTreeKey key_origin, key_end;
+  if (!keys_->coordToKeyChecked(origin, key_origin) || !keys_->coordToKeyChecked(end, key_end)) return;
+  if (key_origin == key_end) return;
+  visit(key_origin);
+  octomap::point3d direction = end - origin;
+  const float length = float(direction.norm());
+  direction /= length;
+  const double resolution = keys_->getResolution();
+  int step[3];
+  double t_max[3], t_delta[3];
+  octomap::OcTreeKey key = key_origin;
+  for (unsigned i = 0; i < 3; ++i) {
+    step[i] = direction(i) > 0.0 ? 1 : direction(i) < 0.0 ? -1 : 0;
+    if (step[i] != 0) {
+      double border = keys_->keyToCoord(key[i]);
+      border += float(step[i] * resolution * 0.5);
+      t_max[i] = (border - origin(i)) / direction(i);
+      t_delta[i] = resolution / std::fabs(direction(i));
+    } else {
+      t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
+    }
+  }
+  for (;;) {
+    const unsigned dim = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
+    key[dim] = octomap::key_type(key[dim] + step[dim]);
+    t_max[dim] += t_delta[dim];
+    if (key == key_end) return;
+    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return;  // missed the end's cell: stop
+    visit(key);
+  }
+}
+
 void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double max_range) {
   const octomap::point3d origin(float(origin_d.x()), float(origin_d.y()), float(origin_d.z()));
   free_list_.clear();
   hit_list_.clear();
+  // A brick's 64 cells have one word of each set: bit l of word b is cell b * 64 + l.
   const auto mark = [&](const octomap::OcTreeKey& k, std::vector<std::uint64_t>& bits, std::vector<std::uint32_t>& list) {
     std::size_t c = 0;
-    if (index_of({k[0], k[1], k[2]}, c) && !test_and_set(bits, c)) list.push_back(std::uint32_t(c));
+    if (!index_of({k[0], k[1], k[2]}, c)) return;
+    std::uint64_t& word = bits[c / kBrickCells];
+    const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
+    if ((word & bit) != 0) return;
+    word |= bit;
+    list.push_back(std::uint32_t(c));
   };
-  // OccupancyOcTreeBase::computeUpdate, point by point, with the key sets as bits over the grid.
-  for (const Vec3& pd : points) {
-    const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
-    if (max_range < 0.0 || (p - origin).norm() <= max_range) {
-      if (keys_->computeRayKeys(origin, p, *ray_)) {
-        for (const octomap::OcTreeKey& k : *ray_) mark(k, free_bits_, free_list_);
-      }
-      octomap::OcTreeKey key;
-      if (keys_->coordToKeyChecked(p, key)) mark(key, hit_bits_, hit_list_);
-    } else {
-      const octomap::point3d direction = (p - origin).normalized();
-      const octomap::point3d end = origin + direction * float(max_range);
-      if (keys_->computeRayKeys(origin, end, *ray_)) {
-        for (const octomap::OcTreeKey& k : *ray_) mark(k, free_bits_, free_list_);
-      }
-    }
-  }
-  // updateNode(key, occupied): log-odds in float, clamped; an endpoint's cell is not also free.
+  // updateNode(key, occupied): log-odds in float, clamped.
   const auto update = [&](std::uint32_t c, float change) {
     float& v = cells_[c];
     const bool was_known = v == v, was_occupied = was_known && v > 0.0f;
@@ -154,23 +174,56 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     if (next < min_) next = min_;
     if (next > max_) next = max_;
     v = next;
+    // Cells at the lower clamp are also a bit of their brick's word: a ray crossing them needs no load of the value.
+    const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
+    at_min_[c / kBrickCells] = next == min_ ? at_min_[c / kBrickCells] | bit : at_min_[c / kBrickCells] & ~bit;
     known_ += !was_known;
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
     occupied_ += change_occupied;
     // The brick's count of blocked cells: occupied ones, and with unknown_is_occupied the unknown ones too.
     const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
-    if (change_blocked != 0) {
-      const std::size_t z = c % n_[2], y = (c / n_[2]) % n_[1], x = c / (n_[2] * n_[1]);
-      brick_occupied_[((x / kBrick) * bricks_[1] + y / kBrick) * bricks_[2] + z / kBrick] += std::uint8_t(change_blocked);
-    }
+    if (change_blocked != 0) brick_occupied_[c / kBrickCells] = std::uint8_t(brick_occupied_[c / kBrickCells] + change_blocked);
   };
-  for (std::uint32_t c : free_list_) {
-    if (!test(hit_bits_, c)) update(c, miss_);
-    free_bits_[c >> 6] = 0;
+  // OccupancyOcTreeBase::computeUpdate with the key sets as bits over the grid, and each cell updated once, as
+  // insertPointCloud updates it. First the occupied set: the endpoints within max_range (they win over free).
+  for (const Vec3& pd : points) {
+    const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
+    octomap::OcTreeKey key;
+    if ((max_range < 0.0 || (p - origin).norm() <= max_range) && keys_->coordToKeyChecked(p, key)) {
+      mark(key, hit_bits_, hit_list_);
+    }
   }
+  // Then every ray's free cells, each updated when first met: a miss, unless it is an endpoint's cell or already
+  // at the lower clamp (OctoMap's early abort).
+  for (const Vec3& pd : points) {
+    const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
+    const auto free_cell = [&](const octomap::OcTreeKey& k) {
+      std::size_t c = 0;
+      if (!index_of({k[0], k[1], k[2]}, c)) return;
+      const std::size_t b = c / kBrickCells;
+      const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
+      if (((free_bits_[b] | hit_bits_[b] | at_min_[b]) & bit) != 0) return;  // met, an endpoint, or no change
+      free_bits_[b] |= bit;
+      free_list_.push_back(std::uint32_t(c));
+      float& v = cells_[c];
+      if (v <= 0.0f) {  // known and free (false for unknown, NaN): a miss keeps it free, the counts stand
+        v = std::max(v + miss_, min_);
+        if (v == min_) at_min_[b] |= bit;
+        return;
+      }
+      update(std::uint32_t(c), miss_);
+    };
+    if (max_range < 0.0 || (p - origin).norm() <= max_range) {
+      ray_cells(origin, p, free_cell);
+    } else {
+      const octomap::point3d direction = (p - origin).normalized();
+      ray_cells(origin, origin + direction * float(max_range), free_cell);
+    }
+  }
+  for (std::uint32_t c : free_list_) free_bits_[c / kBrickCells] = 0;
   for (std::uint32_t c : hit_list_) {
     update(c, hit_);
-    hit_bits_[c >> 6] = 0;
+    hit_bits_[c / kBrickCells] = 0;
   }
 }
 
@@ -190,20 +243,17 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
     const Vec3 lo = corner_ + edge * Vec3(double(bx), double(by), double(bz));
     const Vec3 q = p.cwiseMax(lo).cwiseMin(lo + Vec3::Constant(edge));
     if ((q - p).norm() > best.distance) return;
-    for (std::size_t x = std::size_t(bx) * kBrick; x < std::min(n_[0], std::size_t(bx + 1) * kBrick); ++x) {
-      for (std::size_t y = std::size_t(by) * kBrick; y < std::min(n_[1], std::size_t(by + 1) * kBrick); ++y) {
-        for (std::size_t z = std::size_t(bz) * kBrick; z < std::min(n_[2], std::size_t(bz + 1) * kBrick); ++z) {
-          const std::size_t c = (x * n_[1] + y) * n_[2] + z;
-          const float v = cells_[c];
-          if (!(v > 0.0f) && !(unknown_blocks && v != v)) continue;
-          const Vec3 centre = corner_ + res * Vec3(double(x), double(y), double(z)) + Vec3::Constant(half);
-          const Vec3 point = p.cwiseMax(centre - Vec3::Constant(half)).cwiseMin(centre + Vec3::Constant(half));
-          const double d = (point - p).norm();
-          if (d < best.distance || (d == best.distance && best.found && c < best_cell)) {
-            best = {d, point, true};
-            best_cell = c;
-          }
-        }
+    const std::size_t b = (std::size_t(bx) * bricks_[1] + std::size_t(by)) * bricks_[2] + std::size_t(bz);
+    for (std::size_t l = 0; l < kBrickCells; ++l) {
+      const std::size_t c = b * kBrickCells + l;
+      const float v = cells_[c];
+      if (!(v > 0.0f) && !(unknown_blocks && v != v)) continue;
+      const Vec3 centre = lo + res * Vec3(double(l >> 4), double((l >> 2) & 3), double(l & 3)) + Vec3::Constant(half);
+      const Vec3 point = p.cwiseMax(centre - Vec3::Constant(half)).cwiseMin(centre + Vec3::Constant(half));
+      const double d = (point - p).norm();
+      if (d < best.distance || (d == best.distance && best.found && key_before(c, best_cell))) {
+        best = {d, point, true};
+        best_cell = c;
       }
     }
   };
@@ -221,9 +271,9 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
 }
 
 std::size_t ScanMap::bytes() const {
-  return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() + (free_bits_.capacity() + hit_bits_.capacity()) * sizeof(std::uint64_t) +
-         (free_list_.capacity() + hit_list_.capacity()) * sizeof(std::uint32_t) +
-         ray_->sizeMax() * sizeof(octomap::OcTreeKey);
+  return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() +
+         (free_bits_.capacity() + hit_bits_.capacity() + at_min_.capacity()) * sizeof(std::uint64_t) +
+         (free_list_.capacity() + hit_list_.capacity()) * sizeof(std::uint32_t);
 }
 
 }  // namespace peg3d::sense
