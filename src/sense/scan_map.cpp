@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 #include <limits>
 
+#include "core/atomic_file.hpp"
 #include "core/validation.hpp"
 
 namespace peg3d::sense {
@@ -268,6 +271,20 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
     }
   }
   return best;
+}
+
+void ScanMap::write_bt(const std::filesystem::path& file) const {
+  octomap::OcTree tree(config_.resolution);
+  tree.setProbHit(config_.prob_hit);
+  tree.setProbMiss(config_.prob_miss);
+  tree.setClampingThresMin(config_.clamp_min);
+  tree.setClampingThresMax(config_.clamp_max);
+  for_each_known([&](const CellKey& k, float log_odds) { tree.setNodeValue(octomap::OcTreeKey(k[0], k[1], k[2]), log_odds, true); });
+  tree.updateInnerOccupancy();
+  tree.prune();
+  std::ostringstream out;
+  if (!tree.writeBinaryConst(out)) throw std::runtime_error(file.string() + ": OctoMap could not write the map");
+  write_file_atomically(file, out.str());
 }
 
 std::size_t ScanMap::bytes() const {

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <span>
@@ -126,6 +127,12 @@ class ScanMap {
       if (v == v && v != -std::numeric_limits<float>::infinity()) f(key_at(c), v);  // neither unknown nor beyond
     }
   }
+  /// Writes the map as OctoMap's binary `.bt` file (atomically): a tree of the same resolution and sensor model
+  /// holding every known cell, pruned, as octomap::OcTree::writeBinary writes it (each cell occupied or free by
+  /// OctoMap's occupancy threshold, 0.5). Throws std::runtime_error naming the file when it cannot be written
+  /// (as core/atomic_file.hpp does).
+  void write_bt(const std::filesystem::path& file) const;
+
   /// Bytes the map holds (cells, scan sets and key buffer).
   std::size_t bytes() const;
 

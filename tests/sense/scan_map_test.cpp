@@ -8,6 +8,7 @@
 #include <octomap/OcTree.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "core/error.hpp"
@@ -191,6 +192,50 @@ TEST(ScanMap, ARayBeyondRangeCarvesFreeSpaceOnlyAndAnEndpointWinsOverFree) {
   both.clear();
   EXPECT_EQ(both.known_cells(), 0);
   EXPECT_TRUE(std::isnan(both.log_odds(both.key_of(o + Vec3(4.0, 0, 0)))));
+}
+
+TEST(ScanMap, ASavedMapReadsBackWithOctomapAsTheCellsTheScansMade) {
+  const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/forest.yaml"));
+  const StaticRayScene scene(*arena);
+  const Vec3 lo = arena->bounds().lo, hi = arena->bounds().hi;
+  ScanMap map(ScanMapConfig{}, lo, hi);
+  LidarConfig lc;
+  lc.azimuth_rays = 32, lc.elevation_rays = 4, lc.elevation_fov = 60.0, lc.range = 8.0;
+  const Lidar lidar(lc);
+  std::vector<Ray> rays(std::size_t(lidar.rays()));
+  std::vector<RayHit> hits(rays.size());
+  std::vector<Vec3> points(rays.size());
+  Rng rng(31);
+  for (int s = 0; s < 30; ++s) {
+    const Vec3 at = lo + (hi - lo).cwiseProduct(Vec3(uniform(rng, 0.1, 0.9), uniform(rng, 0.1, 0.9), uniform(rng, 0.05, 0.5)));
+    lidar.rays_at(at, Heading{uniform(rng, -kPi, kPi), kPi / 2}, rays);
+    scene.cast(rays, lc.range, hits);
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      points[k] = at + (hits[k].target != RayTarget::kNone ? hits[k].distance : lc.range + 1.0) * rays[k].direction;
+    }
+    map.insert(at, points, lc.range);
+  }
+  const auto file = std::filesystem::temp_directory_path() / "peg3d_scan_map_test.bt";
+  map.write_bt(file);
+  octomap::OcTree tree(0.1);
+  ASSERT_TRUE(tree.readBinary(file.string()));
+  EXPECT_EQ(tree.getResolution(), 0.25);
+  // Binary files keep occupied or free: every known cell reads back as the scans left it, and nothing else is known.
+  long long known = 0, occupied = 0, wrong = 0;
+  map.for_each_known([&](const CellKey& k, float log_odds) {
+    const octomap::OcTreeNode* n = tree.search(octomap::OcTreeKey(k[0], k[1], k[2]));
+    ++known, occupied += log_odds > 0.0f;
+    if (n == nullptr || tree.isNodeOccupied(n) != (log_odds > 0.0f)) ++wrong;
+  });
+  EXPECT_EQ(wrong, 0);
+  tree.expand();
+  long long leaves = 0, tree_occupied = 0;
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) ++leaves, tree_occupied += tree.isNodeOccupied(*it);
+  EXPECT_EQ(leaves, known);
+  EXPECT_EQ(tree_occupied, occupied);
+  EXPECT_GT(occupied, 100);
+  std::filesystem::remove(file);
+  EXPECT_THROW(map.write_bt("/nonexistent-dir/map.bt"), std::runtime_error);
 }
 
 TEST(ScanMap, ABoxTooFineForMemoryIsRefused) {
