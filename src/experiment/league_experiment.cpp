@@ -298,6 +298,7 @@ void League::play_start(const Start& st, std::span<Game> games) const {
       } else {
         game::add_configured(lineup, sim.config(), game::Role::kEvader, ne, derive_seed(seed, {2}));
       }
+      state.forget_maps();  // persistent maps carry nothing from one pairing to the next
       games[p * evaders_.size() + e] = {maps_[st.map].name, scenario.name, st.seed,
                                         P.name, E.name,      evaluate(sim, state, scenario, lineup, seed)};
       if (s.sweep.control.progress) s.sweep.control.progress->episode_done();

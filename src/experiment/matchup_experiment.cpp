@@ -156,6 +156,7 @@ class MatchupRun {
       trace = std::make_shared<game::Trace>();
       trace->reserve(sim.max_steps(), scenario.agents());
     }
+    state.forget_maps();  // persistent maps carry nothing from one pairing to the next
     record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}), trace.get());
     record.trace = std::move(trace);
     record.agents = game::agent_summaries(state);

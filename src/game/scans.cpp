@@ -32,14 +32,14 @@ void prepare_scans(const Sim& sim, SimState& st, std::uint64_t seed) {
     total += rays;
     most = std::max(most, rays);
     if (rays > 0) s.rng[i].seed(derive_seed(seed, {kSensorStream, i}));
-    // Agent i's map: made when first needed (or when its settings change), else cleared; a map an agent does
-    // not use now is kept for a later scenario that gives it one again.
+    // Agent i's map: made when first needed (or when its settings change), else cleared unless it persists; a
+    // map an agent does not use now is kept for a later scenario that gives it one again.
     const sense::ScanMapConfig& mc = a.config->map;
     std::unique_ptr<sense::ScanMap>& map = s.maps[i];
     if (mc.enabled) {
       if (!map || map->config() != mc) {
         map = std::make_unique<sense::ScanMap>(mc, sim.arena().bounds().lo, sim.arena().bounds().hi);
-      } else {
+      } else if (!mc.persist) {
         map->clear();
       }
       map->reserve(rays, s.lidar[i]->config().range);

@@ -173,7 +173,8 @@ class SimState {
     std::vector<Rng> rng;                    ///< agent i's sensor stream, from the reset's seed
     std::vector<const sense::Lidar*> lidar;  ///< agent i's lidar (null: none)
     /// Agent i's own map, built from its scans (AgentConfig::map; null: none). Made by the first reset that
-    /// needs it, cleared by every reset: a map lives for one episode.
+    /// needs it, cleared by every reset: a map lives for one episode, or with map.persist for as long as this
+    /// state plays (a run), until forget_maps(). A map belongs to the agent's index in the scenario.
     std::vector<std::unique_ptr<sense::ScanMap>> maps;
     std::vector<Vec3> points;                ///< scratch: one scan's endpoints for its map
     std::vector<Ray> rays;                   ///< scratch: one scan's rays
@@ -183,6 +184,12 @@ class SimState {
   /// Agent i's latest readings and echoes (empty without a lidar).
   std::span<const double> ranges(int i) const;
   std::span<const std::uint8_t> echoes(int i) const;
+  /// Clears every agent's map (map.persist: a new run on this state, e.g. the next pairing of a match-up).
+  void forget_maps() {
+    for (auto& m : scans.maps) {
+      if (m) m->clear();
+    }
+  }
   /// Agent i's own map (null: none).
   const sense::ScanMap* map(int i) const {
     return !scans.first.empty() && agents[std::size_t(i)].config->map.enabled ? scans.maps[std::size_t(i)].get() : nullptr;

@@ -50,6 +50,8 @@ struct ScanMapConfig {
   double clamp_max = 0.971;   ///< in [0.5, 1): the most (OctoMap's default)
   /// Cells no scan has touched count as occupied for nearest_occupied (the cautious reading); by default free.
   bool unknown_is_occupied = false;
+  /// The map persists over the episodes played on one game state (a run) instead of being cleared by every reset.
+  bool persist = false;
   bool operator==(const ScanMapConfig&) const = default;
 };
 
@@ -65,6 +67,8 @@ void visit_fields(V& v, C& c) {
   v.number("clamp_max", c.clamp_max, Range::closed_open(0.5, 1.0), "", "most occupancy probability a cell keeps");
   v.flag("unknown_is_occupied", c.unknown_is_occupied,
          "cells no scan has touched count as obstacles for the agent's inputs (default: as free space)");
+  v.flag("persist", c.persist,
+         "the map persists over the episodes of a run (one game state) instead of living for one episode");
 }
 
 /// OctoMap's key of a cell: floor(coordinate / resolution) + 32768 on each axis.

@@ -251,6 +251,24 @@ TEST(Scans, OwnMapInputsAreTheNearestOccupiedCellOfTheMapTheScansBuilt) {
   EXPECT_LT(st.map(0)->known_cells(), mine.known_cells() / 4);
 }
 
+TEST(Scans, APersistentMapKeepsWhatEarlierEpisodesSawUntilForgotten) {
+  const auto arena = map_arena("maps/forest.yaml");
+  GameConfig c = own_map_config();
+  c.pursuer.map.persist = true;  // the evader's map lives for an episode
+  const Sim sim(arena, c);
+  SimState st(sim);
+  const world::Scenario& s = arena->map().scenarios.front();
+  const std::array<Steering, 2> none{};
+  reset(sim, st, s, 1);
+  for (int k = 0; k < 50 && !st.done; ++k) step(sim, st, none);
+  const long long pursuer_known = st.map(0)->known_cells(), evader_known = st.map(1)->known_cells();
+  reset(sim, st, s, 2);
+  EXPECT_GE(st.map(0)->known_cells(), pursuer_known);   // kept, and the new reset's scan added to it
+  EXPECT_LT(st.map(1)->known_cells(), evader_known);    // cleared, then one scan
+  st.forget_maps();
+  EXPECT_EQ(st.map(0)->known_cells(), 0);
+}
+
 TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {
   // A ball between the pursuer and a motionless evader: pure pursuit flies straight at it. The guard, fed by the
   // world, or by a map from a lidar that looks ahead, turns away; fed by a map from a lidar that looks back, it
