@@ -153,16 +153,18 @@ const sense::Lidar* Sim::lidar(Role role, int rank) const {
 
 SimState::SimState(const Sim& sim) : collider(sim.arena_ptr()) {}
 
-std::span<const double> SimState::ranges(int i) const {
-  if (scans.first.empty()) return {};
-  const auto b = std::size_t(scans.first[std::size_t(i)]), e = std::size_t(scans.first[std::size_t(i) + 1]);
-  return std::span<const double>(scans.ranges).subspan(b, e - b);
+namespace {
+// Agent i's rays in one of the scans' per-ray buffers (empty without a lidar).
+template <class T>
+std::span<const T> agent_rays(const SimState::Scans& s, const std::vector<T>& buffer, int i) {
+  if (s.first.empty()) return {};
+  const auto b = std::size_t(s.first[std::size_t(i)]), e = std::size_t(s.first[std::size_t(i) + 1]);
+  return std::span<const T>(buffer).subspan(b, e - b);
 }
+}  // namespace
 
-std::span<const std::uint8_t> SimState::echoes(int i) const {
-  if (scans.first.empty()) return {};
-  const auto b = std::size_t(scans.first[std::size_t(i)]), e = std::size_t(scans.first[std::size_t(i) + 1]);
-  return std::span<const std::uint8_t>(scans.echo).subspan(b, e - b);
-}
+std::span<const double> SimState::ranges(int i) const { return agent_rays(scans, scans.ranges, i); }
+
+std::span<const std::uint8_t> SimState::echoes(int i) const { return agent_rays(scans, scans.echo, i); }
 
 }  // namespace peg3d::game

@@ -28,7 +28,7 @@ class StateProbe final : public ObstacleProbe {
  public:
   StateProbe(const Sim& sim, const SimState& state, int i, int hint) : sim_(sim), state_(state), i_(i), hint_(hint) {}
   ObstacleSense nearest(const Vec3& p, double reach) const override {
-    if (state_.map(i_) != nullptr && state_.agents[std::size_t(i_)].config->observation.obstacles == ObstacleSource::kOwnMap) {
+    if (state_.agents[std::size_t(i_)].config->observation.obstacles == ObstacleSource::kOwnMap) {
       return sense_own_map(sim_, state_, i_, p);
     }
     int hint = hint_;

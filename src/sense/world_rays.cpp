@@ -3,12 +3,13 @@
 namespace peg3d::sense {
 
 RayHit cast_at(const StaticRayScene& scene, const world::MoverTimeline* movers, double t, const Ray& ray, double range) {
-  const RayHit fixed = scene.cast(ray, range);
-  if (movers == nullptr || movers->count() == 0) return fixed;
-  // Movers only nearer than the static hit matter: the static distance bounds their search.
-  const world::MoverHit moving = movers->first_along(ray, t, fixed.distance);
-  if (moving.mover < 0 || moving.distance >= fixed.distance) return fixed;
-  return {moving.distance, RayTarget::kMover, moving.mover};
+  WorldAtInstant w;
+  w.scene = &scene;
+  w.movers = movers;
+  w.time = t;
+  RayHit hit;
+  cast_all(w, {&ray, 1}, range, -1, {&hit, 1});
+  return hit;
 }
 
 void cast_all(const WorldAtInstant& w, std::span<const Ray> rays, double range, int skip, std::span<RayHit> hits) {
@@ -17,6 +18,7 @@ void cast_all(const WorldAtInstant& w, std::span<const Ray> rays, double range, 
     const Ray& ray = rays[k];
     RayHit& hit = hits[k];
     if (w.movers != nullptr && w.movers->count() > 0) {
+      // Movers only nearer than the static hit matter: the static distance bounds their search.
       const world::MoverHit moving = w.movers->first_along(ray, w.time, hit.distance);
       if (moving.mover >= 0 && moving.distance < hit.distance) hit = {moving.distance, RayTarget::kMover, moving.mover};
     }

@@ -297,6 +297,18 @@ TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {
   EXPECT_GT(collisions(true, 180.0), 0);
 }
 
+// `hash(seed)` run on 2 and 4 threads at once, each equal to `here`, the one-thread value.
+template <class Hash>
+void expect_same_on_threads(const Hash& hash, std::uint64_t here) {
+  for (const int threads : {2, 4}) {
+    std::vector<std::uint64_t> got(static_cast<std::size_t>(threads));
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back([&, t] { got[std::size_t(t)] = hash(); });
+    for (std::thread& t : pool) t.join();
+    for (std::uint64_t g : got) EXPECT_EQ(g, here) << threads << " threads";
+  }
+}
+
 // A game of FACL agents sensing through their own maps on forest, hashed: positions of every agent every step.
 std::uint64_t own_map_game_hash(const Sim& sim, std::uint64_t seed) {
   Fnv1a h;
@@ -316,13 +328,7 @@ TEST(Scans, AnOwnMapGameIsTheSameOnAnyThreadCount) {
   c.time_limit = 30.0;
   const Sim sim(map_arena("maps/forest.yaml"), c);
   const std::uint64_t here = own_map_game_hash(sim, 5);
-  for (const int threads : {2, 4}) {
-    std::vector<std::uint64_t> got(static_cast<std::size_t>(threads));
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back([&, t] { got[std::size_t(t)] = own_map_game_hash(sim, 5); });
-    for (std::thread& t : pool) t.join();
-    for (std::uint64_t g : got) EXPECT_EQ(g, here) << threads << " threads";
-  }
+  expect_same_on_threads([&] { return own_map_game_hash(sim, 5); }, here);
   // Sensing through the map moves the agents: the game differs from the one that senses the world.
   GameConfig world = c;
   world.pursuer.observation.obstacles = world.evader.observation.obstacles = ObstacleSource::kWorld;
@@ -358,13 +364,7 @@ TEST(Scans, ASensingGameIsTheSameOnAnyThreadCount) {
   c.evader.lidar.period = 2;
   const Sim sim(map_arena("maps/quarry.yaml"), c);
   const std::uint64_t here = sensing_game_hash(sim, 5);
-  for (const int threads : {2, 4}) {
-    std::vector<std::uint64_t> got(static_cast<std::size_t>(threads));
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back([&, t] { got[std::size_t(t)] = sensing_game_hash(sim, 5); });
-    for (std::thread& t : pool) t.join();
-    for (std::uint64_t g : got) EXPECT_EQ(g, here) << threads << " threads";
-  }
+  expect_same_on_threads([&] { return sensing_game_hash(sim, 5); }, here);
   EXPECT_NE(sensing_game_hash(sim, 6), here);  // the seed reaches the readings
   // The golden value: readings that move must be explained in the commit that updates it.
   EXPECT_EQ(here, 0xd57ba1315a801568ull) << std::hex << here;
