@@ -39,12 +39,16 @@ std::unique_ptr<env::Batch> make_batch(const std::string& map, const std::string
   return std::make_unique<env::Batch>(world::Arena::build(spec, options), std::move(c), std::move(settings));
 }
 
-// A numpy view of `count` elements at `data`, shaped, kept alive by `owner` (the Batch's Python object).
+// A read-only numpy view of the elements at `data`, shaped, kept alive by `owner` (the Batch's Python object).
+// Without `strides`, the elements are contiguous in C order; strides are in bytes.
 template <class T>
-py::array numpy_view(py::handle owner, T* data, std::vector<py::ssize_t> shape, const char* dtype = nullptr) {
-  std::vector<py::ssize_t> strides(shape.size());
-  py::ssize_t s = sizeof(T);
-  for (std::size_t k = shape.size(); k-- > 0;) strides[k] = s, s *= shape[k];
+py::array numpy_view(py::handle owner, T* data, std::vector<py::ssize_t> shape, const char* dtype = nullptr,
+                     std::vector<py::ssize_t> strides = {}) {
+  if (strides.empty()) {
+    strides.resize(shape.size());
+    py::ssize_t s = sizeof(T);
+    for (std::size_t k = shape.size(); k-- > 0;) strides[k] = s, s *= shape[k];
+  }
   py::array a = dtype ? py::array(py::dtype(dtype), shape, strides, data, owner) : py::array(py::dtype::of<T>(), shape, strides, data, owner);
   a.attr("flags").attr("writeable") = false;
   return a;
@@ -130,6 +134,19 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("observations", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
         return numpy_view(self, b.observations(), {b.games(), b.agents(), b.observation_size()});
+      })
+      .def_property_readonly("rays", [](const env::Batch& b) { return b.rays(); })
+      .def_property_readonly("ranges_offset", [](const env::Batch& b) { return b.ranges_offset(); })
+      .def("agent_rays", [](const env::Batch& b, int i) {
+        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
+        return b.rays(i);
+      })
+      .def_property_readonly("ranges", [](py::object self) {
+        // The range readings inside the observations: (games, agents, rays), the same memory.
+        env::Batch& b = self.cast<env::Batch&>();
+        const py::ssize_t f = sizeof(float), size = b.observation_size();
+        return numpy_view(self, b.observations() + b.ranges_offset(), {b.games(), b.agents(), b.rays()}, nullptr,
+                          {size * b.agents() * f, size * f, f});
       })
       .def_property_readonly("rewards", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();

@@ -40,6 +40,9 @@ class ParallelEnv(_Base):
         spaces = {True: _loading.role_spaces(b, True), False: _loading.role_spaces(b, False)}
         self._observation_spaces = {n: spaces[i < b.pursuers][0] for n, i in self._index.items()}
         self._action_spaces = {n: spaces[i < b.pursuers][1] for n, i in self._index.items()}
+        # Each agent's latest lidar readings (m) are the last `rays` entries of its observation, from
+        # `ranges_offset` (zeros after an agent's own rays; no entries without a lidar).
+        self.rays, self.ranges_offset = b.rays, b.ranges_offset
         self.agents = []
         self._started = False
         self._closed = False

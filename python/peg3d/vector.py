@@ -63,9 +63,13 @@ class VectorEnv:
         # The C++ buffers never move: their per-role views are made once and returned by every call.
         self._obs = self._split(b.observations)
         self._rew, self._term, self._trunc = self._split(b.rewards), self._split(b.terminated), self._split(b.truncated)
+        # Each agent's latest lidar readings (m): the last `rays` entries of its observation, the same memory.
+        self.rays, self.ranges_offset = b.rays, b.ranges_offset
+        self.ranges = self._split(b.ranges)
         terms = self._split(b.reward_terms)
         self._info = {"reset": b.reset_flags, "acted": self._split(b.acted), "active": self._split(b.active),
                       "collided": self._split(b.collided), "captured": self._split(b.captured),
+                      "ranges": self.ranges,
                       "reward_terms": {r: dict(zip(REWARD_TERMS, np.moveaxis(t, -1, 0))) for r, t in terms.items()}}
         self._closed = False
 

@@ -7,6 +7,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -144,6 +145,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     }
   }
   sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
+  for (int i = 0; i < agents_; ++i) layout_.rays = std::max(layout_.rays, rays(i));
   games_.reserve(std::size_t(settings_.games));
   for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
   if (settings_.record) {
@@ -347,6 +349,8 @@ void Batch::write_outputs(int g) {
         }
       }
     }
+    const std::span<const double> ranges = st.ranges(i);
+    for (int k = 0; k < layout_.rays; ++k) slot[k] = k < int(ranges.size()) ? float(ranges[std::size_t(k)]) : 0.0f;
     active_[std::size_t(g) * std::size_t(agents_) + std::size_t(i)] = a.active && !st.done;
   }
 }
@@ -371,12 +375,22 @@ ObservationBounds Batch::observation_bounds() const {
     for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
     add(0, 1);
   }
+  double range = 0.0;  // the farthest any agent's lidar reads
+  for (int i = 0; i < agents_; ++i) {
+    if (rays(i) > 0) range = std::max(range, sim_->config().agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_)).lidar.range);
+  }
+  for (int k = 0; k < layout_.rays; ++k) add(0, range);
   // float rounding of the bounds must not exclude a value rounded the other way
   for (std::size_t k = 0; k < b.low.size(); ++k) {
     b.low[k] = std::nextafter(b.low[k], -INFINITY);
     b.high[k] = std::nextafter(b.high[k], INFINITY);
   }
   return b;
+}
+
+int Batch::rays(int i) const {
+  const sense::Lidar* lidar = sim_->lidar(game::role_at(i, pursuers_), game::rank_at(i, pursuers_));
+  return lidar != nullptr ? lidar->rays() : 0;
 }
 
 double Batch::action_bound(game::Role role) const {

@@ -32,12 +32,15 @@ namespace peg3d::env {
 /// The observation vector of one agent, float32, every entry with finite bounds (ObservationBounds): the 20
 /// entries of game::observation_base (game/observation_vector.hpp), then `neighbours` nearest other opponents
 /// and `neighbours` nearest teammates still in the game, nearest first, each as (relative position m, mask 1)
-/// and zeros with mask 0 where there are fewer.
+/// and zeros with mask 0 where there are fewer; then, when some agent has a lidar, the agent's latest range
+/// readings in its lidar's order (SimState::ranges), zeros after them for an agent with fewer rays.
 struct ObservationLayout {
   static constexpr int kBase = game::kObservationBase;
   static constexpr int kPerNeighbour = 4;
   int neighbours = 2;  ///< k, in [0, 16]
-  int size() const { return kBase + 2 * neighbours * kPerNeighbour; }
+  int rays = 0;        ///< the most rays any agent's lidar has (0: no lidar), in [0, sense::kMaxLidarRays]
+  int ranges_offset() const { return kBase + 2 * neighbours * kPerNeighbour; }
+  int size() const { return ranges_offset() + rays; }
 };
 
 /// How a batch is built. Every field a user sets is validated by Batch (InvalidParameter naming it).
@@ -75,6 +78,11 @@ class Batch {
   int agents() const { return agents_; }
   int pursuers() const { return pursuers_; }
   int observation_size() const { return layout_.size(); }
+  /// Where in an observation an agent's range readings start, and how many slots they have (ObservationLayout).
+  int ranges_offset() const { return layout_.ranges_offset(); }
+  int rays() const { return layout_.rays; }
+  /// How many of those slots agent i's lidar fills (0 without a lidar).
+  int rays(int i) const;
   const std::vector<std::string>& agent_names() const { return names_; }
   /// Whether agent i is played on the C++ side (its actions are ignored).
   bool controlled(int i) const { return controllers_[std::size_t(i)].has_value(); }

@@ -5,15 +5,23 @@
 #include "core/config_json.hpp"
 #include "core/config_overrides.hpp"
 #include "core/error.hpp"
+#include "core/validation.hpp"
 
 namespace peg3d::experiment {
 
 std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, const std::vector<std::string>& overrides) {
   std::vector<Algorithm> out;
   std::set<std::string> seen;
-  for (const std::string& n : names) {
-    if (!seen.insert(n).second) throw InputError("algorithm '" + n + "' is listed twice");
-    out.push_back({n, game::preset(n)});
+  for (const std::string& entry : names) {
+    // "NAME=PRESET" names a variant of a preset, so one preset can enter twice with different overrides.
+    const std::size_t eq = entry.find('=');
+    const std::string name = entry.substr(0, eq);
+    const std::string preset = eq == std::string::npos ? entry : entry.substr(eq + 1);
+    if (name.empty() || name.find_first_of(".= ,") != std::string::npos) {
+      throw InvalidParameter("--algorithms", entry, "an algorithm's name must be non-empty, without '.', '=', ',' or spaces");
+    }
+    if (!seen.insert(name).second) throw InputError("algorithm '" + name + "' is listed twice");
+    out.push_back({name, game::preset(preset)});
   }
   std::vector<nlohmann::json> configs;
   for (const Algorithm& a : out) configs.push_back(config::to_json(a.config));

@@ -21,7 +21,8 @@ struct Algorithm {
   game::GameConfig config;
 };
 
-/// Builds algorithms from preset names and applies `--set` overrides. An override whose first key is an
+/// Builds algorithms from preset names, each `PRESET` or `NAME=PRESET` (a named variant, so that one preset can
+/// enter twice), and applies `--set` overrides. An override whose first key is an
 /// algorithm's name applies to that algorithm only ("paper.pursuer.facl.actor_rate=0.01"); any other
 /// applies to every algorithm ("evader.motion_space=false"). Throws ConfigError / InvalidParameter naming the
 /// key, InputError for a name listed twice.

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -197,6 +198,48 @@ TEST(EnvBatch, NeighbourSlotsHoldTheNearestOtherAgentsFirstThenZeros) {
       EXPECT_EQ(teammates, (std::vector<float>{3, 0, 0, 1, 0, 10, 0, 1, 0, 0, 0, 0}));
     }
   }
+}
+
+TEST(EnvBatch, RangeSlotsHoldEachAgentsLatestReadingsThenZeros) {
+  // Pursuers with 8 x 2 rays to 12 m, evaders with 4 x 1 to 6 m: 16 slots, the evaders' last 12 zeros.
+  game::GameConfig c = standing_evaders();
+  c.pursuer.lidar.azimuth_rays = 8, c.pursuer.lidar.elevation_rays = 2, c.pursuer.lidar.elevation_fov = 40;
+  c.pursuer.lidar.range = 12;
+  c.evader.lidar.azimuth_rays = 4, c.evader.lidar.range = 6;
+  Batch batch(arena(), c, settings(3, 2));
+  Buffers buf{batch};
+  ASSERT_EQ(batch.rays(), 16);
+  ASSERT_EQ(batch.ranges_offset(), game::kObservationBase + 2 * 2 * 4);
+  ASSERT_EQ(batch.observation_size(), batch.ranges_offset() + 16);
+  EXPECT_EQ(batch.rays(0), 16);
+  EXPECT_EQ(batch.rays(3), 4);
+  const ObservationBounds bounds = batch.observation_bounds();
+  for (int k = batch.ranges_offset(); k < batch.observation_size(); ++k) {
+    EXPECT_LT(bounds.low[std::size_t(k)], 0.0f);
+    EXPECT_GT(bounds.high[std::size_t(k)], 12.0f);
+    EXPECT_LT(bounds.high[std::size_t(k)], 12.0001f);
+  }
+  const std::vector<double> zeros(3 * 4 * 2, 0.0);
+  int echoes = 0;
+  for (int step = 0; step <= crash_step() + 2; ++step) {
+    for (int g = 0; g < 3; ++g) {
+      const game::SimState& st = batch.state(g);
+      for (int i = 0; i < 4; ++i) {
+        SCOPED_TRACE(::testing::Message() << "step " << step << ", game " << g << ", agent " << i);
+        const std::vector<float> o = buf.observation(g, i);
+        EXPECT_EQ(std::vector<float>(o.begin(), o.begin() + batch.ranges_offset()), expected_observation(st, i, 2));
+        const std::span<const double> r = st.ranges(i);
+        ASSERT_EQ(int(r.size()), batch.rays(i));
+        for (int k = 0; k < 16; ++k) {
+          const float want = k < int(r.size()) ? float(r[std::size_t(k)]) : 0.0f;
+          EXPECT_EQ(o[std::size_t(batch.ranges_offset() + k)], want) << "ray " << k;
+          if (k < int(r.size())) echoes += st.echoes(i)[std::size_t(k)];
+        }
+      }
+    }
+    batch.step(zeros.data());
+  }
+  EXPECT_GT(echoes, 0);  // the rock and the arena's faces were seen, not only the lidars' ranges
 }
 
 TEST(EnvBatch, EachStepWritesItsGamesEventsIntoTheBuffers) {
