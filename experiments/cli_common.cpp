@@ -337,7 +337,7 @@ void add_html_option(CLI::App& app, std::vector<std::string>& patterns, const st
       ->delimiter(',');
 }
 
-bool chosen_for_html(const std::vector<std::string>& patterns, const std::string& key) {
+bool key_chosen(const std::vector<std::string>& patterns, const std::string& key) {
   for (const auto& p : patterns) {
     if (p == "all" || ::fnmatch(p.c_str(), key.c_str(), 0) == 0) return true;
   }

@@ -165,8 +165,8 @@ auto run_stoppable(SweepSession& session, Sweep&& sweep) {
 /// against a run's key (peg-paper: SCENARIO_ALGORITHM); "all" chooses every run.
 void add_html_option(CLI::App& app, std::vector<std::string>& patterns, const std::string& keys);
 
-/// Whether `key` matches one of the --html patterns.
-bool chosen_for_html(const std::vector<std::string>& patterns, const std::string& key);
+/// Whether `key` matches one of the shell patterns (--html, --save-maps); "all" matches every key.
+bool key_chosen(const std::vector<std::string>& patterns, const std::string& key);
 
 /// Writes the viewer file of one recorded episode (the viewer's files are read from
 /// data_dir()/assets/viewer once) and returns its size in bytes.

@@ -24,7 +24,7 @@ std::vector<std::string> write_viewers(const experiment::Experiment& e, const Ex
   if (o.html.empty()) return files;
   std::map<const world::Arena*, std::unique_ptr<view::ReplayScene>> scenes;
   for (const experiment::RecordedEpisode& r : e.recorded()) {
-    if (!chosen_for_html(o.html, r.key)) continue;
+    if (!key_chosen(o.html, r.key)) continue;
     auto& scene = scenes[&r.sim->arena()];
     if (!scene) scene = std::make_unique<view::ReplayScene>(r.sim->arena());
     const std::filesystem::path file = results::output_file(o.out, r.key, ".html");
@@ -63,7 +63,7 @@ int experiment_main(CLI::App& app, int argc, char** argv, const ExperimentOption
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<experiment::Experiment> e = make();
     if (!e) return 0;
-    if (!o.html.empty()) e->record_episodes([&o](const std::string& key) { return chosen_for_html(o.html, key); });
+    if (!o.html.empty()) e->record_episodes([&o](const std::string& key) { return key_chosen(o.html, key); });
     // The journal records every finished run; --resume reads it back and runs only the missing ones.
     SweepSession session = open_sweep(o, e->run_count(), e->episodes_per_run(), e->setup());
     experiment::SweepTiming timing{.build_seconds = seconds_since(start),

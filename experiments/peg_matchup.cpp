@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> evaders{"facl", "flee", "flee-apollonius", "random"};
   std::string config_source = "peg3d";
   std::filesystem::path pursuer_policy, evader_policy;
+  std::vector<std::string> save_maps;
   cli::add_experiment_flags(app, o, "SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee or 'S2_r0_*'", false);
   app.add_option("--config", config_source, "the agents' configuration: a preset (" + game::preset_list() + ") or a JSON file")
       ->capture_default_str();
@@ -25,6 +26,10 @@ int main(int argc, char** argv) {
       ->delimiter(',')->capture_default_str();
   app.add_option("--pursuer-policy", pursuer_policy, "a saved pursuer (FACL or MLP) playing the facl slot, not trained");
   app.add_option("--evader-policy", evader_policy, "a saved evader (FACL or MLP) playing the facl slot, not trained");
+  app.add_option("--save-maps", save_maps,
+                 "write each sensing agent's own map at the end of each game whose key matches one of these shell "
+                 "patterns (as --html), as OctoMap .bt files in OUT/maps/KEY_AGENT.bt")
+      ->delimiter(',');
 
   return cli::experiment_main(app, argc, argv, o, [&]() -> std::unique_ptr<experiment::Experiment> {
     const auto config = cli::config_or_listing(config_source, o);
@@ -34,6 +39,11 @@ int main(int argc, char** argv) {
     for (const auto& e : evaders) s.evaders.push_back(game::policy_named(e, game::Role::kEvader, "--evaders"));
     if (!pursuer_policy.empty()) s.pursuer_policy = game::load_saved_policy(pursuer_policy, game::Role::kPursuer);
     if (!evader_policy.empty()) s.evader_policy = game::load_saved_policy(evader_policy, game::Role::kEvader);
+    if (!save_maps.empty()) {
+      s.maps_dir = std::filesystem::path(o.out) / "maps";
+      std::filesystem::create_directories(s.maps_dir);
+      s.keep_maps = [&save_maps](const std::string& key) { return cli::key_chosen(save_maps, key); };
+    }
     return std::make_unique<experiment::MatchupExperiment>(cli::load_arena(o.map, !o.no_cache), *config,
                                                            std::move(s));
   });

@@ -20,6 +20,7 @@
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
 #include "game/observation_vector.hpp"
+#include "sense/scan_map.hpp"
 #include "view/replay.hpp"
 #include "view/viewer_html.hpp"
 #include "world/arena.hpp"
@@ -177,6 +178,15 @@ PYBIND11_MODULE(_core, m) {
           o(i, 3) = k.heading.alpha, o(i, 4) = k.heading.theta;
         }
         return out;
+      })
+      .def("write_map", [](const env::Batch& b, int g, int i, const std::string& file) {
+        // Agent i's own map in game g as it is now, as OctoMap's .bt file (docs/sensing.md).
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
+        const sense::ScanMap* map = b.state(g).map(i);
+        if (map == nullptr) throw py::value_error(b.agent_names()[std::size_t(i)] + " has no map (map.enabled)");
+        py::gil_scoped_release unlocked;
+        map->write_bt(file);
       })
       .def("episode", [](const env::Batch& b, int g) {
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");

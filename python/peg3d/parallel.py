@@ -47,6 +47,13 @@ class ParallelEnv(_Base):
         self._started = False
         self._closed = False
 
+    def save_map(self, agent, path):
+        """Writes `agent`'s own map (map.enabled, docs/sensing.md) as it is now, as an OctoMap .bt file."""
+        self._check_open()
+        if agent not in self._index:
+            raise ValueError(f"{agent}: not an agent of this environment")
+        self._batch.write_map(0, self._index[agent], os.fspath(path))
+
     def observation_space(self, agent):
         return self._observation_spaces[agent]
 

@@ -160,6 +160,14 @@ class MatchupRun {
     record.result = evaluate(sim, state, scenario, lineup, derive_seed(pseed, {2}), trace.get());
     record.trace = std::move(trace);
     record.agents = game::agent_summaries(state);
+    if (s_.keep_maps && s_.keep_maps(matchup_key(record))) {
+      for (int i = 0; i < state.agent_count(); ++i) {
+        const game::AgentState& a = state.agents[std::size_t(i)];
+        if (const sense::ScanMap* map = state.map(i)) {
+          map->write_bt(s_.maps_dir / (matchup_key(record) + "_" + game::agent_label(a.role, a.rank) + ".bt"));
+        }
+      }
+    }
     return record;
   }
 

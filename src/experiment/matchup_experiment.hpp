@@ -41,6 +41,10 @@ struct MatchupSettings {
   std::shared_ptr<const OpponentPool> pool{};
   /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
   std::function<bool(const std::string&)> keep_trace{};
+  /// Chooses the games (by matchup_key) whose agents' own maps are written at the episode's end, as OctoMap
+  /// `.bt` files `<maps_dir>/<key>_<agent>.bt` (an agent without a map writes none); none when empty.
+  std::function<bool(const std::string&)> keep_maps{};
+  std::filesystem::path maps_dir{};
 };
 
 struct MatchupRecord {

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """End-to-end checks of the experiment binaries' command line:
-- peg-matchup plays teams on maps/pack.yaml and writes matchups.csv, agents.csv and summary.json;
+- peg-matchup plays teams on maps/pack.yaml and writes matchups.csv, agents.csv and summary.json, and saves the
+  sensing agents' maps of the games --save-maps chooses;
 - peg-league trains teams on maps/pack.yaml and writes its matrix, findings, policies and heat-map, plays
   on a held-out map, and rejects bad algorithms, headings, policies, maps, fields and counts;
 - every input error exits with status 2, prints 'error: ...' naming the file or flag, and writes nothing:
@@ -63,6 +64,22 @@ def main():
                         "pursuer_path_m", "evader_path_m", "collision_runs"):
                 check(key in entry, f"summary.json {key}")
         check("evaders" in r.stdout, "team table on stdout")
+
+    # --save-maps: the sensing agents' own maps of the chosen games, as OctoMap .bt files, and no others.
+    out = os.path.join(work, "maps_saved")
+    sensing = []
+    for role in ("pursuer", "evader"):
+        sensing += ["--set", f"{role}.lidar.azimuth_rays=16", "--set", f"{role}.lidar.elevation_rays=2",
+                    "--set", f"{role}.lidar.elevation_fov=40", "--set", f"{role}.map.enabled=true"]
+    r = run([matchup, "--map", "maps/forest.yaml", "--out", out, "--pursuers", "pn", "--evaders", "flee,random",
+             "--save-maps", "F1_r0_pn_vs_flee", "--set", "time_limit=5", *sensing, *quick])
+    check(r.returncode == 0, f"peg-matchup --save-maps: status {r.returncode}: {r.stderr[-2000:]}")
+    if r.returncode == 0:
+        saved = sorted(os.listdir(os.path.join(out, "maps")))
+        check(saved == ["F1_r0_pn_vs_flee_evader_0.bt", "F1_r0_pn_vs_flee_pursuer_0.bt"], f"saved maps: {saved}")
+        for f in saved:
+            head = open(os.path.join(out, "maps", f), "rb").read(64)
+            check(head.startswith(b"# Octomap OcTree binary file"), f"{f} is an OctoMap binary tree")
 
     # A policy to misuse: an evader saved by a tiny peg-paper run.
     base = os.path.join(work, "base")

@@ -87,3 +87,25 @@ def test_own_map_entries_come_from_what_the_agent_has_seen():
         for e in (world, mapped, blind):
             e.step(a)
     assert sensed > 0
+
+
+def test_save_map_writes_the_agents_map_as_an_octomap_file(tmp_path):
+    env = peg3d.parallel_env(map="maps/forest.yaml", opponents={"evader": "flee"},
+                             set=dict(SHORT, **lidar("pursuer", 16, 2, extra={"pursuer.map.enabled": True})))
+    env.reset(seed=4)
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        env.step({a: rng.uniform(-1, 1, 2) * env.action_space(a).high for a in env.agents})
+    env.save_map("pursuer_0", tmp_path / "p.bt")
+    data = (tmp_path / "p.bt").read_bytes()
+    assert data.startswith(b"# Octomap OcTree binary file") and b"res 0.25" in data and len(data) > 200
+    env.close()
+    # An agent without a map has none to save.
+    plain = peg3d.parallel_env(map="maps/forest.yaml", opponents={"evader": "flee"}, set=SHORT)
+    plain.reset(seed=4)
+    try:
+        plain.save_map("pursuer_0", tmp_path / "q.bt")
+        raise AssertionError("saved a map the agent does not have")
+    except ValueError as e:
+        assert "has no map" in str(e)
+    assert not (tmp_path / "q.bt").exists()
