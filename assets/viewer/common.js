@@ -22,13 +22,14 @@
      pegView.setLayer(name, visible)   shows or hides a layer, keeps its checkbox in sync, renders
      pegView.render()    renders now
    plus, read-only: pegView.frame (current frame), pegView.time (its time, s), pegView.layers (the layer names
-   with their visibility), pegView.timing (load timings, ms). */
+   with their visibility), pegView.timing (load timings, ms), pegView.sensing (the selected agent, its rays
+   drawn and its own map's cells shown). */
 
 var scriptMs = performance.now();  // this script starts running
 var startMs = scriptMs;             // the replay starts loading (set in start())
 
 var LAYERS = ['obstacles', 'terrain', 'movers', 'agents', 'trails', 'capture', 'collisions', 'apollonius',
-  'cone', 'obstacle_vectors', 'arena'];
+  'cone', 'obstacle_vectors', 'sensing', 'arena'];
 var LAYER_LABELS = {
   obstacles: 'Obstacles (spheres, cylinders)',
   terrain: 'Terrain',
@@ -40,6 +41,7 @@ var LAYER_LABELS = {
   apollonius: 'Apollonius surface',
   cone: 'Optimal cone',
   obstacle_vectors: 'Nearest-obstacle vectors',
+  sensing: 'Selected agent\'s rays and own map',
   arena: 'Arena box'
 };
 var SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 50];

@@ -147,6 +147,15 @@ function Viewer(R) {
     },
     enumerable: true
   });
+  // The sensing layer as drawn now: the selected agent, its rays drawn and its map's cells shown.
+  Object.defineProperty(api, 'sensing', {
+    get: function () {
+      var a = state.agent >= 0 ? agents[state.agent] : null;
+      return { agent: state.agent, rays: v.rayLines.visible ? v.rayLines.geometry.drawRange.count / 2 : 0,
+               cells: a && a.mapView ? a.mapView.mesh.count : 0 };
+    },
+    enumerable: true
+  });
   window.pegView = api;
   api.ready = true;
   document.body.setAttribute('data-peg-ready', 'true');

@@ -94,6 +94,8 @@ function buildPanels(v) {
     state.agent = Number(ui.agent.value);
     buildAgentInfo(v);
     updatePanel(v, true);
+    applyState(v, state.frame, state.frac);  // the sensing layer draws the selected agent's rays and map
+    renderNow(v);
   });
 
   // Follow selector
@@ -151,6 +153,7 @@ function buildPanels(v) {
     apollonius: R.pairs.length,
     cone: R.pairs.length,
     obstacle_vectors: agents.length,
+    sensing: agents.filter(function (a) { return a.lidar; }).length,
     arena: 1
   };
   LAYERS.forEach(function (name) {

@@ -73,6 +73,36 @@ function u32(s, key) { return new Uint32Array(decodeBytes(s, 4, key)); }
 function u8(s, key) { return new Uint8Array(decodeBytes(s, 1, key)); }
 
 
+// An agent's lidar (rays in its sensor's frame, every frame's readings), or null when it has none or the data
+// do not fit together.
+function readLidar(li, key, frames) {
+  if (!li || typeof li !== 'object') return null;
+  var n = Math.floor(num(li.rays, 0));
+  var out = {
+    rays: n,
+    range: Math.max(0, num(li.range, 0)),
+    frame: f32(li.frame_f32, key + 'frame_f32'),
+    ranges: f32(li.ranges_f32, key + 'ranges_f32'),
+    echo: u8(li.echo_u8, key + 'echo_u8'),
+    scanFrame: u32(li.scan_frame_u32, key + 'scan_frame_u32')
+  };
+  var ok = n > 0 && out.frame.length === 3 * n && out.ranges.length >= n * frames && out.echo.length >= n * frames &&
+    out.scanFrame.length >= frames;
+  return ok ? out : null;
+}
+// An agent's own map as it grows: cells occupied at frame 0, then each change of occupancy, in frame order.
+function readMap(m, key) {
+  if (!m || typeof m !== 'object') return null;
+  var out = {
+    resolution: Math.max(1e-3, num(m.resolution, 0.25)),
+    frames: u32(m.flip_frames_u32, key + 'flip_frames_u32'),
+    centres: f32(m.flip_centres_f32, key + 'flip_centres_f32'),
+    occupied: u8(m.flip_occupied_u8, key + 'flip_occupied_u8')
+  };
+  var k = out.frames.length;
+  return out.centres.length === 3 * k && out.occupied.length === k ? out : null;
+}
+
 function loadReplay() {
   var el = $('peg-replay');
   if (!el) throw new Error('The page holds no replay data.');
@@ -125,7 +155,9 @@ function loadReplay() {
       obstacle: f32(tr.obstacle_f32, key + 'obstacle_f32'),
       inputs: f32(tr.inputs_f32, key + 'inputs_f32'),
       action: f32(tr.action_f32, key + 'action_f32'),
-      reward: f32(tr.reward_f32, key + 'reward_f32')
+      reward: f32(tr.reward_f32, key + 'reward_f32'),
+      lidar: readLidar(a.lidar, 'agents[' + i + '].lidar.', n),
+      map: readMap(a.map, 'agents[' + i + '].map.')
     };
   });
   // Labels: the names, made unique when several agents share one.

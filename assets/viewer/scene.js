@@ -272,6 +272,37 @@ function buildScene(v) {
     layerGroups.obstacle_vectors.add(a.obstacleLine);
   });
 
+  // --- sensing: the selected agent's rays (echoes bright, rays that met nothing dim) and each sensing agent's
+  // own map, its occupied cells as instanced cubes that appear and vanish as the flips say (timeline.js)
+  var mostRays = agents.reduce(function (r, a) { return Math.max(r, a.lidar ? a.lidar.rays : 0); }, 0);
+  var rayPos = new THREE.BufferAttribute(new Float32Array(Math.max(1, mostRays) * 6), 3);
+  var rayCol = new THREE.BufferAttribute(new Float32Array(Math.max(1, mostRays) * 6), 3);
+  rayPos.setUsage(THREE.DynamicDrawUsage);
+  rayCol.setUsage(THREE.DynamicDrawUsage);
+  var rayGeom = new THREE.BufferGeometry();
+  rayGeom.setAttribute('position', rayPos);
+  rayGeom.setAttribute('color', rayCol);
+  rayGeom.setDrawRange(0, 0);
+  var rayLines = new THREE.LineSegments(rayGeom, new THREE.LineBasicMaterial({
+    vertexColors: THREE.VertexColors, transparent: true, opacity: 0.8 }));
+  rayLines.frustumCulled = false;
+  rayLines.visible = false;
+  layerGroups.sensing.add(rayLines);
+  agents.forEach(function (a) {
+    if (!a.map) return;
+    var cells = 0;  // at most every cell that ever becomes occupied is shown at once
+    for (var k = 0; k < a.map.occupied.length; ++k) cells += a.map.occupied[k];
+    var box = new THREE.BoxBufferGeometry(a.map.resolution, a.map.resolution, a.map.resolution);
+    var mesh = new THREE.InstancedMesh(box, new THREE.MeshPhongMaterial({
+      color: a.color.clone().lerp(new THREE.Color(0xffffff), 0.25), transparent: true, opacity: 0.55 }), Math.max(1, cells));
+    mesh.count = 0;
+    mesh.frustumCulled = false;
+    mesh.visible = false;
+    layerGroups.sensing.add(mesh);
+    // applied: flips shown so far; slot: cell -> instance; cell: instance -> cell
+    a.mapView = { mesh: mesh, applied: 0, slot: new Map(), cell: [], matrix: new THREE.Matrix4() };
+  });
+
   // --- collisions: crosses and screen-size dots, in frame order, shown through a draw range
   var collisionFrames = new Float64Array(R.collisions.map(function (c) { return c.frame; }));
   var collisionCross = null, collisionDots = null;
@@ -396,6 +427,7 @@ function buildScene(v) {
   v.apoSphere = apoSphere;
   v.apoPlane = apoPlane;
   v.coneGroup = coneGroup;
+  v.rayLines = rayLines;
   v.coneMesh = coneMesh;
   v.downY = downY;
   v.upZ = upZ;

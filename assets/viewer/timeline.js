@@ -47,6 +47,88 @@ function updateTrail(v, a, f) {
   t.geom.setDrawRange(0, c + 1);
 }
 
+// The selected agent's rays at frame f, drawn from the pose of the frame its readings were taken at (a lidar
+// with a period of several steps keeps its readings in between), as sense::Lidar::rays_at aims them: x the
+// heading, y level and to its left, z = x cross y.
+function updateRays(v, a, f) {
+  var lines = v.rayLines, li = a ? a.lidar : null;
+  lines.visible = false;
+  if (!li || !isActive(a, f)) return;
+  var sf = Math.min(li.scanFrame[f], v.N - 1), n = li.rays;
+  var o = v.tmpA, x = v.tmpB, z = v.tmpE;
+  read3(a.pos, sf, o);
+  headingDir(a, sf, x);
+  var al = readN(a.heading, 2, sf, 0);
+  if (!finite3(o) || !isFinite(al)) return;
+  var yx = -Math.sin(al), yy = Math.cos(al);  // y = (-sin alpha, cos alpha, 0)
+  z.set(x.y * 0 - x.z * yy, x.z * yx - x.x * 0, x.x * yy - x.y * yx);
+  var pos = lines.geometry.attributes.position.array, col = lines.geometry.attributes.color.array;
+  for (var k = 0; k < n; ++k) {
+    var fx = li.frame[3 * k], fy = li.frame[3 * k + 1], fz = li.frame[3 * k + 2];
+    var dx = fx * x.x + fy * yx + fz * z.x, dy = fx * x.y + fy * yy + fz * z.y, dz = fx * x.z + fz * z.z;
+    var len = Math.sqrt(dx * dx + dy * dy + dz * dz) || 1, r = li.ranges[f * n + k] / len;
+    var echo = li.echo[f * n + k] !== 0, j = 6 * k;
+    pos[j] = o.x; pos[j + 1] = o.y; pos[j + 2] = o.z;
+    pos[j + 3] = o.x + dx * r; pos[j + 4] = o.y + dy * r; pos[j + 5] = o.z + dz * r;
+    col[j] = col[j + 3] = echo ? 1.0 : 0.35;
+    col[j + 1] = col[j + 4] = echo ? 0.85 : 0.4;
+    col[j + 2] = col[j + 5] = echo ? 0.3 : 0.45;
+  }
+  lines.geometry.attributes.position.needsUpdate = true;
+  lines.geometry.attributes.color.needsUpdate = true;
+  lines.geometry.setDrawRange(0, 2 * n);
+  lines.visible = true;
+}
+
+// Agent a's own map at frame f: its flips up to f applied to the instanced cubes (from the start again when
+// seeking back). A cell that becomes free gives its instance to the last one.
+function updateMap(a, f) {
+  var m = a.map, mv = a.mapView;
+  if (mv.applied > 0 && m.frames[mv.applied - 1] > f) {
+    mv.applied = 0;
+    mv.slot.clear();
+    mv.cell.length = 0;
+    mv.mesh.count = 0;
+  }
+  var changed = false, res = m.resolution;
+  while (mv.applied < m.frames.length && m.frames[mv.applied] <= f) {
+    var k = mv.applied++, cx = m.centres[3 * k], cy = m.centres[3 * k + 1], cz = m.centres[3 * k + 2];
+    var key = Math.floor(cx / res) + ',' + Math.floor(cy / res) + ',' + Math.floor(cz / res);  // centres lie mid-cell
+    var at = mv.slot.get(key);
+    if (m.occupied[k] !== 0) {
+      if (at !== undefined || mv.cell.length >= mv.mesh.instanceMatrix.count) continue;
+      mv.matrix.makeTranslation(cx, cy, cz);
+      mv.mesh.setMatrixAt(mv.cell.length, mv.matrix);
+      mv.slot.set(key, mv.cell.length);
+      mv.cell.push(key);
+    } else {
+      if (at === undefined) continue;
+      var last = mv.cell.length - 1;
+      if (at !== last) {
+        mv.mesh.getMatrixAt(last, mv.matrix);
+        mv.mesh.setMatrixAt(at, mv.matrix);
+        mv.cell[at] = mv.cell[last];
+        mv.slot.set(mv.cell[at], at);
+      }
+      mv.cell.pop();
+      mv.slot.delete(key);
+    }
+    changed = true;
+  }
+  mv.mesh.count = mv.cell.length;
+  if (changed) mv.mesh.instanceMatrix.needsUpdate = true;
+}
+
+function updateSensing(v, f) {
+  var sel = v.state.agent >= 0 ? v.agents[v.state.agent] : null;
+  updateRays(v, sel, f);
+  v.agents.forEach(function (a) {
+    if (!a.mapView) return;
+    a.mapView.mesh.visible = a === sel;
+    if (a === sel) updateMap(a, f);
+  });
+}
+
 // Poses everything at frame f plus a fraction `frac` (in [0, 1)) towards frame f + 1 (playback only).
 function applyState(v, f, frac) {
   var R = v.R, N = v.N, agents = v.agents, movers = v.movers, state = v.state;
@@ -156,6 +238,8 @@ function applyState(v, f, frac) {
       }
     }
   }
+
+  updateSensing(v, f);
 
   if (collisionCross) {
     var nc = lastLE(v.collisionFrames, f) + 1;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "sense/scan_map.hpp"
+
 namespace peg3d::game {
 
 EpisodeResult summarize(const SimState& st) {
@@ -56,13 +58,20 @@ std::vector<AgentSummary> agent_summaries(const SimState& st) {
   return out;
 }
 
-void Trace::reserve(int max_steps, int agent_count) {
+void Trace::reserve(int max_steps, int agent_count, int rays, std::size_t map_flip_count) {
   const std::size_t frames_needed = std::size_t(max_steps) + 1;
   roles.reserve(std::size_t(agent_count));
   times.reserve(frames_needed);
   frames.reserve(frames_needed * std::size_t(agent_count));
   collisions.reserve(frames_needed * std::size_t(agent_count) * 3);
   captures.reserve(std::size_t(agent_count));
+  if (rays > 0) {
+    ray_first.reserve(std::size_t(agent_count) + 1);
+    ranges.reserve(frames_needed * std::size_t(rays));
+    echoes.reserve(frames_needed * std::size_t(rays));
+    scan_frames.reserve(frames_needed * std::size_t(agent_count));
+  }
+  map_flips.reserve(map_flip_count);
 }
 
 std::string agent_label(const Trace& trace, int i) {
@@ -82,6 +91,11 @@ void Trace::clear() {
   pushes.clear();
   body_poses.clear();
   movers = 0;
+  ray_first.clear();
+  ranges.clear();
+  echoes.clear();
+  scan_frames.clear();
+  map_flips.clear();
 }
 
 void Trace::record(const SimState& st, bool after_step) {
@@ -89,6 +103,7 @@ void Trace::record(const SimState& st, bool after_step) {
     clear();
     agents = st.agent_count();
     for (const AgentState& a : st.agents) roles.push_back(a.role);
+    ray_first.assign(st.scans.first.begin(), st.scans.first.end());
   }
   assert(agents == st.agent_count());
   times.push_back(st.time);
@@ -106,6 +121,7 @@ void Trace::record(const SimState& st, bool after_step) {
     }
     frames.push_back(f);
   }
+  if (!ray_first.empty()) record_sensing(st, after_step);
   if (st.push) {
     movers = st.push->movers();
     for (int m = 0; m < movers; ++m) body_poses.push_back(st.push->pose(m));
@@ -114,6 +130,26 @@ void Trace::record(const SimState& st, bool after_step) {
     collisions.insert(collisions.end(), st.events.collisions.begin(), st.events.collisions.end());
     captures.insert(captures.end(), st.events.captures.begin(), st.events.captures.end());
     pushes.insert(pushes.end(), st.events.pushes.begin(), st.events.pushes.end());
+  }
+}
+
+void Trace::record_sensing(const SimState& st, bool after_step) {
+  const int frame = frame_count() - 1;
+  for (const double r : st.scans.ranges) ranges.push_back(float(r));
+  echoes.insert(echoes.end(), st.scans.echo.begin(), st.scans.echo.end());
+  scan_frames.insert(scan_frames.end(), st.scans.step.begin(), st.scans.step.end());
+  for (int i = 0; i < agents; ++i) {
+    const sense::ScanMap* map = st.map(i);
+    if (map == nullptr) continue;
+    if (!after_step) {  // the map as the episode starts: the reset's scan, and with map.persist earlier episodes'
+      map->for_each_known([&](const sense::CellKey& key, float log_odds) {
+        if (log_odds > 0.0f) map_flips.push_back({frame, i, map->centre(key), true});
+      });
+    } else if (st.scans.step[std::size_t(i)] == st.step) {  // it scanned in this step
+      map->for_each_flip([&](const sense::CellKey& key, bool occupied) {
+        map_flips.push_back({frame, i, map->centre(key), occupied});
+      });
+    }
   }
 }
 

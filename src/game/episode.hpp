@@ -78,6 +78,14 @@ struct AgentFrame {
   bool active = true;   ///< in the game at this instant
 };
 
+/// A cell of an agent's own map that became occupied or free at a frame (Trace::map_flips).
+struct MapFlip {
+  int frame = 0;
+  int agent = 0;
+  Vec3 centre = Vec3::Zero();  ///< m, the cell's centre
+  bool occupied = false;
+};
+
 /// Every instant of one episode, for trajectory files, replays and viewers. Frame 0 is the start; frame k
 /// follows step k. reserve() makes recording allocation-free.
 struct Trace {
@@ -92,13 +100,27 @@ struct Trace {
   /// (the shared timeline has them).
   std::vector<Pose> body_poses;
   int movers = 0;                          ///< movers per frame of body_poses
+  /// Sensing (all empty when no agent has a lidar): agent i's rays are [ray_first[i], ray_first[i + 1]) of a
+  /// frame's readings, as SimState::ranges gives them.
+  std::vector<int> ray_first;
+  std::vector<float> ranges;          ///< m, frame-major: reading r of frame k at k * ray_first.back() + r
+  std::vector<std::uint8_t> echoes;   ///< 1 where that reading is an echo
+  std::vector<int> scan_frames;       ///< frame-major, per agent: the frame whose pose its readings were taken at
+  /// The agents' own maps: every cell occupied at frame 0, then every change of a cell's occupancy, in order.
+  std::vector<MapFlip> map_flips;
 
-  void reserve(int max_steps, int agent_count);
+  /// Makes recording an episode of at most max_steps steps allocation-free: its frames, `rays` readings a frame
+  /// (every agent's lidar together), and `map_flips` changes of the agents' maps (beyond that they grow).
+  void reserve(int max_steps, int agent_count, int rays = 0, std::size_t map_flip_count = 0);
   void clear();
   int frame_count() const { return static_cast<int>(times.size()); }
+  int rays() const { return ray_first.empty() ? 0 : ray_first.back(); }  ///< readings per frame
   const AgentFrame& at(int frame, int agent) const { return frames[std::size_t(frame) * std::size_t(agents) + std::size_t(agent)]; }
   /// Appends the state's current instant (after reset(): the start; after step(): with the step's events).
   void record(const SimState& state, bool after_step);
+
+ private:
+  void record_sensing(const SimState& state, bool after_step);
 };
 
 /// The label of agent i of a trace (agent_label: "pursuer_0", "evader_0", ...).

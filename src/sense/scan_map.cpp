@@ -86,6 +86,7 @@ void ScanMap::clear() {
     }
   }
   known_ = occupied_ = 0;
+  flips_.clear();
 }
 
 void ScanMap::reserve(int rays, double range) {
@@ -95,6 +96,7 @@ void ScanMap::reserve(int rays, double range) {
   const auto most = std::size_t(std::min(double(cells_.size()), double(rays) * per_ray));
   free_list_.reserve(most);
   hit_list_.reserve(std::min(cells_.size(), std::size_t(rays)));
+  flips_.reserve(free_list_.capacity() + hit_list_.capacity());  // every changed cell is in one of the lists
 }
 
 CellKey ScanMap::key_of(const Vec3& p) const {
@@ -159,6 +161,7 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   const octomap::point3d origin(float(origin_d.x()), float(origin_d.y()), float(origin_d.z()));
   free_list_.clear();
   hit_list_.clear();
+  flips_.clear();
   // A brick's 64 cells have one word of each set: bit l of word b is cell b * 64 + l.
   const auto mark = [&](const octomap::OcTreeKey& k, std::vector<std::uint64_t>& bits, std::vector<std::uint32_t>& list) {
     std::size_t c = 0;
@@ -183,6 +186,7 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     known_ += !was_known;
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
     occupied_ += change_occupied;
+    if (change_occupied != 0) flips_.push_back(c);
     // The brick's count of blocked cells: occupied ones, and with unknown_is_occupied the unknown ones too.
     const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
     if (change_blocked != 0) brick_occupied_[c / kBrickCells] = std::uint8_t(brick_occupied_[c / kBrickCells] + change_blocked);
@@ -290,7 +294,7 @@ void ScanMap::write_bt(const std::filesystem::path& file) const {
 std::size_t ScanMap::bytes() const {
   return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() +
          (free_bits_.capacity() + hit_bits_.capacity() + at_min_.capacity()) * sizeof(std::uint64_t) +
-         (free_list_.capacity() + hit_list_.capacity()) * sizeof(std::uint32_t);
+         (free_list_.capacity() + hit_list_.capacity() + flips_.capacity()) * sizeof(std::uint32_t);
 }
 
 }  // namespace peg3d::sense

@@ -131,6 +131,12 @@ class ScanMap {
       if (v == v && v != -std::numeric_limits<float>::infinity()) f(key_at(c), v);  // neither unknown nor beyond
     }
   }
+  /// Calls f(key, occupied) for each cell whose occupancy (log-odds > 0) the latest insert changed: how the map
+  /// grows, for replays. Empty after clear().
+  template <class F>
+  void for_each_flip(F&& f) const {
+    for (const std::uint32_t c : flips_) f(key_at(c), cells_[c] > 0.0f);
+  }
   /// Writes the map as OctoMap's binary `.bt` file (atomically): a tree of the same resolution and sensor model
   /// holding every known cell, pruned, as octomap::OcTree::writeBinary writes it (each cell occupied or free by
   /// OctoMap's occupancy threshold, 0.5). Throws std::runtime_error naming the file when it cannot be written
@@ -170,6 +176,7 @@ class ScanMap {
   std::vector<std::uint64_t> free_bits_, hit_bits_;  // a scan's sets: a word per brick
   std::vector<std::uint64_t> at_min_;                // cells at the lower clamp: a word per brick
   std::vector<std::uint32_t> free_list_, hit_list_;  // ... and their cells
+  std::vector<std::uint32_t> flips_;                 // the cells whose occupancy the latest insert changed
   float hit_ = 0.0f, miss_ = 0.0f, min_ = 0.0f, max_ = 0.0f;  // log-odds
   long long known_ = 0, occupied_ = 0;
 };

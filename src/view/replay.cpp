@@ -174,6 +174,40 @@ nlohmann::json agent_track(const game::Trace& trace, int i) {
           {"reward_f32", encoded(reward)}};
 }
 
+// Agent i's lidar, when it has one: its rays in the sensor's frame (x the heading, y level and to its left, z
+// up: sense::Lidar::rays_at), every frame's readings and echoes, and the frame each reading was taken at.
+nlohmann::json agent_lidar(const game::Trace& trace, int i, const sense::Lidar& lidar, double range) {
+  const int first = trace.ray_first[std::size_t(i)], n = trace.ray_first[std::size_t(i) + 1] - first;
+  std::vector<float> frame, ranges;
+  std::vector<std::uint8_t> echoes;
+  std::vector<std::uint32_t> scan_frames;
+  for (int k = 0; k < n; ++k) push(frame, lidar.frame_direction(k));
+  const std::size_t per_frame = std::size_t(trace.rays());
+  for (int f = 0; f < trace.frame_count(); ++f) {
+    const std::size_t at = std::size_t(f) * per_frame + std::size_t(first);
+    ranges.insert(ranges.end(), trace.ranges.begin() + long(at), trace.ranges.begin() + long(at) + n);
+    echoes.insert(echoes.end(), trace.echoes.begin() + long(at), trace.echoes.begin() + long(at) + n);
+    scan_frames.push_back(std::uint32_t(std::max(0, trace.scan_frames[std::size_t(f) * std::size_t(trace.agents) + std::size_t(i)])));
+  }
+  return {{"rays", n}, {"range", range}, {"frame_f32", encoded(frame)}, {"ranges_f32", encoded(ranges)},
+          {"echo_u8", encoded(echoes)}, {"scan_frame_u32", encoded(scan_frames)}};
+}
+
+// Agent i's own map as it grows: the cells occupied at frame 0, then each change, in order.
+nlohmann::json agent_map(const game::Trace& trace, int i, double resolution) {
+  std::vector<std::uint32_t> frames;
+  std::vector<float> centres;
+  std::vector<std::uint8_t> occupied;
+  for (const game::MapFlip& m : trace.map_flips) {
+    if (m.agent != i) continue;
+    frames.push_back(std::uint32_t(m.frame));
+    push(centres, m.centre);
+    occupied.push_back(m.occupied ? 1 : 0);
+  }
+  return {{"resolution", resolution}, {"flip_frames_u32", encoded(frames)}, {"flip_centres_f32", encoded(centres)},
+          {"flip_occupied_u8", encoded(occupied)}};
+}
+
 // Each mover's pose at the sampled frames, into the scene's movers.
 void mover_poses(nlohmann::json& j, const world::MoverTimeline& movers, const game::Trace& trace,
                  const std::vector<std::uint32_t>& samples) {
@@ -255,13 +289,19 @@ nlohmann::json replay_json(const ReplayScene& scene, const game::Sim& sim, const
   j["agents"] = nlohmann::json::array();
   for (int i = 0, pursuers = 0, evaders = 0; i < n; ++i) {
     const game::Role role = trace.roles[std::size_t(i)];
-    const game::AgentConfig& a = config.agent(role, role == game::Role::kPursuer ? pursuers++ : evaders++);
+    const int rank = role == game::Role::kPursuer ? pursuers++ : evaders++;
+    const game::AgentConfig& a = config.agent(role, rank);
     speeds[std::size_t(i)] = a.speed;
     j["agents"].push_back({{"name", game::agent_label(trace, i)},
                            {"role", game::to_string(role)},
                            {"radius", a.radius},
                            {"speed", a.speed},
                            {"track", agent_track(trace, i)}});
+    const sense::Lidar* lidar = sim.lidar(role, rank);
+    if (lidar != nullptr && lidar->rays() > 0 && !trace.ray_first.empty()) {
+      j["agents"].back()["lidar"] = agent_lidar(trace, i, *lidar, a.lidar.range);
+      if (a.map.enabled) j["agents"].back()["map"] = agent_map(trace, i, a.map.resolution);
+    }
   }
 
   // What the trace does not hold, sampled: where the movers are, and each pair's Apollonius sphere and cone.

@@ -53,7 +53,7 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
   int most = 0;
   for (const auto& s : scenarios) most = std::max(most, s.agents());
   Trace trace;
-  trace.reserve(c.max_steps(), most);
+  trace.reserve(c.max_steps(), most, lidar ? most * 64 : 0, own_map ? 1 << 20 : 0);
   const long before = testing::g_allocations.load();
   long steps = 0;
   for (std::uint64_t k = 0; k < 8; ++k) {

@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <map>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "core/hash.hpp"
 #include "core/random.hpp"
+#include "game/episode.hpp"
 #include "game/scans.hpp"
 #include "sense/lidar.hpp"
 #include "test_arena.hpp"
@@ -267,6 +269,70 @@ TEST(Scans, APersistentMapKeepsWhatEarlierEpisodesSawUntilForgotten) {
   EXPECT_LT(st.map(1)->known_cells(), evader_known);    // cleared, then one scan
   st.forget_maps();
   EXPECT_EQ(st.map(0)->known_cells(), 0);
+}
+
+// The cells of a map that are occupied now, by their keys.
+std::set<sense::CellKey> occupied_now(const sense::ScanMap& map) {
+  std::set<sense::CellKey> out;
+  map.for_each_known([&](const sense::CellKey& key, float log_odds) {
+    if (log_odds > 0.0f) out.insert(key);
+  });
+  return out;
+}
+
+TEST(Scans, ATraceRecordsEveryFramesReadingsAndTheMapsGrowth) {
+  // The pursuer scans every 3 steps and keeps its map over episodes; the evader scans every step.
+  const auto arena = map_arena("maps/forest.yaml");
+  GameConfig c = own_map_config();
+  c.pursuer.lidar.period = 3;
+  c.pursuer.map.persist = true;
+  const Sim sim(arena, c);
+  SimState st(sim);
+  Rng rng(8);
+  std::vector<Steering> u(2);
+  int flips_off_frame0 = 0, frees = 0;
+  for (const std::uint64_t seed : {5u, 6u}) {  // the second episode starts from the pursuer's kept map
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    Trace trace;
+    trace.reserve(sim.max_steps(), 2);
+    reset(sim, st, arena->map().scenarios[seed % 2], seed);
+    trace.record(st, false);
+    std::array<std::set<sense::CellKey>, 2> replayed;  // the flips applied in order
+    std::size_t applied = 0;
+    for (int k = 0;; ++k) {
+      ASSERT_EQ(trace.frame_count(), k + 1);
+      ASSERT_EQ(trace.rays(), 128);
+      for (int i = 0; i < 2; ++i) {
+        const int first = trace.ray_first[std::size_t(i)];
+        for (int r = 0; r < 64; ++r) {
+          ASSERT_EQ(trace.ranges[std::size_t(k * 128 + first + r)], float(st.ranges(i)[std::size_t(r)]));
+          ASSERT_EQ(trace.echoes[std::size_t(k * 128 + first + r)], st.echoes(i)[std::size_t(r)]);
+        }
+        const int scanned = trace.scan_frames[std::size_t(k * 2 + i)];
+        ASSERT_EQ(scanned, i == 0 ? k - k % 3 : k) << "frame " << k;
+      }
+      for (; applied < trace.map_flips.size(); ++applied) {
+        const MapFlip& m = trace.map_flips[applied];
+        ASSERT_EQ(m.frame, k);
+        const sense::CellKey key = st.map(m.agent)->key_of(m.centre);
+        ASSERT_EQ(st.map(m.agent)->centre(key), m.centre);
+        if (m.occupied) {
+          ASSERT_TRUE(replayed[std::size_t(m.agent)].insert(key).second) << "a cell occupied twice";
+        } else {
+          ASSERT_EQ(replayed[std::size_t(m.agent)].erase(key), 1u) << "a free cell freed";
+          ++frees;
+        }
+        flips_off_frame0 += k > 0;
+      }
+      for (int i = 0; i < 2; ++i) ASSERT_EQ(replayed[std::size_t(i)], occupied_now(*st.map(i))) << "frame " << k;
+      if (st.done || k == 120) break;
+      for (Steering& cmd : u) cmd = {uniform(rng, -0.3, 0.3), uniform(rng, -0.2, 0.2)};
+      step(sim, st, u);
+      trace.record(st, true);
+    }
+  }
+  EXPECT_GT(flips_off_frame0, 50);  // the maps grew during the episodes, not only at their starts
+  EXPECT_GT(frees, 0);              // and cells seen occupied were later seen free
 }
 
 TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {

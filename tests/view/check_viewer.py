@@ -13,6 +13,9 @@ usage: check_viewer.py BIN_DIR SOURCE_DIR WORK_DIR
    the second instant (so they moved); the agent panel labels the fuzzy inputs from the library's table and
    shows their values; a key steps a frame, play advances, the URL fragment seeks, and the pair, agent and
    follow selectors work, all without a console error. The screenshots stay in WORK_DIR to look at.
+4. On a sensing game's file (peg-matchup --html on maps/forest.yaml, lidars and own maps): the selected agent's
+   map shows, at frames reached forwards and backwards, exactly the cells the replay's flips make occupied, its
+   rays are drawn, and hiding the sensing layer changes the picture.
 
 Exit status 0: all passed; 77: skipped (no Chromium, or no python3-websocket); 1: a check failed.
 """
@@ -160,6 +163,60 @@ def centroid(mask):
     return (float(xs.mean()), float(ys.mean())) if len(xs) else None
 
 
+def occupied_cells(agent, frame):
+    """Agent's own-map cells occupied at `frame`, from the replay's flips (independently of the viewer)."""
+    import numpy as np
+    m = agent["map"]
+    frames = np.frombuffer(base64.b64decode(m["flip_frames_u32"]), dtype="<u4")
+    centres = np.frombuffer(base64.b64decode(m["flip_centres_f32"]), dtype="<f4").reshape(-1, 3)
+    occupied = np.frombuffer(base64.b64decode(m["flip_occupied_u8"]), dtype=np.uint8)
+    cells = set()
+    for k in range(len(frames)):
+        if frames[k] > frame:
+            break
+        key = tuple(int(np.floor(float(c) / m["resolution"])) for c in centres[k])  # centres lie mid-cell
+        (cells.add if occupied[k] else cells.discard)(key)
+    return len(cells)
+
+
+def check_sensing(page, html, work):
+    """4. The sensing layer: the selected agent's rays and its own map as the replay's flips make it, at frames
+    reached forwards and backwards, for each agent; drawn (pixels change when the layer is hidden)."""
+    import numpy as np
+    if not check(load(page, html) is not None, "the sensing game's viewer is ready"):
+        return
+    replay = json.loads(page.js("document.getElementById('peg-replay').textContent"))
+    times = np.frombuffer(base64.b64decode(replay["times_f64"]), dtype="<f8")
+    n = len(times)
+    check(all("lidar" in a and "map" in a for a in replay["agents"]), "every agent's lidar and map are in the replay")
+    for agent in (0, 1):
+        page.js(f"(function () {{ var s = document.getElementById('peg-agent'); s.value = '{agent}';"
+                " s.dispatchEvent(new Event('change')); })()")
+        rays = replay["agents"][agent]["lidar"]["rays"]
+        active = np.frombuffer(base64.b64decode(replay["agents"][agent]["track"]["active_u8"]), dtype=np.uint8)
+        for f in (n - 1, n // 3, 2 * n // 3, 0, n - 1):
+            page.js(f"pegView.seek({float(times[f])!r})")
+            shown = page.js("pegView.sensing")
+            want = occupied_cells(replay["agents"][agent], f)
+            check(shown["agent"] == agent and shown["cells"] == want and want > 0,
+                  f"agent {agent}, frame {f}: {shown['cells']} map cells shown, the flips make {want}")
+            check(page.js("pegView.frame") == f and shown["rays"] == (rays if active[f] else 0),
+                  f"agent {agent}, frame {f}: {shown['rays']} of {rays} rays drawn (active: {active[f]})")
+    page.js("(function () { var s = document.getElementById('peg-agent'); s.value = '0';"
+            " s.dispatchEvent(new Event('change')); })()")
+    page.js(f"pegView.seek({float(times[n // 2])!r})")
+    check(page.js("pegView.sensing").get("rays") == replay["agents"][0]["lidar"]["rays"], "the pursuer's rays are drawn mid-game")
+    full = page.screenshot()
+    full.save(os.path.join(work, "viewer_sensing.png"))
+    page.js("pegView.setLayer('sensing', false)")
+    without = page.screenshot()
+    page.js("pegView.setLayer('sensing', true)")
+    changed = int(changed_pixels(full, without).sum())
+    check(changed > 100, f"the rays and the map are drawn ({changed} pixels change when they are hidden)")
+    problems = console_problems(page, html)
+    check(not problems, "no console error while driving the sensing layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
+
+
 def main():
     bin_dir, source, work = sys.argv[1:4]
     if shutil.which("chromium") is None:
@@ -193,6 +250,16 @@ def main():
              os.path.join(source, "tests", "collision", "mover-crosses-path"), "--html", case_dir])
     case_html = os.path.join(case_dir, "mover-crosses-path.html")
     check(r.returncode == 0 and os.path.exists(case_html), "peg-collide run --html writes the case's viewer")
+    sensing_out = os.path.join(work, "sensing")
+    sets = ["--set", "time_limit=25"]
+    for role in ("pursuer", "evader"):
+        sets += ["--set", f"{role}.lidar.azimuth_rays=24", "--set", f"{role}.lidar.elevation_rays=3",
+                 "--set", f"{role}.lidar.elevation_fov=40", "--set", f"{role}.map.enabled=true"]
+    r = run([os.path.join(bin_dir, "peg-matchup"), "--map", os.path.join(source, "maps", "forest.yaml"),
+             "--out", sensing_out, "--pursuers", "pn", "--evaders", "flee", "--repeats", "1", "--no-cache",
+             "--html", "F1_r0_pn_vs_flee", "--plain-progress", *sets])
+    sensing_html = os.path.join(sensing_out, "F1_r0_pn_vs_flee.html")
+    check(r.returncode == 0 and os.path.exists(sensing_html), "peg-matchup --html writes a sensing game's viewer")
     if failures:
         return 1
 
@@ -201,7 +268,7 @@ def main():
     try:
         page = open_page(port, websocket)
         # 2. Every file opens offline, quietly.
-        for html in (paper_html, view_html, case_html):
+        for html in (paper_html, view_html, case_html, sensing_html):
             name = os.path.basename(html)
             seconds = load(page, html)
             if not check(seconds is not None, f"{name}: the viewer is ready ({os.path.getsize(html) / 1e6:.1f} MB)"):
@@ -274,6 +341,7 @@ def main():
         problems = console_problems(page, paper_html)
         check(not problems, "no console error or network request while driving the page" +
               ("" if not problems else ": " + "; ".join(problems[:5])))
+        check_sensing(page, sensing_html, work)
     finally:
         proc.kill()
         proc.wait()
