@@ -13,8 +13,9 @@
 //                                   (sense::StaticRayScene): map 0 maps/valley.yaml (terrain), 1 maps/forest.yaml,
 //                                   2 maps/quarry.yaml (terrain and its static solids), 3 the paper's arena with
 //                                   1000 random spheres and cylinders; items_per_second is rays per second
-//   BM_WorldScan/<map>              the same with the movers where they are at the scan's instant (quarry: 520
-//                                   bodies and 120 scripted movers), scans 0.1 s apart
+//   BM_WorldScan/<map>/<range_m>    the same with the movers where they are at the scan's instant (quarry: 520
+//                                   bodies and 120 scripted movers), scans 0.1 s apart, each cast at once as the
+//                                   game casts it (sense::cast_all), within range_m (10: a lidar's default)
 //   BM_MapInsert/<method>           one 64-ray scan of BM_StaticScan/1 (forest) at 10 m range inserted into an agent's
 //                                   map at 0.25 m: method 0 sense::ScanMap::insert, 1 OctoMap's
 //                                   OcTree::insertPointCloud (the same scans: the same cells); the walk's 2000 scans,
@@ -292,6 +293,7 @@ void scan_benchmark(benchmark::State& state, bool movers) {
   // The timeline simulates its blocks on first use: a query at the last instant the scans reach simulates them
   // all before timing.
   if (timeline) timeline->nearest(arena->bounds().lo, 199.9, 1.0);
+  const double range = movers ? double(state.range(1)) : 20.0;  // m
   const std::vector<Ray> rays = walk_scans(*arena);
   std::vector<sense::RayHit> hits(kRays);
   long scans = 0, met = 0;
@@ -299,9 +301,11 @@ void scan_benchmark(benchmark::State& state, bool movers) {
     const std::size_t s = std::size_t(scans % kScans);
     if (timeline) {
       const double t = 0.1 * static_cast<double>(s);
-      for (int r = 0; r < kRays; ++r) hits[std::size_t(r)] = sense::cast_at(scene, timeline.get(), t, rays[s * kRays + std::size_t(r)], 20.0);
+      sense::WorldAtInstant w;  // the scan at once, as the game casts it
+      w.scene = &scene, w.movers = timeline.get(), w.time = t;
+      sense::cast_all(w, std::span<const Ray>(rays).subspan(s * kRays, kRays), range, -1, hits);
     } else {
-      scene.cast(std::span<const Ray>(rays).subspan(s * kRays, kRays), 20.0, hits);
+      scene.cast(std::span<const Ray>(rays).subspan(s * kRays, kRays), range, hits);
     }
     benchmark::DoNotOptimize(hits.data());
     if (scans < kScans) {
@@ -403,7 +407,7 @@ BENCHMARK(BM_MapNearest)->Arg(2)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond)
 void BM_StaticScan(benchmark::State& state) { scan_benchmark(state, false); }
 void BM_WorldScan(benchmark::State& state) { scan_benchmark(state, true); }
 BENCHMARK(BM_StaticScan)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_WorldScan)->Arg(2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WorldScan)->Args({2, 10})->Args({2, 20})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
