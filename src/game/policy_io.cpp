@@ -89,7 +89,8 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     nlohmann::json image = member(doc, "config", file, "config");
     // Fields that older versions predate, as those agents played: version 1 without guard.faces, versions
     // 1 and 2 without guard.look_ahead, versions 1 to 3 without observation.opponent_heading, versions 1 to
-    // 4 without action, versions 1 to 5 without lidar, map and observation.obstacles.
+    // 4 without action, versions 1 to 5 without lidar, map and observation.obstacles, version 6 without
+    // map.insert_agents (its maps held the agents' echoes).
     if (image.is_object() && image.contains("guard") && image["guard"].is_object()) {
       nlohmann::json& guard = image["guard"];
       if (version.get<long long>() < 2 && !guard.contains("faces")) guard["faces"] = false;
@@ -110,6 +111,10 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
       if (image.contains("observation") && image["observation"].is_object() && !image["observation"].contains("obstacles")) {
         image["observation"]["obstacles"] = config::enum_name(kObstacleSourceNames, ObstacleSource::kWorld);
       }
+    }
+    if (image.is_object() && version.get<long long>() < 7 && image.contains("map") && image["map"].is_object() &&
+        !image["map"].contains("insert_agents")) {
+      image["map"]["insert_agents"] = true;  // version 6 put the agents' echoes into the map
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);

@@ -3,12 +3,13 @@
 // bases) and every channel's actor and critic consequents. Doubles are written with round-trip precision,
 // so a loaded model acts exactly as the saved one.
 //
-//   {"format": "peg3d-policy", "version": 6, "role": "pursuer", "config": {...AgentConfig, every field...},
+//   {"format": "peg3d-policy", "version": 7, "role": "pursuer", "config": {...AgentConfig, every field...},
 //    "channels": [{"rules": 625, "actions": 1, "actor": [...], "critic": [...]}, ...]}
 //
 // Versions: 2 added config.guard.faces, 3 config.guard.look_ahead, 4 config.observation.opponent_heading,
-// 5 config.action, 6 config.lidar, config.map and config.observation.obstacles. Older documents still load, read
-// as their agents played: without a lidar or a map, sensing the world,
+// 5 config.action, 6 config.lidar, config.map and config.observation.obstacles, 7 config.map.insert_agents. Older
+// documents still load, read as their agents played: version 6 maps with the agents' echoes in them; without a
+// lidar or a map, sensing the world,
 // actions as heading changes,
 // without the opponent's heading (false), without the look ahead (guard.look_ahead = 0) and, version 1,
 // without guard.faces (false).
@@ -26,7 +27,7 @@
 namespace peg3d::game {
 
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
-inline constexpr int kPolicyVersion = 6;
+inline constexpr int kPolicyVersion = 7;
 /// The oldest version this build reads.
 inline constexpr int kOldestPolicyVersion = 1;
 

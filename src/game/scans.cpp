@@ -82,12 +82,16 @@ void scan(const Sim& sim, SimState& st, int i) {
   sense::read_out(lidar.config(), hits, s.rng[std::size_t(i)], ranges, echo);
   s.step[std::size_t(i)] = st.step;
   if (sense::ScanMap* map = a.config->map.enabled ? s.maps[std::size_t(i)].get() : nullptr) {
-    // The scan as a point cloud: an echo's endpoint, or a point beyond the range that carves free space only.
+    // The scan as a point cloud: an echo's endpoint, or a point beyond the range that carves free space only;
+    // without map.insert_agents, no ray that met an agent.
     const double range = lidar.config().range, beyond = range + 2.0 * map->config().resolution;
+    const bool agents = map->config().insert_agents;
+    std::size_t n = 0;
     for (std::size_t k = 0; k < rays; ++k) {
-      s.points[k] = ray_span[k].origin + (echo[k] != 0 ? ranges[k] : beyond) * ray_span[k].direction;
+      if (!agents && hits[k].target == sense::RayTarget::kBall) continue;
+      s.points[n++] = ray_span[k].origin + (echo[k] != 0 ? ranges[k] : beyond) * ray_span[k].direction;
     }
-    map->insert(a.kinematics.position, std::span<const Vec3>(s.points).first(rays), range);
+    map->insert(a.kinematics.position, std::span<const Vec3>(s.points).first(n), range);
   }
 }
 

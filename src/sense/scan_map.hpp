@@ -52,6 +52,10 @@ struct ScanMapConfig {
   bool unknown_is_occupied = false;
   /// The map persists over the episodes played on one game state (a run) instead of being cleared by every reset.
   bool persist = false;
+  /// Echoes from other agents go into the map as obstacles. By default the rays that met an agent are left out
+  /// of the map (as a robot leaves out what it tracks apart): a map of the world, whose cells a pursuer's guard
+  /// would otherwise steer it away from its own evader with.
+  bool insert_agents = false;
   bool operator==(const ScanMapConfig&) const = default;
 };
 
@@ -69,6 +73,8 @@ void visit_fields(V& v, C& c) {
          "cells no scan has touched count as obstacles for the agent's inputs (default: as free space)");
   v.flag("persist", c.persist,
          "the map persists over the episodes of a run (one game state) instead of living for one episode");
+  v.flag("insert_agents", c.insert_agents,
+         "rays that met another agent go into the map as obstacles (default: they are left out of it)");
 }
 
 /// OctoMap's key of a cell: floor(coordinate / resolution) + 32768 on each axis.

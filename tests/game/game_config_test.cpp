@@ -56,7 +56,7 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  EXPECT_EQ(leaves, 2 * 56 + 23);  // 56 per agent (11 of its lidar, 8 of its map), 7 game, 4 team and 12 training fields
+  EXPECT_EQ(leaves, 2 * 57 + 23);  // 57 per agent (11 of its lidar, 9 of its map), 7 game, 4 team and 12 training fields
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {

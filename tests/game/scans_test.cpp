@@ -140,6 +140,38 @@ TEST(Scans, AgentsAreSeenUnlessTheSettingSaysOtherwise) {
 }
 
 // Random steering for a whole game, checking every scan against the reference.
+TEST(Scans, AnAgentsMapLeavesOutTheOtherAgentsUnlessTheSettingSaysOtherwise) {
+  // The pursuer's rays fan out across the evader 7 m ahead, in a room whose faces are no obstacles: every echo
+  // is the evader's.
+  const Vec3 p(5, 10, 10), e(12, 10, 10);
+  world::Scenario s = testing::scenario("s", p, e);
+  s.pursuers[0].heading = Heading{0.0, kPi / 2};
+  const auto arena = testing::make_arena(Vec3(30, 20, 20), {}, {s});
+  for (const bool insert : {false, true}) {
+    GameConfig c = preset("peg3d");
+    c.pursuer.lidar = lidar(9, 5, 8.0, 20.0);
+    c.pursuer.lidar.azimuth_fov = 8.0;
+    c.pursuer.map.enabled = true;
+    c.pursuer.map.insert_agents = insert;
+    const Sim sim(arena, c);
+    SimState st(sim);
+    reset(sim, st, s, 1);
+    int echoes = 0;
+    for (const std::uint8_t k : st.echoes(0)) echoes += k;
+    EXPECT_GT(echoes, 0);  // the readings see the evader either way
+    EXPECT_LT(echoes, 45);
+    const sense::ScanMap& map = *st.map(0);
+    const sense::OccupiedPoint near = map.nearest_occupied(e, 1.0);
+    EXPECT_GT(map.known_cells(), 0);  // the rays that met nothing carve free space
+    if (insert) {
+      EXPECT_TRUE(near.found);
+      EXPECT_LT(near.distance, c.evader.radius);
+    } else {
+      EXPECT_EQ(map.occupied_cells(), 0);
+    }
+  }
+}
+
 void check_game(const char* map, MoverDynamics dynamics, int steps, int min_echoes_on_movers, std::size_t scenarios = 99) {
   const auto arena = map_arena(map);
   GameConfig c = preset("peg3d");
