@@ -27,6 +27,7 @@ void clear_for(SimState& st, int n, int pursuers, const GameConfig& g) {
   st.scratch.hit.resize(size);
   st.scratch.target_before.resize(size);
   st.scratch.obstacle_before.resize(size);
+  st.scratch.position_before.resize(size);
   st.scratch.positions.resize(size);
   st.events.agents.assign(size, AgentEvents{});
   st.events.collisions.clear();

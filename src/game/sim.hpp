@@ -203,6 +203,7 @@ class SimState {
     std::vector<std::optional<world::Contact>> hit;  ///< its first contact with a static obstacle this step
     std::vector<double> target_before;    ///< d to its opponent at the start of the step
     std::vector<double> obstacle_before;  ///< d_O at the start of the step
+    std::vector<Vec3> position_before;    ///< m, where the agent started the step
     std::vector<Vec3> positions;          ///< start positions (reset)
     std::vector<Steering> commands;       ///< play()'s command buffer
     std::vector<Vec3> from, to;           ///< push mode: each agent's move of the step

@@ -96,6 +96,7 @@ void constrain(const Sim& sim, SimState& st) {
     const AgentState& o = st.agents[std::size_t(a.opponent)];
     st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
+    st.scratch.position_before[std::size_t(i)] = a.kinematics.position;
     const ConstraintInputs in{*a.config,   a.role,   sim.config().dt, a.kinematics, o.kinematics.position, o.config->speed,
                               a.view.field, a.bounds, &probe,          near_obstacles(sim, st, a)};
     st.scratch.heading[std::size_t(i)] =
@@ -332,9 +333,14 @@ void reward_all(const Sim& sim, SimState& st) {
     // unchanged (the same expression, so the same bits).
     const double target_after = a.opponent == e.opponent ? a.view.percept.target_distance
                                                          : (o.kinematics.position - a.kinematics.position).norm();
+    // An own map that the step's scan changed: d_O before the move measured again in the map as it is now, so
+    // that the repulsion term (exponential in the change of d_O) rewards the move, not what the scan revealed.
+    const bool rescanned = a.config->observation.obstacles == ObstacleSource::kOwnMap && st.scans.step[std::size_t(i)] == st.step;
+    const double obstacle_before = rescanned ? own_map_obstacle_distance(sim, st, i, st.scratch.position_before[std::size_t(i)])
+                                             : st.scratch.obstacle_before[std::size_t(i)];
     const RewardInputs in{st.scratch.target_before[std::size_t(i)],
                           target_after,
-                          st.scratch.obstacle_before[std::size_t(i)],
+                          obstacle_before,
                           a.view.percept.obstacle.distance,
                           success,
                           e.collided};

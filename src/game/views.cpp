@@ -26,6 +26,15 @@ ObstacleSense sense_own_map(const Sim& sim, const SimState& st, int i, const Vec
   return {n.distance, n.point, n.found};
 }
 
+double own_map_obstacle_distance(const Sim& sim, const SimState& st, int i, const Vec3& p) {
+  const AgentState& a = st.agents[std::size_t(i)];
+  KinematicState self = a.kinematics;
+  self.position = p;
+  return perceive(a.role, *a.config, self, st.agents[std::size_t(a.opponent)].kinematics, sense_own_map(sim, st, i, p),
+                  sim.arena().bounds(), sim.arena().max_distance())
+      .obstacle.distance;
+}
+
 void update_view(const Sim& sim, SimState& st, int i) {
   AgentState& a = st.agents[std::size_t(i)];
   const AgentState& o = st.agents[std::size_t(a.opponent)];

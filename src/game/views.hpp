@@ -22,6 +22,10 @@ ObstacleSense sense_obstacle(const Sim& sim, const SimState& state, const Vec3& 
 /// distance cap (the field's, world::Arena::max_distance).
 ObstacleSense sense_own_map(const Sim& sim, const SimState& state, int i, const Vec3& p);
 
+/// The obstacle distance agent i's percept would read at p (its own map's nearest occupied cell, merged with the
+/// arena's faces as its observation says): d_O before a move, measured again in the map the move's scan left.
+double own_map_obstacle_distance(const Sim& sim, const SimState& state, int i, const Vec3& p);
+
 /// The guard's look ahead senses as agent i does: in its own map, or in the world starting from the mover its
 /// view found nearest (`hint`).
 class StateProbe final : public ObstacleProbe {

@@ -285,6 +285,40 @@ TEST(Scans, OwnMapInputsAreTheNearestOccupiedCellOfTheMapTheScansBuilt) {
   EXPECT_LT(st.map(0)->known_cells(), mine.known_cells() / 4);
 }
 
+TEST(Scans, TheRepulsionOfAnOwnMapAgentRewardsItsMoveNotWhatItsScanRevealed) {
+  // In one map, d_O moves by at most the step's length (a distance is 1-Lipschitz, and so is its minimum with the
+  // faces' and the cap), so the term 1 - exp(-alpha_r (d_after - d_before)) is at least 1 - exp(alpha_r v dt). A
+  // scan that reveals a nearer cell must not count: d_before is measured again in the map it left.
+  const auto arena = map_arena("maps/forest.yaml");
+  const GameConfig c = own_map_config();
+  const Sim sim(arena, c);
+  SimState st(sim);
+  Rng rng(6);
+  std::vector<Steering> u(2);
+  int scanned = 0, revealed = 0;
+  for (const world::Scenario& s : arena->map().scenarios) {
+    reset(sim, st, s, 11);
+    for (int k = 0; k < 150 && !st.done; ++k) {
+      std::array<double, 2> seen_before{};
+      for (int i = 0; i < 2; ++i) seen_before[std::size_t(i)] = st.agents[std::size_t(i)].view.percept.obstacle.distance;
+      for (Steering& cmd : u) cmd = {uniform(rng, -0.3, 0.3), uniform(rng, -0.2, 0.2)};
+      step(sim, st, u);
+      for (int i = 0; i < 2; ++i) {
+        const AgentState& a = st.agents[std::size_t(i)];
+        if (!st.events.agents[std::size_t(i)].acted) continue;
+        const double move = a.config->speed * c.dt, alpha = a.config->reward.alpha_r;
+        const double term = st.events.agents[std::size_t(i)].reward.obstacle;
+        ASSERT_GE(term, 1.0 - std::exp(alpha * move) - 1e-9) << "agent " << i << ", step " << st.step;
+        ++scanned;
+        // How far the old map's d_O would have moved: more than the step's length when the scan revealed a cell.
+        revealed += a.view.percept.obstacle.distance < seen_before[std::size_t(i)] - move - 1e-9;
+      }
+    }
+  }
+  EXPECT_GT(scanned, 500);
+  EXPECT_GT(revealed, 5);  // scans did reveal nearer cells, which the term left out
+}
+
 TEST(Scans, APersistentMapKeepsWhatEarlierEpisodesSawUntilForgotten) {
   const auto arena = map_arena("maps/forest.yaml");
   GameConfig c = own_map_config();
@@ -414,7 +448,10 @@ std::uint64_t own_map_game_hash(const Sim& sim, std::uint64_t seed) {
     Trace t;
     testing::play_once(sim, s, seed, &t);
     for (int f = 0; f < t.frame_count(); ++f) {
-      for (int i = 0; i < s.agents(); ++i) h.add_value(t.at(f, i).state.position);
+      for (int i = 0; i < s.agents(); ++i) {
+        h.add_value(t.at(f, i).state.position);
+        h.add_value(t.at(f, i).reward);  // the repulsion term measured in the agent's own map
+      }
     }
   }
   return h.value();
@@ -431,7 +468,7 @@ TEST(Scans, AnOwnMapGameIsTheSameOnAnyThreadCount) {
   GameConfig world = c;
   world.pursuer.observation.obstacles = world.evader.observation.obstacles = ObstacleSource::kWorld;
   EXPECT_NE(own_map_game_hash(Sim(map_arena("maps/forest.yaml"), world), 5), here);
-  EXPECT_EQ(here, 0x25136473e560476cull) << std::hex << here;
+  EXPECT_EQ(here, 0x80943ab0d929fd55ull) << std::hex << here;
 }
 
 // A sensing game's readings, hashed step by step: quarry's movers, agents seen, noise and dropouts.
