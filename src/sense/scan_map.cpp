@@ -49,24 +49,11 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
   free_bits_.assign(bricks, 0);
   hit_bits_.assign(bricks, 0);
   at_min_.assign(bricks, 0);
+  brick_touched_.assign(bricks, 0);
+  touched_.reserve(bricks);
   corner_ = centre(k0_) - Vec3::Constant(0.5 * config.resolution);
-  clear();
-}
-
-ScanMap::~ScanMap() = default;
-
-long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
-  // OctoMap's coordToKey: floor(coordinate * (1 / resolution)).
-  const double factor = 1.0 / config.resolution;
-  long long cells = 1;
-  for (int d = 0; d < 3; ++d) cells *= static_cast<long long>(std::floor(factor * hi[d]) - std::floor(factor * lo[d])) + 1;
-  return cells;
-}
-
-void ScanMap::clear() {
   // Every cell unknown; the cells of the last bricks that lie beyond the box are marked kOutside, never known.
   std::fill(cells_.begin(), cells_.end(), kUnknown);
-  std::fill(at_min_.begin(), at_min_.end(), 0);
   for (std::size_t bx = 0; bx < bricks_[0]; ++bx) {
     for (std::size_t by = 0; by < bricks_[1]; ++by) {
       for (std::size_t bz = 0; bz < bricks_[2]; ++bz) {
@@ -85,8 +72,37 @@ void ScanMap::clear() {
       }
     }
   }
+}
+
+ScanMap::~ScanMap() = default;
+
+long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
+  // OctoMap's coordToKey: floor(coordinate * (1 / resolution)).
+  const double factor = 1.0 / config.resolution;
+  long long cells = 1;
+  for (int d = 0; d < 3; ++d) cells *= static_cast<long long>(std::floor(factor * hi[d]) - std::floor(factor * lo[d])) + 1;
+  return cells;
+}
+
+void ScanMap::clear() {
+  // Only the bricks a scan made a cell known in differ from a new map's: each goes back to unknown cells (those
+  // beyond the box stay kOutside), no cell at the clamp, and its count of blocked cells.
+  for (const std::uint32_t b : touched_) {
+    float* cell = cells_.data() + std::size_t(b) * kBrickCells;
+    int inside = 0;
+    for (std::size_t l = 0; l < kBrickCells; ++l) {
+      const bool in = cell[l] != kOutside;
+      if (in) cell[l] = kUnknown;
+      inside += in;
+    }
+    at_min_[b] = 0;
+    brick_occupied_[b] = config_.unknown_is_occupied ? std::uint8_t(inside) : 0;
+    brick_touched_[b] = 0;
+  }
+  touched_.clear();
   known_ = occupied_ = 0;
   flips_.clear();
+  obstacles_moved_ = false;
 }
 
 void ScanMap::reserve(int rays, double range) {
@@ -162,6 +178,7 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   free_list_.clear();
   hit_list_.clear();
   flips_.clear();
+  obstacles_moved_ = false;
   // A brick's 64 cells have one word of each set: bit l of word b is cell b * 64 + l.
   const auto mark = [&](const octomap::OcTreeKey& k, std::vector<std::uint64_t>& bits, std::vector<std::uint32_t>& list) {
     std::size_t c = 0;
@@ -184,12 +201,19 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
     at_min_[c / kBrickCells] = next == min_ ? at_min_[c / kBrickCells] | bit : at_min_[c / kBrickCells] & ~bit;
     known_ += !was_known;
+    if (!was_known && brick_touched_[c / kBrickCells] == 0) {
+      brick_touched_[c / kBrickCells] = 1;
+      touched_.push_back(std::uint32_t(c / kBrickCells));
+    }
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
     occupied_ += change_occupied;
     if (change_occupied != 0) flips_.push_back(c);
     // The brick's count of blocked cells: occupied ones, and with unknown_is_occupied the unknown ones too.
     const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
-    if (change_blocked != 0) brick_occupied_[c / kBrickCells] = std::uint8_t(brick_occupied_[c / kBrickCells] + change_blocked);
+    if (change_blocked != 0) {
+      brick_occupied_[c / kBrickCells] = std::uint8_t(brick_occupied_[c / kBrickCells] + change_blocked);
+      obstacles_moved_ = true;
+    }
   };
   // OccupancyOcTreeBase::computeUpdate with the key sets as bits over the grid, and each cell updated once, as
   // insertPointCloud updates it. First the occupied set: the endpoints within max_range (they win over free).
@@ -294,7 +318,8 @@ void ScanMap::write_bt(const std::filesystem::path& file) const {
 std::size_t ScanMap::bytes() const {
   return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() +
          (free_bits_.capacity() + hit_bits_.capacity() + at_min_.capacity()) * sizeof(std::uint64_t) +
-         (free_list_.capacity() + hit_list_.capacity() + flips_.capacity()) * sizeof(std::uint32_t);
+         (free_list_.capacity() + hit_list_.capacity() + flips_.capacity() + touched_.capacity()) * sizeof(std::uint32_t) +
+         brick_touched_.capacity();
 }
 
 }  // namespace peg3d::sense

@@ -101,7 +101,7 @@ class ScanMap {
   /// The cells a map of the box [lo, hi] has at the configuration's resolution.
   static long long cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
 
-  /// Forgets every cell.
+  /// Forgets every cell: the bricks scans touched go back to a new map's state (a fill of those only).
   void clear();
 
   /// Makes room for scans of `rays` rays of at most `range` m, so that inserting them allocates nothing.
@@ -137,6 +137,9 @@ class ScanMap {
       if (v == v && v != -std::numeric_limits<float>::infinity()) f(key_at(c), v);  // neither unknown nor beyond
     }
   }
+  /// Whether the latest insert changed any cell nearest_occupied counts (an occupied one, or with
+  /// unknown_is_occupied an unknown one): if not, every nearest_occupied answer is as before it.
+  bool last_insert_moved_obstacles() const { return obstacles_moved_; }
   /// Calls f(key, occupied) for each cell whose occupancy (log-odds > 0) the latest insert changed: how the map
   /// grows, for replays. Empty after clear().
   template <class F>
@@ -183,6 +186,9 @@ class ScanMap {
   std::vector<std::uint64_t> at_min_;                // cells at the lower clamp: a word per brick
   std::vector<std::uint32_t> free_list_, hit_list_;  // ... and their cells
   std::vector<std::uint32_t> flips_;                 // the cells whose occupancy the latest insert changed
+  bool obstacles_moved_ = false;                     // the latest insert changed a brick's count of blocked cells
+  std::vector<std::uint32_t> touched_;               // the bricks with a known cell, since the map was made or cleared
+  std::vector<std::uint8_t> brick_touched_;          // ... 1 for those bricks
   float hit_ = 0.0f, miss_ = 0.0f, min_ = 0.0f, max_ = 0.0f;  // log-odds
   long long known_ = 0, occupied_ = 0;
 };

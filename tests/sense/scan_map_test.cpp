@@ -194,6 +194,65 @@ TEST(ScanMap, ARayBeyondRangeCarvesFreeSpaceOnlyAndAnEndpointWinsOverFree) {
   EXPECT_TRUE(std::isnan(both.log_odds(both.key_of(o + Vec3(4.0, 0, 0)))));
 }
 
+TEST(ScanMap, AClearedMapIsANewMapAndSaysWhenAScanMovedItsObstacles) {
+  // Random scans in a box whose grid ends inside its last bricks (kOutside cells), cleared, scanned again: every
+  // cell and every nearest answer equals a new map's fed the second scans, for both readings of unknown cells.
+  const Vec3 lo(0.3, -1.1, 0.2), hi(13.7, 9.9, 6.6);
+  for (const bool unknown_blocks : {false, true}) {
+    SCOPED_TRACE(unknown_blocks ? "unknown is occupied" : "unknown is free");
+    ScanMapConfig c;
+    c.resolution = 0.3;
+    c.unknown_is_occupied = unknown_blocks;
+    ScanMap used(c, lo, hi);
+    Rng rng(unknown_blocks ? 5 : 4);
+    const auto scan = [&](int n) {
+      const Vec3 o = lo + (hi - lo).cwiseProduct(Vec3(uniform(rng, 0, 1), uniform(rng, 0, 1), uniform(rng, 0, 1)));
+      std::vector<Vec3> points;
+      for (int k = 0; k < n; ++k) points.push_back(o + Vec3(uniform(rng, -8, 8), uniform(rng, -8, 8), uniform(rng, -4, 4)));
+      return std::pair{o, points};
+    };
+    for (int s = 0; s < 40; ++s) {
+      const auto [o, points] = scan(30);
+      used.insert(o, points, 6.0);
+    }
+    ASSERT_GT(used.known_cells(), 1000);
+    used.clear();
+    EXPECT_EQ(used.known_cells(), 0);
+    EXPECT_EQ(used.occupied_cells(), 0);
+    EXPECT_FALSE(used.last_insert_moved_obstacles());
+    ScanMap fresh(c, lo, hi);
+    int moved = 0, still = 0;
+    for (int s = 0; s < 10; ++s) {
+      const auto [o, points] = scan(s % 3 == 2 ? 0 : 20);  // some scans with no ray at all
+      const auto before = fresh.nearest_occupied(o, 3.0);
+      used.insert(o, points, 6.0);
+      fresh.insert(o, points, 6.0);
+      EXPECT_EQ(used.last_insert_moved_obstacles(), fresh.last_insert_moved_obstacles());
+      const auto after = fresh.nearest_occupied(o, 3.0);
+      if (!fresh.last_insert_moved_obstacles()) {
+        EXPECT_EQ(after.distance, before.distance);  // nothing nearest_occupied counts changed
+        ++still;
+      } else {
+        ++moved;
+      }
+    }
+    EXPECT_GT(moved, 0);
+    EXPECT_GT(still, 0);
+    std::vector<std::pair<CellKey, float>> a, b;
+    used.for_each_known([&](const CellKey& k, float v) { a.emplace_back(k, v); });
+    fresh.for_each_known([&](const CellKey& k, float v) { b.emplace_back(k, v); });
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(used.known_cells(), fresh.known_cells());
+    EXPECT_EQ(used.occupied_cells(), fresh.occupied_cells());
+    for (int q = 0; q < 300; ++q) {
+      const Vec3 p = lo + (hi - lo).cwiseProduct(Vec3(uniform(rng, 0, 1), uniform(rng, 0, 1), uniform(rng, 0, 1)));
+      const OccupiedPoint x = used.nearest_occupied(p, 4.0), y = fresh.nearest_occupied(p, 4.0);
+      ASSERT_EQ(x.found, y.found) << q;
+      ASSERT_EQ(x.distance, y.distance) << q;
+    }
+  }
+}
+
 TEST(ScanMap, ASavedMapReadsBackWithOctomapAsTheCellsTheScansMade) {
   const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/maps/forest.yaml"));
   const StaticRayScene scene(*arena);
