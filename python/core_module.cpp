@@ -138,10 +138,6 @@ PYBIND11_MODULE(_core, m) {
       })
       .def_property_readonly("rays", [](const env::Batch& b) { return b.rays(); })
       .def_property_readonly("ranges_offset", [](const env::Batch& b) { return b.ranges_offset(); })
-      .def("agent_rays", [](const env::Batch& b, int i) {
-        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
-        return b.rays(i);
-      })
       .def_property_readonly("ranges", [](py::object self) {
         // The range readings inside the observations: (games, agents, rays), the same memory.
         env::Batch& b = self.cast<env::Batch&>();

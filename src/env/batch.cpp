@@ -377,7 +377,7 @@ ObservationBounds Batch::observation_bounds() const {
   }
   double range = 0.0;  // the farthest any agent's lidar reads
   for (int i = 0; i < agents_; ++i) {
-    if (rays(i) > 0) range = std::max(range, sim_->config().agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_)).lidar.range);
+    if (const sense::Lidar* lidar = lidar_of(i)) range = std::max(range, lidar->config().range);
   }
   for (int k = 0; k < layout_.rays; ++k) add(0, range);
   // float rounding of the bounds must not exclude a value rounded the other way
@@ -388,8 +388,10 @@ ObservationBounds Batch::observation_bounds() const {
   return b;
 }
 
+const sense::Lidar* Batch::lidar_of(int i) const { return sim_->lidar(game::role_at(i, pursuers_), game::rank_at(i, pursuers_)); }
+
 int Batch::rays(int i) const {
-  const sense::Lidar* lidar = sim_->lidar(game::role_at(i, pursuers_), game::rank_at(i, pursuers_));
+  const sense::Lidar* lidar = lidar_of(i);
   return lidar != nullptr ? lidar->rays() : 0;
 }
 

@@ -135,6 +135,8 @@ class Batch {
     std::unique_ptr<game::Trace> trace;  // settings.record, game 0 only
   };
   const world::Scenario& scenario_for(int game, long long episode) const;
+  /// Agent i's lidar (null without one).
+  const sense::Lidar* lidar_of(int i) const;
   void start_episode(int g);
   void step_game(int g, const double* actions);
   /// game::step of game g, a refused command's error naming the game (and a C++-played policy's file).

@@ -313,17 +313,6 @@ void observe(const Sim& sim, SimState& st) {
   }
 }
 
-// Whether the latest scan into `map` can have changed the obstacle distance `d` (m) read at p: a cell that became
-// occupied or free can only if some point of its cube lies within d of p. With unknown cells as obstacles, a scan
-// changes them without changing any occupancy: then always.
-bool own_map_changed_near(const sense::ScanMap& map, const Vec3& p, double d) {
-  if (map.config().unknown_is_occupied) return true;
-  const double reach = d + 0.5 * std::sqrt(3.0) * map.config().resolution + 1e-9;  // cube centre to corner, and slack
-  bool near = false;
-  map.for_each_flip([&](const sense::CellKey& key, bool) { near = near || (map.centre(key) - p).squaredNorm() <= reach * reach; });
-  return near;
-}
-
 // Rewards: each agent's terms against the opponent it played during the step (APF, eq. 15-18), and its
 // totals; a captured evader leaves the game here.
 void reward_all(const Sim& sim, SimState& st) {
@@ -351,9 +340,9 @@ void reward_all(const Sim& sim, SimState& st) {
       // is now, so that the repulsion term (exponential in the change of d_O) rewards the move, not what the scan
       // revealed.
       const bool rescanned = a.config->observation.obstacles == ObstacleSource::kOwnMap &&
-                             st.scans.step[std::size_t(i)] == st.step && st.map(i)->last_insert_moved_obstacles() &&
-                             own_map_changed_near(*st.map(i), st.scratch.position_before[std::size_t(i)],
-                                                  st.scratch.obstacle_before[std::size_t(i)]);
+                             st.scans.step[std::size_t(i)] == st.step &&
+                             st.map(i)->last_insert_moved_obstacles_within(st.scratch.position_before[std::size_t(i)],
+                                                                           st.scratch.obstacle_before[std::size_t(i)]);
       const double obstacle_before = rescanned ? own_map_obstacle_distance(sim, st, i, st.scratch.position_before[std::size_t(i)])
                                                : st.scratch.obstacle_before[std::size_t(i)];
       const RewardInputs in{st.scratch.target_before[std::size_t(i)],

@@ -105,6 +105,15 @@ void ScanMap::clear() {
   obstacles_moved_ = false;
 }
 
+bool ScanMap::last_insert_moved_obstacles_within(const Vec3& p, double d) const {
+  if (!obstacles_moved_ || config_.unknown_is_occupied) return obstacles_moved_;
+  const double reach = d + 0.5 * std::sqrt(3.0) * config_.resolution + 1e-9;  // cube centre to corner, and slack
+  for (const std::uint32_t c : flips_) {
+    if ((centre(key_at(c)) - p).squaredNorm() <= reach * reach) return true;
+  }
+  return false;
+}
+
 void ScanMap::reserve(int rays, double range) {
   // A ray crosses at most 3 cells per resolution of its length, and a few at its ends; a scan's lists hold each
   // cell once.

@@ -140,6 +140,10 @@ class ScanMap {
   /// Whether the latest insert changed any cell nearest_occupied counts (an occupied one, or with
   /// unknown_is_occupied an unknown one): if not, every nearest_occupied answer is as before it.
   bool last_insert_moved_obstacles() const { return obstacles_moved_; }
+  /// Whether the latest insert can have changed nearest_occupied(p, ...)'s distance when it was `d` (m) before: a
+  /// cell whose occupancy changed counts only if some point of its cube lies within d of p; with
+  /// unknown_is_occupied, whenever last_insert_moved_obstacles() (unknown cells change without a flip).
+  bool last_insert_moved_obstacles_within(const Vec3& p, double d) const;
   /// Calls f(key, occupied) for each cell whose occupancy (log-odds > 0) the latest insert changed: how the map
   /// grows, for replays. Empty after clear().
   template <class F>

@@ -118,11 +118,21 @@ TEST(Scans, ARayAlongTheHeadingReadsTheDistanceToTheSphereAhead) {
   }
 }
 
+// The pursuer at (5, 10, 10) heading +x, the evader 7 m ahead at (12, 10, 10), in a 30 x 20 x 20 m room whose faces
+// are no obstacles.
+struct FacingEvader {
+  world::Scenario s = facing();
+  std::shared_ptr<const world::Arena> arena = testing::make_arena(Vec3(30, 20, 20), {}, {s});
+  const Vec3 e{12, 10, 10};
+  static world::Scenario facing() {
+    world::Scenario s = testing::scenario("s", Vec3(5, 10, 10), Vec3(12, 10, 10));
+    s.pursuers[0].heading = Heading{0.0, kPi / 2};
+    return s;
+  }
+};
+
 TEST(Scans, AgentsAreSeenUnlessTheSettingSaysOtherwise) {
-  const Vec3 p(5, 10, 10), e(12, 10, 10);
-  world::Scenario s = testing::scenario("s", p, e);
-  s.pursuers[0].heading = Heading{0.0, kPi / 2};
-  const auto arena = testing::make_arena(Vec3(30, 20, 20), {}, {s});
+  const auto [s, arena, e] = FacingEvader{};
   for (const bool sees : {true, false}) {
     GameConfig c = preset("peg3d");
     c.pursuer.lidar = lidar(1, 1, 0.0, 20.0);
@@ -139,14 +149,10 @@ TEST(Scans, AgentsAreSeenUnlessTheSettingSaysOtherwise) {
   }
 }
 
-// Random steering for a whole game, checking every scan against the reference.
 TEST(Scans, AnAgentsMapLeavesOutTheOtherAgentsUnlessTheSettingSaysOtherwise) {
   // The pursuer's rays fan out across the evader 7 m ahead, in a room whose faces are no obstacles: every echo
   // is the evader's.
-  const Vec3 p(5, 10, 10), e(12, 10, 10);
-  world::Scenario s = testing::scenario("s", p, e);
-  s.pursuers[0].heading = Heading{0.0, kPi / 2};
-  const auto arena = testing::make_arena(Vec3(30, 20, 20), {}, {s});
+  const auto [s, arena, e] = FacingEvader{};
   for (const bool insert : {false, true}) {
     GameConfig c = preset("peg3d");
     c.pursuer.lidar = lidar(9, 5, 8.0, 20.0);
@@ -172,6 +178,7 @@ TEST(Scans, AnAgentsMapLeavesOutTheOtherAgentsUnlessTheSettingSaysOtherwise) {
   }
 }
 
+// Random steering for a whole game, checking every scan against the reference.
 void check_game(const char* map, MoverDynamics dynamics, int steps, int min_echoes_on_movers, std::size_t scenarios = 99) {
   const auto arena = map_arena(map);
   GameConfig c = preset("peg3d");

@@ -221,10 +221,16 @@ TEST(ScanMap, AClearedMapIsANewMapAndSaysWhenAScanMovedItsObstacles) {
     EXPECT_EQ(used.occupied_cells(), 0);
     EXPECT_FALSE(used.last_insert_moved_obstacles());
     ScanMap fresh(c, lo, hi);
-    int moved = 0, still = 0;
+    int moved = 0, still = 0, within = 0;
     for (int s = 0; s < 10; ++s) {
       const auto [o, points] = scan(s % 3 == 2 ? 0 : 20);  // some scans with no ray at all
       const auto before = fresh.nearest_occupied(o, 3.0);
+      std::vector<Vec3> queries;  // and points about it, each with its answer before the insert
+      std::vector<double> was;
+      for (int q = 0; q < 50; ++q) {
+        queries.push_back(o + Vec3(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -3, 3)));
+        was.push_back(fresh.nearest_occupied(queries.back(), 3.0).distance);
+      }
       used.insert(o, points, 6.0);
       fresh.insert(o, points, 6.0);
       EXPECT_EQ(used.last_insert_moved_obstacles(), fresh.last_insert_moved_obstacles());
@@ -235,9 +241,19 @@ TEST(ScanMap, AClearedMapIsANewMapAndSaysWhenAScanMovedItsObstacles) {
       } else {
         ++moved;
       }
+      for (std::size_t q = 0; q < queries.size(); ++q) {
+        const bool near = fresh.last_insert_moved_obstacles_within(queries[q], was[q]);
+        EXPECT_EQ(near, used.last_insert_moved_obstacles_within(queries[q], was[q]));
+        if (!near) {
+          EXPECT_EQ(fresh.nearest_occupied(queries[q], 3.0).distance, was[q]) << "query " << q;
+        }
+        within += near;
+      }
     }
     EXPECT_GT(moved, 0);
     EXPECT_GT(still, 0);
+    EXPECT_GT(within, 0);
+    EXPECT_LT(within, 500);  // some queries lay beyond every changed cell
     std::vector<std::pair<CellKey, float>> a, b;
     used.for_each_known([&](const CellKey& k, float v) { a.emplace_back(k, v); });
     fresh.for_each_known([&](const CellKey& k, float v) { b.emplace_back(k, v); });
