@@ -264,12 +264,111 @@ int BoxIndex::entered(const Level<T>& level, int begin, int n, const float o[3],
   return count;
 }
 
+template <class T>
+void BoxIndex::cones(const FanRays& fan, const Level<T>& level, int begin, int n, float scale, std::uint64_t among,
+                     std::uint64_t* out) {
+  // Each box's bounding ball seen from the origin, four boxes at a time in floats: its centre c (relative to the
+  // origin), the cosine-like limit sqrt(|c|^2 - r^2) that d.c must reach, and the nearest entry |c| - r. The
+  // radius is widened by fan.margin, far above the rounding of these floats, and both limits are lowered by
+  // far more than the float dot product errs: the test never drops a ray that meets the box.
+  alignas(16) float cx[4], cy[4], cz[4], cos_limit[4], entry[4];
+  alignas(16) std::int32_t state[4];  // 0: a ray test, 1: the ball holds the origin (every ray), 2: empty box
+  // Sparse rays side by side (padded to four with rays that meet nothing), tested without gaps; many as they are.
+  alignas(16) float packed_x[kFanRays], packed_y[kFanRays], packed_z[kFanRays], packed_bound[kFanRays];
+  std::int8_t ray[kFanRays];
+  const float *x = fan.x, *y = fan.y, *z = fan.z, *bound = fan.bound;
+  int m = kFanRays;
+  const bool sparse = __builtin_popcountll(among) <= kFanRays / 2;
+  if (sparse) {
+    m = 0;
+    for (std::uint64_t bits = among; bits != 0; bits &= bits - 1, ++m) {
+      const int q = __builtin_ctzll(bits);
+      ray[m] = static_cast<std::int8_t>(q);
+      packed_x[m] = fan.x[q], packed_y[m] = fan.y[q], packed_z[m] = fan.z[q], packed_bound[m] = fan.bound[q];
+    }
+    for (; m % 4 != 0; ++m) ray[m] = 0, packed_x[m] = packed_y[m] = packed_z[m] = 0.0f, packed_bound[m] = -INFINITY;
+    x = packed_x, y = packed_y, z = packed_z, bound = packed_bound;
+  }
+  for (int k = 0; k < n; k += 4) {
+    const int i = begin + k;
+#if defined(__SSE2__)
+    const __m128 s = _mm_set1_ps(scale), half = _mm_set1_ps(0.5f);
+    __m128 c[3], d2 = _mm_setzero_ps(), e2 = _mm_setzero_ps(), empty = _mm_setzero_ps();
+    for (int a = 0; a < 3; ++a) {
+      const __m128 lo = _mm_mul_ps(load4(level.lo[a] + i), s), hi = _mm_mul_ps(load4(level.hi[a] + i), s);
+      empty = _mm_or_ps(empty, _mm_cmpgt_ps(lo, hi));
+      c[a] = _mm_sub_ps(_mm_mul_ps(_mm_add_ps(lo, hi), half), _mm_set1_ps(fan.origin[a]));
+      const __m128 e = _mm_sub_ps(hi, lo);
+      d2 = _mm_add_ps(d2, _mm_mul_ps(c[a], c[a]));
+      e2 = _mm_add_ps(e2, _mm_mul_ps(e, e));
+    }
+    const __m128 dist = _mm_sqrt_ps(d2);
+    const __m128 r = _mm_add_ps(_mm_mul_ps(_mm_sqrt_ps(e2), half), _mm_set1_ps(fan.margin));
+    const __m128 tol = _mm_mul_ps(_mm_add_ps(dist, _mm_set1_ps(1.0f)), _mm_set1_ps(4e-6f));
+    const __m128 gap = _mm_mul_ps(_mm_sub_ps(dist, r), _mm_add_ps(dist, r));
+    _mm_store_ps(cos_limit, _mm_sub_ps(_mm_sqrt_ps(_mm_max_ps(gap, _mm_setzero_ps())), tol));
+    _mm_store_ps(entry, _mm_sub_ps(_mm_sub_ps(dist, r), tol));
+    _mm_store_ps(cx, c[0]), _mm_store_ps(cy, c[1]), _mm_store_ps(cz, c[2]);
+    const __m128i inside = _mm_and_si128(_mm_castps_si128(_mm_cmple_ps(dist, r)), _mm_set1_epi32(1));
+    _mm_store_si128(reinterpret_cast<__m128i*>(state), _mm_or_si128(inside, _mm_and_si128(_mm_castps_si128(empty), _mm_set1_epi32(2))));
+#else
+    for (int j = 0; j < 4; ++j) {
+      float c[3], d2 = 0.0f, e2 = 0.0f;
+      bool empty = false;
+      for (int a = 0; a < 3; ++a) {
+        const float lo = static_cast<float>(level.lo[a][i + j]) * scale, hi = static_cast<float>(level.hi[a][i + j]) * scale;
+        empty |= lo > hi;
+        c[a] = (lo + hi) * 0.5f - fan.origin[a];
+        d2 += c[a] * c[a];
+        e2 += (hi - lo) * (hi - lo);
+      }
+      const float dist = std::sqrt(d2), r = std::sqrt(e2) * 0.5f + fan.margin, tol = (dist + 1.0f) * 4e-6f;
+      cos_limit[j] = std::sqrt(std::max((dist - r) * (dist + r), 0.0f)) - tol;
+      entry[j] = dist - r - tol;
+      cx[j] = c[0], cy[j] = c[1], cz[j] = c[2];
+      state[j] = empty ? 2 : dist <= r ? 1 : 0;
+    }
+#endif
+    for (int j = 0; j < 4; ++j) {
+      std::uint64_t rays = 0;
+      if (state[j] == 1) {
+        rays = among;
+      } else if (state[j] == 0 && entry[j] <= fan.farthest) {
+        std::uint64_t packed = 0;  // bit q: ray[q] when sparse, else ray q
+#if defined(__SSE2__)
+        const __m128 vx = _mm_set1_ps(cx[j]), vy = _mm_set1_ps(cy[j]), vz = _mm_set1_ps(cz[j]);
+        const __m128 limit = _mm_set1_ps(cos_limit[j]), near = _mm_set1_ps(entry[j]);
+        for (int q = 0; q < m; q += 4) {
+          const __m128 dot = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(x + q), vx), _mm_mul_ps(_mm_load_ps(y + q), vy)),
+                                        _mm_mul_ps(_mm_load_ps(z + q), vz));
+          const __m128 in = _mm_and_ps(_mm_cmpge_ps(dot, limit), _mm_cmpge_ps(_mm_load_ps(bound + q), near));
+          packed |= static_cast<std::uint64_t>(_mm_movemask_ps(in)) << q;
+        }
+#else
+        for (int q = 0; q < m; ++q) {
+          const float dot = (x[q] * cx[j] + y[q] * cy[j]) + z[q] * cz[j];
+          if (dot >= cos_limit[j] && bound[q] >= entry[j]) packed |= std::uint64_t{1} << q;
+        }
+#endif
+        if (!sparse) {
+          rays = packed & among;
+        } else {
+          for (; packed != 0; packed &= packed - 1) rays |= std::uint64_t{1} << ray[__builtin_ctzll(packed)];
+        }
+      }
+      out[k + j] = rays;
+    }
+  }
+}
+
 template int BoxIndex::within(const Level<float>&, int, int, const float[3], float, float*, std::int32_t*);
 template int BoxIndex::within(const Level<std::uint16_t>&, int, int, const float[3], float, float*, std::int32_t*);
 template int BoxIndex::entered(const Level<float>&, int, int, const float[3], const float[3], float, float, float, float*,
                                std::int32_t*);
 template int BoxIndex::entered(const Level<std::uint16_t>&, int, int, const float[3], const float[3], float, float, float,
                                float*, std::int32_t*);
+template void BoxIndex::cones(const FanRays&, const Level<float>&, int, int, float, std::uint64_t, std::uint64_t*);
+template void BoxIndex::cones(const FanRays&, const Level<std::uint16_t>&, int, int, float, std::uint64_t, std::uint64_t*);
 template void BoxIndex::overlaps(const Level<float>&, int, int, const float[3], const float[3], std::int32_t*);
 template void BoxIndex::overlaps(const Level<std::uint16_t>&, int, int, const float[3], const float[3], std::int32_t*);
 

@@ -22,6 +22,7 @@
 // need an exact answer break ties by box index themselves.
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -71,6 +72,18 @@ class BoxIndex {
   template <class Visit>
   void along(int frame, const Vec3& origin, const Vec3& direction, double bound, Visit&& visit) const;
 
+  /// Most rays a fan() walk takes.
+  static constexpr int kFanRays = 64;
+  /// Visits the boxes of `frame` that rays from one `origin` may enter: ray k along the unit directions[k] (at
+  /// most kFanRays), entering within bounds[k] (m). visit(box, rays) gets each such box once, in no particular
+  /// order, with the rays that may enter it as bits (bit k: ray k), a superset of those that do. Each box is
+  /// tested against its bounding ball's cone seen from the origin, one dot product a ray: many rays from one point
+  /// (a lidar's scan) share the walk, and the caller can measure a box once for all its rays. `bounds` is read
+  /// as the walk goes: a visit may lower its rays' bounds (the nearest hit found so far) to prune the boxes
+  /// after it. No allocation.
+  template <class Visit>
+  void fan(int frame, const Vec3& origin, std::span<const Vec3> directions, const double* bounds, Visit&& visit) const;
+
  private:
   static constexpr int kClusterSize = 16;
   static constexpr int kGroupSize = 8;  ///< clusters a group
@@ -117,6 +130,25 @@ class BoxIndex {
   /// (cluster_limit()) and for boxes (box_limit()), and takes a visit's new bound (tighten(bound)).
   template <class Keys, class Visit>
   void best_first(int frame, Keys& keys, Visit&& visit) const;
+  /// A fan's rays for cones(): directions and bounds (rounded up) in floats, side by side.
+  struct FanRays {
+    alignas(16) float x[kFanRays], y[kFanRays], z[kFanRays], bound[kFanRays];
+    float origin[3];  ///< m, relative to the index's origin
+    float margin;     ///< m, a ball's widening: the query's slack and float rounding as far as the fan reaches
+    float farthest;   ///< m, the largest bound (as it was at the start: bounds only fall)
+  };
+  /// For each of the boxes [begin, begin + n) of a level (n a multiple of four), in out[0, n), the rays among
+  /// `among` that may enter it within their bounds: those whose direction lies in the cone of the box's
+  /// bounding ball, when that ball is not entered beyond their bound (all of `among` when the ball holds the
+  /// origin; none for an empty box). `scale` turns the level's units into m.
+  template <class T>
+  static void cones(const FanRays& fan, const Level<T>& level, int begin, int n, float scale, std::uint64_t among,
+                    std::uint64_t* out);
+  static float round_up(double v) {
+    const float f = static_cast<float>(v);
+    return static_cast<double>(f) < v ? std::nextafter(f, INFINITY) : f;
+  }
+
   /// Whether each of the boxes [begin, begin + n) of a level meets [lo, hi] (1 or 0 in `out`).
   template <class T>
   static void overlaps(const Level<T>& level, int begin, int n, const float lo[3], const float hi[3], std::int32_t* out);
@@ -231,6 +263,54 @@ void BoxIndex::along(int frame, const Vec3& origin, const Vec3& direction, doubl
   keys.widen = static_cast<float>(slack(reach));
   keys.tighten(bound);
   best_first(frame, keys, visit);
+}
+
+template <class Visit>
+void BoxIndex::fan(int frame, const Vec3& origin, std::span<const Vec3> directions, const double* bounds,
+                   Visit&& visit) const {
+  const int n = static_cast<int>(directions.size());
+  assert(n <= kFanRays);
+  if (size_ == 0 || n == 0) return;
+  FanRays f;
+  std::uint64_t all = 0;
+  double farthest = 0.0;
+  for (int k = 0; k < kFanRays; ++k) {
+    const bool ray = k < n && bounds[k] >= 0.0;  // a NaN or negative bound: no box
+    const Vec3 d = k < n ? directions[std::size_t(k)] : Vec3::Zero();
+    f.x[k] = static_cast<float>(d.x()), f.y[k] = static_cast<float>(d.y()), f.z[k] = static_cast<float>(d.z());
+    f.bound[k] = ray ? round_up(bounds[k]) : -INFINITY;
+    if (ray) all |= std::uint64_t{1} << k, farthest = std::max(farthest, bounds[k]);
+  }
+  if (all == 0) return;
+  const double from = (origin - Vec3(origin_.data())).cwiseAbs().maxCoeff();
+  for (int a = 0; a < 3; ++a) f.origin[a] = static_cast<float>(origin[a] - origin_[std::size_t(a)]);
+  // Coordinates reach |origin| + extent from the index's origin; 16 float epsilons of that (and of the query's
+  // slack) exceed what rounding them and the fan's origin moves a ball.
+  f.margin = static_cast<float>(slack(from + std::min(farthest, extent_)) + 2e-6 * (1.0 + from + extent_));
+  f.farthest = round_up(farthest);
+  const Level<float> gr = groups(), cl = clusters();
+  const Level<std::uint16_t> bx = boxes(frame);
+  const std::int32_t *firsts = first(), *counts = count(), *ids = id();
+  const float step = static_cast<float>(unit_);
+  alignas(16) std::uint64_t in_group[kMaxGroups], in_cluster[kGroupSize], rays[kClusterSize];
+  cones(f, gr, 0, group_count_, 1.0f, all, in_group);
+  for (int g = 0; g < group_count_; ++g) {
+    if (in_group[g] == 0) continue;
+    cones(f, cl, g * kGroupSize, kGroupSize, 1.0f, in_group[g], in_cluster);
+    for (int j = 0; j < kGroupSize; ++j) {
+      if (in_cluster[j] == 0) continue;
+      const int c = g * kGroupSize + j;
+      cones(f, bx, firsts[c], counts[c], step, in_cluster[j], rays);
+      for (int k = 0; k < counts[c]; ++k) {
+        if (rays[k] == 0 || ids[firsts[c] + k] < 0) continue;
+        visit(int(ids[firsts[c] + k]), rays[k]);
+        for (std::uint64_t bits = rays[k]; bits != 0; bits &= bits - 1) {
+          const int q = __builtin_ctzll(bits);
+          f.bound[q] = round_up(bounds[q]);
+        }
+      }
+    }
+  }
 }
 
 template <class Keys, class Visit>

@@ -1,5 +1,8 @@
 #include "sense/world_rays.hpp"
 
+#include <algorithm>
+#include <array>
+
 namespace peg3d::sense {
 
 RayHit cast_at(const StaticRayScene& scene, const world::MoverTimeline* movers, double t, const Ray& ray, double range) {
@@ -12,16 +15,38 @@ RayHit cast_at(const StaticRayScene& scene, const world::MoverTimeline* movers, 
   return hit;
 }
 
+namespace {
+
+// The timeline's movers for each ray, nearer than its static hit (whose distance bounds the search).
+void cast_movers(const world::MoverTimeline& movers, double t, std::span<const Ray> rays, std::span<RayHit> hits) {
+  const auto take = [&](std::size_t k, const world::MoverHit& moving) {
+    if (moving.mover >= 0 && moving.distance < hits[k].distance) hits[k] = {moving.distance, RayTarget::kMover, moving.mover};
+  };
+  const bool one_origin = std::all_of(rays.begin(), rays.end(), [&](const Ray& r) { return r.origin == rays[0].origin; });
+  if (!one_origin) {
+    for (std::size_t k = 0; k < rays.size(); ++k) take(k, movers.first_along(rays[k], t, hits[k].distance));
+    return;
+  }
+  // A scan: its rays share one walk of the movers' index, a fan at a time.
+  constexpr std::size_t kFan = BoxIndex::kFanRays;
+  std::array<Vec3, kFan> directions;
+  std::array<world::MoverHit, kFan> best;
+  for (std::size_t from = 0; from < rays.size(); from += kFan) {
+    const std::size_t n = std::min(kFan, rays.size() - from);
+    for (std::size_t k = 0; k < n; ++k) directions[k] = rays[from + k].direction, best[k] = {-1, hits[from + k].distance};
+    movers.first_along_fan(rays[0].origin, {directions.data(), n}, t, {best.data(), n});
+    for (std::size_t k = 0; k < n; ++k) take(from + k, best[k]);
+  }
+}
+
+}  // namespace
+
 void cast_all(const WorldAtInstant& w, std::span<const Ray> rays, double range, int skip, std::span<RayHit> hits) {
   w.scene->cast(rays, range, hits);
+  if (w.movers != nullptr && w.movers->count() > 0) cast_movers(*w.movers, w.time, rays, hits);
   for (std::size_t k = 0; k < rays.size(); ++k) {
     const Ray& ray = rays[k];
     RayHit& hit = hits[k];
-    if (w.movers != nullptr && w.movers->count() > 0) {
-      // Movers only nearer than the static hit matter: the static distance bounds their search.
-      const world::MoverHit moving = w.movers->first_along(ray, w.time, hit.distance);
-      if (moving.mover >= 0 && moving.distance < hit.distance) hit = {moving.distance, RayTarget::kMover, moving.mover};
-    }
     if (w.push != nullptr) {
       // Push mode's bodies move with the run: no index over them; each body's bounding ball is tried first.
       for (int m = 0; m < w.push->movers(); ++m) {

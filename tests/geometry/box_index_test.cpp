@@ -193,6 +193,92 @@ TEST(GeometryBoxIndex, AlongVisitsEveryBoxTheRayEntersAndFindsTheFirstAsAVisitOf
   }
 }
 
+TEST(GeometryBoxIndex, AFanVisitsEveryBoxEachOfItsRaysEntersWithThatRaysBit) {
+  // Rays from one origin (1 to 64 of them, some along an axis, some with a bound of 0 or no bound), in two
+  // frames of different boxes, near the boxes and far from them: every box a ray enters within its bound is
+  // visited once with that ray's bit, and no ray is reported for a box far off it. A caller that lowers each
+  // ray's bound to its nearest entry ends with the first box of every ray, as a visit of every box finds it.
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> at(-2.0, 32.0), unit(-1.0, 1.0);
+  const double step = 3 * 32.0 / 65000;
+  long pairs = 0, extra = 0;
+  for (const int n : {1, 5, 16, 17, 1000, int(BoxIndex::kMaxBoxes)}) {
+    std::vector<Box> boxes = random_boxes(rng, n, 30.0);
+    const std::vector<Box> second = random_boxes(rng, n, 30.0);
+    boxes.insert(boxes.end(), second.begin(), second.end());
+    const BoxIndex index(boxes, 2);
+    for (int q = 0; q < 60; ++q) {
+      const int frame = q % 2;
+      const std::span<const Box> frame_boxes(boxes.data() + std::size_t(frame) * std::size_t(n), std::size_t(n));
+      const Vec3 o = q % 10 == 9 ? Vec3(500.0, -300.0, 40.0) : Vec3(at(rng), at(rng), at(rng));
+      const int rays = q % 4 == 0 ? BoxIndex::kFanRays : 1 + int(rng() % BoxIndex::kFanRays);
+      std::vector<Vec3> d(static_cast<std::size_t>(rays));
+      std::vector<double> bound(static_cast<std::size_t>(rays));
+      for (int k = 0; k < rays; ++k) {
+        Vec3 v(unit(rng), unit(rng), unit(rng));
+        if (k % 9 == 0) v = Vec3(0, unit(rng) < 0 ? -1 : 1, 0);  // along an axis
+        if (v.norm() < 1e-3) v = Vec3(1, 0, 0);
+        d[std::size_t(k)] = v.normalized();
+        bound[std::size_t(k)] = k % 11 == 3 ? 0.0 : k % 13 == 5 ? std::numeric_limits<double>::infinity() : k % 3 == 0 ? 4.0 : 60.0;
+        if (q % 10 == 9) bound[std::size_t(k)] = std::numeric_limits<double>::infinity();
+      }
+      std::vector<std::uint64_t> found(std::size_t(n), 0);
+      index.fan(frame, o, d, bound.data(), [&](int i, std::uint64_t bits) {
+        ASSERT_EQ(found[std::size_t(i)], 0u) << "box " << i << " visited twice";
+        ASSERT_NE(bits, 0u);
+        found[std::size_t(i)] = bits;
+      });
+      for (int i = 0; i < n; ++i) {
+        const Box& b = frame_boxes[std::size_t(i)];
+        for (int k = 0; k < rays; ++k) {
+          const Ray ray{o, d[std::size_t(k)]};
+          const bool entered = ray_box(ray, b.lo, b.hi, bound[std::size_t(k)]).has_value();
+          const bool visited = (found[std::size_t(i)] >> k) & 1;
+          ASSERT_TRUE(!entered || visited) << "n " << n << " query " << q << ": ray " << k << " box " << i << " missed";
+          pairs += entered, extra += visited && !entered;
+          if (visited) {
+            // In the cone of the box's bounding ball (widened by the steps the index rounds boxes out by and by
+            // the float rounding of the coordinates), entered within the bound: the cone's angle may open by a
+            // few float epsilons of the distance (1e-5 here).
+            const Vec3 c = b.center() - o;
+            const double r = 0.5 * b.size().norm() + 2 * step + 1e-5 * (1.0 + o.norm() + 32.0);
+            if (c.norm() > r) {
+              const double tolerance = 1e-5 * (1.0 + c.norm());
+              ASSERT_GE(c.dot(ray.direction), std::sqrt(c.squaredNorm() - r * r) - tolerance)
+                  << "n " << n << " query " << q << ": ray " << k << " box " << i << " far off";
+              ASSERT_LE(c.norm() - r - tolerance, bound[std::size_t(k)]);
+            }
+          }
+        }
+      }
+      // The first box of each ray, the bounds lowered as entries are found.
+      std::vector<int> best(std::size_t(rays), -1);
+      std::vector<double> best_t = bound;
+      index.fan(frame, o, d, best_t.data(), [&](int i, std::uint64_t bits) {
+        const Box& b = frame_boxes[std::size_t(i)];
+        for (; bits != 0; bits &= bits - 1) {
+          const std::size_t k = std::size_t(__builtin_ctzll(bits));
+          const auto t = ray_box({o, d[k]}, b.lo, b.hi, best_t[k]);
+          if (t && (*t < best_t[k] || (*t == best_t[k] && (best[k] < 0 || i < best[k])))) best[k] = i, best_t[k] = *t;
+        }
+      });
+      for (int k = 0; k < rays; ++k) {
+        int expected = -1;
+        double expected_t = bound[std::size_t(k)];
+        for (int i = 0; i < n; ++i) {
+          const Box& b = frame_boxes[std::size_t(i)];
+          const auto t = ray_box({o, d[std::size_t(k)]}, b.lo, b.hi, expected_t);
+          if (t && (*t < expected_t || (*t == expected_t && (expected < 0 || i < expected)))) expected = i, expected_t = *t;
+        }
+        ASSERT_EQ(best[std::size_t(k)], expected) << "n " << n << " query " << q << " ray " << k;
+        ASSERT_EQ(best_t[std::size_t(k)], expected_t);
+      }
+    }
+  }
+  std::printf("%ld ray-box entries, %ld more pairs visited\n", pairs, extra);
+  EXPECT_GT(pairs, 5000);
+}
+
 TEST(GeometryBoxIndex, EachFrameIsAnsweredFromItsOwnBoxes) {
   // Boxes that move from frame to frame (as a mover's bounds do over a window's blocks), some far: a query of a
   // frame reports what a visit of that frame's boxes does, never a box only another frame has near.

@@ -443,6 +443,27 @@ MoverHit MoverTimeline::first_along(const Ray& ray, double t, double range) cons
   return best;
 }
 
+void MoverTimeline::first_along_fan(const Vec3& origin, std::span<const Vec3> directions, double t,
+                                    std::span<MoverHit> best) const {
+  assert(directions.size() == best.size() && directions.size() <= std::size_t(BoxIndex::kFanRays));
+  if (!indexed(t, t)) {
+    for (std::size_t k = 0; k < best.size(); ++k) best[k] = first_along_scan({origin, directions[k]}, t, best[k].distance);
+    return;
+  }
+  double bounds[BoxIndex::kFanRays];
+  for (std::size_t k = 0; k < best.size(); ++k) bounds[k] = best[k].distance;
+  const std::size_t b = block_at(t);
+  window(b).fan(static_cast<int>(b % kWindowBlocks), origin, directions, bounds, [&](int leaf, std::uint64_t rays) {
+    const int m = queried_[std::size_t(leaf)];
+    const Pose at = pose(m, t);
+    for (; rays != 0; rays &= rays - 1) {
+      const int k = __builtin_ctzll(rays);
+      offer_hit(m, movers_[std::size_t(m)].shape, at, {origin, directions[std::size_t(k)]}, best[std::size_t(k)]);
+      bounds[k] = best[std::size_t(k)].distance;
+    }
+  });
+}
+
 MoverHit MoverTimeline::first_along_scan(const Ray& ray, double t, double range) const {
   MoverHit best{-1, range};
   for (const int m : queried_) offer_hit(m, movers_[std::size_t(m)].shape, pose(m, t), ray, best);

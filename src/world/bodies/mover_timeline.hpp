@@ -135,6 +135,11 @@ class MoverTimeline {
   /// lowest index among movers met at one distance), found through the window's index. No allocation.
   MoverHit first_along(const Ray& ray, double t, double range) const;
 
+  /// first_along() for rays from one `origin` along the unit `directions` (at most BoxIndex::kFanRays): best[k]
+  /// holds ray k's range on entry ({-1, range}) and its answer on return, the one first_along(ray, t, range)
+  /// gives. One walk of the window's index serves them all, and each mover's pose is taken once. No allocation.
+  void first_along_fan(const Vec3& origin, std::span<const Vec3> directions, double t, std::span<MoverHit> best) const;
+
   /// The first contact, during the step [t0, t0 + dt], of a sphere of `radius` moving from `from` to `to` at
   /// constant velocity with any mover (the earliest, the lowest index among equally early ones); nullopt when
   /// it touches none. A search that reaches kMaxAdvancementSteps answers conservatively (Contact::gave_up).

@@ -131,6 +131,41 @@ TEST(WorldMoverIndex, ARayMeetsTheMoverAVisitOfEveryMoverFindsAtTheSameDistance)
   EXPECT_LT(met, 3700);
 }
 
+TEST(WorldMoverIndex, AFanOfRaysMeetsWhatEachOfItsRaysMeetsAlone) {
+  // Scans of 1 to 64 rays from one point at any time of the crowded map, inside the timeline and past it, with
+  // ranges of 0 to 40 m that differ from ray to ray: each ray's answer is the scan's, to the bit.
+  const auto arena = testing::build(crowded());
+  const auto t = arena->movers_until(12.0);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> n(0.0, 1.0);
+  int met = 0, rays_cast = 0;
+  for (int q = 0; q < 600; ++q) {
+    const double time = q % 50 == 7 ? 12.5 : 11.9 * u(rng);
+    const Vec3 origin(30 * u(rng), 30 * u(rng), 15 * u(rng));
+    const int rays = q % 3 == 0 ? BoxIndex::kFanRays : 1 + int(rng() % BoxIndex::kFanRays);
+    std::vector<Vec3> directions(static_cast<std::size_t>(rays));
+    std::vector<MoverHit> fan(static_cast<std::size_t>(rays));
+    for (int k = 0; k < rays; ++k) {
+      directions[std::size_t(k)] = Vec3(n(rng), n(rng), n(rng)).normalized();
+      fan[std::size_t(k)] = {-1, k % 17 == 4 ? 0.0 : 40.0 * u(rng)};
+    }
+    const std::vector<MoverHit> ranges = fan;
+    t->first_along_fan(origin, directions, time, fan);
+    for (int k = 0; k < rays; ++k) {
+      const MoverHit alone = t->first_along_scan({origin, directions[std::size_t(k)]}, time, ranges[std::size_t(k)].distance);
+      const MoverHit& a = fan[std::size_t(k)];
+      ASSERT_EQ(a.mover, alone.mover) << "query " << q << " ray " << k;
+      ASSERT_EQ(std::memcmp(&a.distance, &alone.distance, sizeof(double)), 0) << "query " << q << " ray " << k;
+      met += a.mover >= 0;
+    }
+    rays_cast += rays;
+  }
+  std::printf("%d of %d rays met a mover\n", met, rays_cast);
+  EXPECT_GT(met, rays_cast / 20);
+  EXPECT_LT(met, rays_cast * 19 / 20);
+}
+
 TEST(WorldMoverIndex, NoPointOfAnyMoverTravelsFartherThanTheBound) {
   // Points of every mover (its centre, a box's corners, a point off the centre) between two instants of a game
   // step: all movers, the bodies alone (bouncing, tumbling and rolling), the scripted movers alone, whose
