@@ -46,9 +46,7 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
   const std::size_t bricks = bricks_[0] * bricks_[1] * bricks_[2];
   cells_.resize(bricks * kBrickCells);
   brick_occupied_.resize(bricks);
-  free_bits_.assign(bricks, 0);
-  hit_bits_.assign(bricks, 0);
-  at_min_.assign(bricks, 0);
+  bits_.assign(bricks, BrickBits{});
   brick_touched_.assign(bricks, 0);
   touched_.reserve(bricks);
   corner_ = centre(k0_) - Vec3::Constant(0.5 * config.resolution);
@@ -89,13 +87,19 @@ void ScanMap::clear() {
   // beyond the box stay kOutside), no cell at the clamp, and its count of blocked cells.
   for (const std::uint32_t b : touched_) {
     float* cell = cells_.data() + std::size_t(b) * kBrickCells;
-    int inside = 0;
-    for (std::size_t l = 0; l < kBrickCells; ++l) {
-      const bool in = cell[l] != kOutside;
-      if (in) cell[l] = kUnknown;
-      inside += in;
+    const std::size_t bz = b % bricks_[2], by = (b / bricks_[2]) % bricks_[1], bx = b / (bricks_[2] * bricks_[1]);
+    int inside = kBrickCells;
+    if ((bx + 1) * kBrick <= n_[0] && (by + 1) * kBrick <= n_[1] && (bz + 1) * kBrick <= n_[2]) {
+      std::fill(cell, cell + kBrickCells, kUnknown);  // a brick wholly inside the box (most): a plain fill
+    } else {
+      inside = 0;
+      for (std::size_t l = 0; l < kBrickCells; ++l) {
+        const bool in = cell[l] != kOutside;
+        if (in) cell[l] = kUnknown;
+        inside += in;
+      }
     }
-    at_min_[b] = 0;
+    bits_[b].at_min = 0;
     brick_occupied_[b] = config_.unknown_is_occupied ? std::uint8_t(inside) : 0;
     brick_touched_[b] = 0;
   }
@@ -120,6 +124,7 @@ void ScanMap::reserve(int rays, double range) {
   const double per_ray = 3.0 * std::ceil(range / config_.resolution) + 4.0;
   const auto most = std::size_t(std::min(double(cells_.size()), double(rays) * per_ray));
   free_list_.reserve(most);
+  crossed_.reserve(most);
   hit_list_.reserve(std::min(cells_.size(), std::size_t(rays)));
   flips_.reserve(free_list_.capacity() + hit_list_.capacity());  // every changed cell is in one of the lists
 }
@@ -153,7 +158,22 @@ void ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& 
   octomap::OcTreeKey key_origin, key_end;
   if (!keys_->coordToKeyChecked(origin, key_origin) || !keys_->coordToKeyChecked(end, key_end)) return;
   if (key_origin == key_end) return;
-  visit(key_origin);
+  // The cell's storage index follows the key: per axis, its place in the grid and that axis's share of the index
+  // (index_of's brick and place in the brick), updated on the axis each step moves along.
+  const std::size_t stride[3] = {bricks_[1] * bricks_[2] * kBrickCells, bricks_[2] * kBrickCells, kBrickCells};
+  long place[3];
+  std::size_t share[3];
+  unsigned outside = 0;  // bit i: the cell lies beyond the box on axis i
+  const auto locate = [&](unsigned i) {
+    // A place below the box wraps to a huge unsigned value, beyond it too; its share is then never used.
+    share[i] = std::size_t(place[i] >> 2) * stride[i] + (std::size_t(place[i] & 3) << (4 - 2 * i));
+    outside = std::size_t(place[i]) >= n_[i] ? outside | 1u << i : outside & ~(1u << i);
+  };
+  for (unsigned i = 0; i < 3; ++i) {
+    place[i] = long(key_origin[i]) - long(k0_[i]);
+    locate(i);
+  }
+  if (outside == 0) visit(share[0] + share[1] + share[2]);
   octomap::point3d direction = end - origin;
   const float length = float(direction.norm());
   direction /= length;
@@ -178,7 +198,9 @@ void ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& 
     t_max[dim] += t_delta[dim];
     if (key == key_end) return;
     if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return;  // missed the end's cell: stop
-    visit(key);
+    place[dim] += step[dim];
+    locate(dim);
+    if (outside == 0) visit(share[0] + share[1] + share[2]);
   }
 }
 
@@ -189,14 +211,14 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   flips_.clear();
   obstacles_moved_ = false;
   // A brick's 64 cells have one word of each set: bit l of word b is cell b * 64 + l.
-  const auto mark = [&](const octomap::OcTreeKey& k, std::vector<std::uint64_t>& bits, std::vector<std::uint32_t>& list) {
+  const auto mark_hit = [&](const octomap::OcTreeKey& k) {
     std::size_t c = 0;
     if (!index_of({k[0], k[1], k[2]}, c)) return;
-    std::uint64_t& word = bits[c / kBrickCells];
+    std::uint64_t& word = bits_[c / kBrickCells].hit;
     const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
     if ((word & bit) != 0) return;
     word |= bit;
-    list.push_back(std::uint32_t(c));
+    hit_list_.push_back(std::uint32_t(c));
   };
   // updateNode(key, occupied): log-odds in float, clamped.
   const auto update = [&](std::uint32_t c, float change) {
@@ -208,7 +230,8 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     v = next;
     // Cells at the lower clamp are also a bit of their brick's word: a ray crossing them needs no load of the value.
     const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
-    at_min_[c / kBrickCells] = next == min_ ? at_min_[c / kBrickCells] | bit : at_min_[c / kBrickCells] & ~bit;
+    std::uint64_t& at_min = bits_[c / kBrickCells].at_min;
+    at_min = next == min_ ? at_min | bit : at_min & ~bit;
     known_ += !was_known;
     if (!was_known && brick_touched_[c / kBrickCells] == 0) {
       brick_touched_[c / kBrickCells] = 1;
@@ -230,40 +253,46 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
     octomap::OcTreeKey key;
     if ((max_range < 0.0 || (p - origin).norm() <= max_range) && keys_->coordToKeyChecked(p, key)) {
-      mark(key, hit_bits_, hit_list_);
+      mark_hit(key);
     }
   }
   // Then every ray's free cells, each updated when first met: a miss, unless it is an endpoint's cell or already
-  // at the lower clamp (OctoMap's early abort).
+  // at the lower clamp (OctoMap's early abort). The rays are traversed first, each cell's value prefetched as it
+  // is found, and the cells updated after, in the same order: the traversal's arithmetic then overlaps the cache
+  // misses of a map whose lines other work has evicted (a game's, between scans).
+  crossed_.clear();
+  const auto cross = [&](std::size_t c) {
+
+    __builtin_prefetch(&cells_[c]);
+    crossed_.push_back(std::uint32_t(c));
+  };
   for (const Vec3& pd : points) {
     const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
-    const auto free_cell = [&](const octomap::OcTreeKey& k) {
-      std::size_t c = 0;
-      if (!index_of({k[0], k[1], k[2]}, c)) return;
-      const std::size_t b = c / kBrickCells;
-      const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
-      if (((free_bits_[b] | hit_bits_[b] | at_min_[b]) & bit) != 0) return;  // met, an endpoint, or no change
-      free_bits_[b] |= bit;
-      free_list_.push_back(std::uint32_t(c));
-      float& v = cells_[c];
-      if (v <= 0.0f) {  // known and free (false for unknown, NaN): a miss keeps it free, the counts stand
-        v = std::max(v + miss_, min_);
-        if (v == min_) at_min_[b] |= bit;
-        return;
-      }
-      update(std::uint32_t(c), miss_);
-    };
     if (max_range < 0.0 || (p - origin).norm() <= max_range) {
-      ray_cells(origin, p, free_cell);
+      ray_cells(origin, p, cross);
     } else {
       const octomap::point3d direction = (p - origin).normalized();
-      ray_cells(origin, origin + direction * float(max_range), free_cell);
+      ray_cells(origin, origin + direction * float(max_range), cross);
     }
   }
-  for (std::uint32_t c : free_list_) free_bits_[c / kBrickCells] = 0;
+  for (const std::uint32_t c : crossed_) {
+    BrickBits& brick = bits_[c / kBrickCells];
+    const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
+    if (((brick.free | brick.hit | brick.at_min) & bit) != 0) continue;  // met, an endpoint, or no change
+    brick.free |= bit;
+    free_list_.push_back(c);
+    float& v = cells_[c];
+    if (v <= 0.0f) {  // known and free (false for unknown, NaN): a miss keeps it free, the counts stand
+      v = std::max(v + miss_, min_);
+      if (v == min_) brick.at_min |= bit;
+      continue;
+    }
+    update(c, miss_);
+  }
+  for (std::uint32_t c : free_list_) bits_[c / kBrickCells].free = 0;
   for (std::uint32_t c : hit_list_) {
     update(c, hit_);
-    hit_bits_[c / kBrickCells] = 0;
+    bits_[c / kBrickCells].hit = 0;
   }
 }
 
@@ -326,8 +355,9 @@ void ScanMap::write_bt(const std::filesystem::path& file) const {
 
 std::size_t ScanMap::bytes() const {
   return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() +
-         (free_bits_.capacity() + hit_bits_.capacity() + at_min_.capacity()) * sizeof(std::uint64_t) +
-         (free_list_.capacity() + hit_list_.capacity() + flips_.capacity() + touched_.capacity()) * sizeof(std::uint32_t) +
+         bits_.capacity() * sizeof(BrickBits) +
+         (free_list_.capacity() + crossed_.capacity() + hit_list_.capacity() + flips_.capacity() + touched_.capacity()) *
+             sizeof(std::uint32_t) +
          brick_touched_.capacity();
 }
 
