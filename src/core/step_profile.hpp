@@ -3,6 +3,8 @@
 // with StepProfile::Scope; a thread that wants the breakdown installs a StepProfile for itself, every other
 // thread pays one thread-local load and a predictable branch per scope. Times are in time-stamp-counter
 // ticks (rdtsc, a few nanoseconds to read), converted to nanoseconds by whoever reads them against a clock.
+// A scope opened inside another (an agent's map queried while its observation is made) counts its time to its
+// own part only: the enclosing one's part gets its time less that of the scopes within it.
 
 #include <array>
 #include <cstdint>
@@ -17,12 +19,14 @@ namespace peg3d {
 
 class StepProfile {
  public:
-  /// The parts of a step and of the learners around it. Scopes of different parts never nest.
+  /// The parts of a step and of the learners around it.
   enum Part : int {
     kConstraints,  ///< bounded steering, motion space, obstacle guard
     kCollisions,   ///< swept collisions with the map's obstacles and between agents (Bullet)
     kMovers,       ///< moving obstacles: contacts on their timeline, the octree that follows them
     kSensing,      ///< range sensors: casting their rays, noise and dropout
+    kMapInsert,    ///< agents' own maps: inserting each scan
+    kMapQuery,     ///< agents' own maps: their nearest occupied cells (inputs, guard, rewards)
     kObservation,  ///< percepts: opponents, distance-field queries, angle errors
     kRewards,      ///< the reward terms
     kFiring,       ///< fuzzy rule firing of the learners
@@ -50,12 +54,23 @@ class StepProfile {
     return p;
   }
 
-  /// Adds the time from construction to destruction to `part` of the thread's profile, if it has one.
+  /// Adds the time from construction to destruction to `part` of the thread's profile, if it has one, less the
+  /// time of the scopes opened within it.
   class Scope {
    public:
-    explicit Scope(Part part) : profile_(current()), part_(part), start_(profile_ != nullptr ? now() : 0) {}
+    explicit Scope(Part part) : profile_(current()), part_(part) {
+      if (profile_ != nullptr) {
+        outer_ = profile_->open_;
+        profile_->open_ = this;
+        start_ = now();
+      }
+    }
     ~Scope() {
-      if (profile_ != nullptr) profile_->ticks[std::size_t(part_)] += now() - start_;
+      if (profile_ == nullptr) return;
+      const std::uint64_t spent = now() - start_;
+      profile_->ticks[std::size_t(part_)] += spent - inner_;
+      if (outer_ != nullptr) outer_->inner_ += spent;
+      profile_->open_ = outer_;
     }
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
@@ -63,8 +78,13 @@ class StepProfile {
    private:
     StepProfile* profile_;
     Part part_;
-    std::uint64_t start_;
+    std::uint64_t start_ = 0;
+    std::uint64_t inner_ = 0;  // ticks of the scopes opened within this one
+    Scope* outer_ = nullptr;   // the scope this one was opened in
   };
+
+ private:
+  Scope* open_ = nullptr;  // the innermost open scope
 };
 
 inline const char* StepProfile::name(Part p) {
@@ -72,7 +92,9 @@ inline const char* StepProfile::name(Part p) {
     case kConstraints: return "constraints";
     case kCollisions: return "collisions";
     case kMovers: return "movers";
-    case kSensing: return "sensing";
+    case kSensing: return "sensing_cast";
+    case kMapInsert: return "sensing_integrate";
+    case kMapQuery: return "sensing_query";
     case kObservation: return "observation";
     case kRewards: return "rewards";
     case kFiring: return "firing";

@@ -91,6 +91,7 @@ void scan(const Sim& sim, SimState& st, int i) {
       if (!agents && hits[k].target == sense::RayTarget::kBall) continue;
       s.points[n++] = ray_span[k].origin + (echo[k] != 0 ? ranges[k] : beyond) * ray_span[k].direction;
     }
+    const StepProfile::Scope integrating(StepProfile::kMapInsert);
     map->insert(a.kinematics.position, std::span<const Vec3>(s.points).first(n), range);
   }
 }

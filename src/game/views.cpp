@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/step_profile.hpp"
+
 namespace peg3d::game {
 
 ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p, double reach, int* mover) {
@@ -22,6 +24,7 @@ ObstacleSense sense_obstacle(const Sim& sim, const SimState& st, const Vec3& p, 
 }
 
 ObstacleSense sense_own_map(const Sim& sim, const SimState& st, int i, const Vec3& p) {
+  const StepProfile::Scope profiled(StepProfile::kMapQuery);
   const sense::OccupiedPoint n = st.map(i)->nearest_occupied(p, sim.arena().max_distance());
   return {n.distance, n.point, n.found};
 }
