@@ -13,15 +13,11 @@
 namespace peg3d {
 namespace {
 
-// A double rounded down (lo) or up (hi) to a float, so that the float box contains the double one.
+// A double rounded down to a float (a box's lo; BoxIndex::round_up rounds its hi), so that the float box contains
+// the double one.
 float down(double v) {
   float f = static_cast<float>(v);
   if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-float up(double v) {
-  float f = static_cast<float>(v);
-  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
   return f;
 }
 
@@ -95,7 +91,7 @@ BoxIndex::BoxIndex(std::span<const Box> all, int frames) : size_(all.size() / st
       floats_[offset + std::size_t(a * count + i)] =
           b ? down(b->lo[a] - origin_[std::size_t(a)]) : std::numeric_limits<float>::infinity();
       floats_[offset + std::size_t((3 + a) * count + i)] =
-          b ? up(b->hi[a] - origin_[std::size_t(a)]) : -std::numeric_limits<float>::infinity();
+          b ? round_up(b->hi[a] - origin_[std::size_t(a)]) : -std::numeric_limits<float>::infinity();
     }
   };
   const std::size_t cluster_level = 6 * std::size_t(group_count_);

@@ -144,6 +144,7 @@ class BoxIndex {
   template <class T>
   static void cones(const FanRays& fan, const Level<T>& level, int begin, int n, float scale, std::uint64_t among,
                     std::uint64_t* out);
+  /// A double rounded up to a float (the float is never below it).
   static float round_up(double v) {
     const float f = static_cast<float>(v);
     return static_cast<double>(f) < v ? std::nextafter(f, INFINITY) : f;

@@ -57,7 +57,7 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
       for (std::size_t bz = 0; bz < bricks_[2]; ++bz) {
         const std::size_t b = (bx * bricks_[1] + by) * bricks_[2] + bz;
         int inside = kBrickCells;
-        if ((bx + 1) * kBrick > n_[0] || (by + 1) * kBrick > n_[1] || (bz + 1) * kBrick > n_[2]) {
+        if (!whole_brick(bx, by, bz)) {
           inside = 0;
           for (std::size_t l = 0; l < kBrickCells; ++l) {
             const bool in = bx * kBrick + (l >> 4) < n_[0] && by * kBrick + ((l >> 2) & 3) < n_[1] && bz * kBrick + (l & 3) < n_[2];
@@ -87,9 +87,9 @@ void ScanMap::clear() {
   // beyond the box stay kOutside), no cell at the clamp, and its count of blocked cells.
   for (const std::uint32_t b : touched_) {
     float* cell = cells_.data() + std::size_t(b) * kBrickCells;
-    const std::size_t bz = b % bricks_[2], by = (b / bricks_[2]) % bricks_[1], bx = b / (bricks_[2] * bricks_[1]);
+    const auto [bx, by, bz] = brick_at(b);
     int inside = kBrickCells;
-    if ((bx + 1) * kBrick <= n_[0] && (by + 1) * kBrick <= n_[1] && (bz + 1) * kBrick <= n_[2]) {
+    if (whole_brick(bx, by, bz)) {
       std::fill(cell, cell + kBrickCells, kUnknown);  // a brick wholly inside the box (most): a plain fill
     } else {
       inside = 0;
@@ -140,8 +140,8 @@ Vec3 ScanMap::centre(const CellKey& key) const {
 }
 
 CellKey ScanMap::key_at(std::size_t c) const {
-  const std::size_t b = c / kBrickCells, l = c % kBrickCells;
-  const std::size_t bz = b % bricks_[2], by = (b / bricks_[2]) % bricks_[1], bx = b / (bricks_[2] * bricks_[1]);
+  const std::size_t l = c % kBrickCells;
+  const auto [bx, by, bz] = brick_at(c / kBrickCells);
   return {std::uint16_t(k0_[0] + bx * kBrick + (l >> 4)), std::uint16_t(k0_[1] + by * kBrick + ((l >> 2) & 3)),
           std::uint16_t(k0_[2] + bz * kBrick + (l & 3))};
 }
@@ -262,7 +262,6 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   // misses of a map whose lines other work has evicted (a game's, between scans).
   crossed_.clear();
   const auto cross = [&](std::size_t c) {
-
     __builtin_prefetch(&cells_[c]);
     crossed_.push_back(std::uint32_t(c));
   };

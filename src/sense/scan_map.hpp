@@ -15,8 +15,8 @@
 // Cost: 4 bytes a cell of the arena's box at the resolution, rounded up to whole bricks, plus per brick a byte
 // (its occupied count, for nearest_occupied) and 32 bytes (a scan's two sets, and the cells at the lower clamp,
 // which a ray crosses without an update, in one aligned block): the paper's 35 x 35 x 20 m arena at 0.25 m is
-// 141 x 141 x 81 cells in 36 x 36 x 21 bricks, 8.0 MB with the scan lists (bytes()). Built once; clear() forgets every cell (a fill) and
-// allocates nothing.
+// 141 x 141 x 81 cells in 36 x 36 x 21 bricks, 8.0 MB with the scan lists (bytes()). Built once; clear()
+// forgets every cell (a fill) and allocates nothing.
 
 #include <array>
 #include <cstdint>
@@ -161,6 +161,14 @@ class ScanMap {
 
  private:
   CellKey key_at(std::size_t c) const;
+  /// Brick b's place in the grid of bricks (x, y, z).
+  std::array<std::size_t, 3> brick_at(std::size_t b) const {
+    return {b / (bricks_[2] * bricks_[1]), (b / bricks_[2]) % bricks_[1], b % bricks_[2]};
+  }
+  /// Whether every cell of the brick at (bx, by, bz) lies inside the box.
+  bool whole_brick(std::size_t bx, std::size_t by, std::size_t bz) const {
+    return (bx + 1) * kBrick <= n_[0] && (by + 1) * kBrick <= n_[1] && (bz + 1) * kBrick <= n_[2];
+  }
   /// The storage index of a cell inside the box: bricks of 4 x 4 x 4 cells (x slowest), 64 floats each.
   bool index_of(const CellKey& k, std::size_t& c) const {
     // Unsigned differences: a key below the grid's first wraps to a large value and fails the bound too.
