@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <new>
 #include <stdexcept>
 
@@ -100,7 +101,17 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
   ::close(fds[1]);
 
   using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limits.seconds));
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(limits.seconds * ChildLimits::kWallTimeFactor));
+  clockid_t child_cpu{};
+  const bool have_cpu_clock = ::clock_getcpuclockid(pid, &child_cpu) == 0;
+  // Out of time: used its processor seconds, or blocked for the wall-clock backstop.
+  const auto out_of_time = [&] {
+    if (Clock::now() > deadline) return true;
+    timespec used{};
+    return have_cpu_clock && ::clock_gettime(child_cpu, &used) == 0 &&
+           double(used.tv_sec) + 1e-9 * double(used.tv_nsec) > limits.seconds;
+  };
   ChildResult result;
   std::string bytes;
   bool killed = false;
@@ -122,7 +133,7 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
       if (bytes.size() > limits.extra_memory_bytes) kill_with(ChildResult::Status::kOutOfMemory);
     }
     if (statm(pid).resident * static_cast<std::size_t>(page) > rss_limit) kill_with(ChildResult::Status::kOutOfMemory);
-    else if (Clock::now() > deadline) kill_with(ChildResult::Status::kTimedOut);
+    else if (out_of_time()) kill_with(ChildResult::Status::kTimedOut);
   }
   ::close(fds[0]);
   int wstatus = 0;
@@ -131,7 +142,7 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
     const pid_t r = ::waitpid(pid, &wstatus, killed ? 0 : WNOHANG);
     if (r == pid || (r < 0 && errno != EINTR)) break;
     if (r == 0) {
-      if (Clock::now() > deadline) kill_with(ChildResult::Status::kTimedOut);
+      if (out_of_time()) kill_with(ChildResult::Status::kTimedOut);
       else ::usleep(1000);
     }
   }

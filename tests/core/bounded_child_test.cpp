@@ -1,6 +1,7 @@
 #include "core/bounded_child.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -27,13 +28,36 @@ TEST(CoreBoundedChild, AnExceptionIsAFailureWithItsMessage) {
   EXPECT_EQ(r.output, "no triangles");
 }
 
-TEST(CoreBoundedChild, AHangIsKilledAtTheDeadline) {
+// The processor time of this process's reaped children, in s.
+double children_cpu_seconds() {
+  rusage u{};
+  ::getrusage(RUSAGE_CHILDREN, &u);
+  const auto s = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return s(u.ru_utime) + s(u.ru_stime);
+}
+
+TEST(CoreBoundedChild, ABusyLoopIsKilledOnceItHasUsedItsProcessorTime) {
+  const double before = children_cpu_seconds();
+  const ChildResult r = run_bounded(
+      []() -> std::string {
+        volatile unsigned long spins = 0;
+        for (;;) spins = spins + 1;
+      },
+      {0.3, std::size_t{256} << 20});
+  EXPECT_EQ(r.status, Status::kTimedOut);
+  // Killed by its processor time, not by the wall-clock backstop (which would let it run 1.2 s).
+  const double used = children_cpu_seconds() - before;
+  EXPECT_GE(used, 0.3);
+  EXPECT_LT(used, 0.9);
+}
+
+TEST(CoreBoundedChild, AChildBlockedOffTheProcessorIsKilledByTheWallClockBackstop) {
   const auto start = std::chrono::steady_clock::now();
   const ChildResult r = run_bounded([]() -> std::string { for (;;) ::pause(); }, {0.3, std::size_t{256} << 20});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.status, Status::kTimedOut);
-  EXPECT_GE(seconds, 0.3);
-  EXPECT_LT(seconds, 3.0);
+  EXPECT_GE(seconds, 0.3 * ChildLimits::kWallTimeFactor);
+  EXPECT_LT(seconds, 0.3 * ChildLimits::kWallTimeFactor + 3.0);
 }
 
 TEST(CoreBoundedChild, MemoryBeyondTheLimitStopsTheChild) {

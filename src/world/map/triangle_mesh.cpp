@@ -195,7 +195,7 @@ TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimi
     case ChildResult::Status::kFailed:
       throw MeshError(r.output);
     case ChildResult::Status::kTimedOut:
-      throw MeshError(fmt::format("mesh file '{}' took more than {:.1f} s to import and was given up: it is malformed or too "
+      throw MeshError(fmt::format("mesh file '{}' took more than {:.1f} s of processor time to import and was given up: it is malformed or too "
                                   "large",
                                   name, seconds));
     case ChildResult::Status::kOutOfMemory:

@@ -31,7 +31,7 @@ struct TriangleMesh {
 /// and 1.5 GiB of address space to import, so a fixed bound would refuse honest terrain while a small file
 /// that asks for gigabytes is still stopped early.
 struct MeshImportLimits {
-  double seconds = 8.0;                                   ///< s of wall time for any file, > 0
+  double seconds = 8.0;                                   ///< s of processor time for any file, > 0 (see ChildLimits)
   double seconds_per_mib = 0.5;                           ///< s more per MiB of file, >= 0
   std::size_t memory_bytes = std::size_t{768} << 20;     ///< bytes the import may add to the process, > 0
   std::size_t memory_per_file_byte = 64;                  ///< or this many per byte of file, when more
