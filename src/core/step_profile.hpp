@@ -27,6 +27,7 @@ class StepProfile {
     kSensing,      ///< range sensors: casting their rays, noise and dropout
     kMapInsert,    ///< agents' own maps: inserting each scan
     kMapQuery,     ///< agents' own maps: their nearest occupied cells (inputs, guard, rewards)
+    kSight,        ///< limited sight: sight tests of the opponents, sightings pooled
     kObservation,  ///< percepts: opponents, distance-field queries, angle errors
     kRewards,      ///< the reward terms
     kFiring,       ///< fuzzy rule firing of the learners
@@ -95,6 +96,7 @@ inline const char* StepProfile::name(Part p) {
     case kSensing: return "sensing_cast";
     case kMapInsert: return "sensing_integrate";
     case kMapQuery: return "sensing_query";
+    case kSight: return "sight";
     case kObservation: return "observation";
     case kRewards: return "rewards";
     case kFiring: return "firing";

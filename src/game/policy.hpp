@@ -17,7 +17,11 @@ struct AgentView {
   int index = 0;             ///< the agent's index in the game (pursuers first, then evaders)
   int opponent = -1;         ///< index of the opponent `other` describes
   KinematicState self;
-  KinematicState other;      ///< the opponent it plays against (game/sim.hpp, choose_opponent)
+  /// The opponent it plays against (game/sim.hpp, choose_opponent): its state, or with limited sight
+  /// (AgentConfig::sight) the agent's estimate of it (SimState::known_state).
+  KinematicState other;
+  bool other_visible = true;  ///< the opponent is in sight now (always with full information)
+  double other_age = 0.0;     ///< s, how old the sighting `other` comes from is (0 while in sight)
   double self_speed = 0.0;   ///< m/s
   double other_speed = 0.0;  ///< m/s
   double dt = 0.1;           ///< s

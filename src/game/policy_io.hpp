@@ -27,7 +27,7 @@
 namespace peg3d::game {
 
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
-inline constexpr int kPolicyVersion = 7;
+inline constexpr int kPolicyVersion = 8;  // 8: AgentConfig::sight
 /// The oldest version this build reads.
 inline constexpr int kOldestPolicyVersion = 1;
 

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "game/scans.hpp"
+#include "game/sight.hpp"
 #include "game/sim.hpp"
 #include "game/starts.hpp"
 #include "game/views.hpp"
@@ -117,6 +118,8 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   for (int i = 0; i < n; ++i) {
     if (!st.scans.first.empty() && st.scans.lidar[std::size_t(i)] != nullptr) scan(sim, st, i);
   }
+  prepare_sight(sim, st);
+  look(sim, st);
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];
     a.opponent = choose_opponent(st, i, g.team.opponent_rule(a.role));

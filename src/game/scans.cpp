@@ -12,7 +12,7 @@ constexpr std::uint64_t kSensorStream = 0x6c69646172ull;  // "lidar"
 
 void prepare_scans(const Sim& sim, SimState& st, std::uint64_t seed) {
   SimState::Scans& s = st.scans;
-  if (sim.ray_scene() == nullptr) {
+  if (!sim.has_lidars()) {
     s.first.clear();
     return;
   }

@@ -66,7 +66,10 @@ int choose_opponent(const SimState& st, int i, OpponentChoice rule) {
   for (int j = lo; j < hi; ++j) {
     const AgentState& o = st.agents[std::size_t(j)];
     if (!o.active) continue;
-    const double d2 = (o.kinematics.position - a.kinematics.position).squaredNorm();
+    // With limited sight, where the agent takes the opponent to be.
+    const double d2 = (st.sight_limited(i) ? st.known_state(i, j).position - a.kinematics.position
+                                           : o.kinematics.position - a.kinematics.position)
+                          .squaredNorm();
     if (d2 < best_d2) best_d2 = d2, best = j;
   }
   return best >= 0 ? best : a.opponent;
@@ -99,6 +102,7 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
   }
   std::vector<const AgentConfig*> sensing;
   for (const auto& [name, a] : agents) {
+    sight_ = sight_ || a->sight.enabled;
     if (!a->lidar.enabled()) continue;
     sensing.push_back(a);
     // An agent's map covers the arena: refused here, before any run, when it would not fit.
@@ -108,7 +112,7 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
                              fmt::format("gives this arena's map {} cells, more than 2^26 (256 MB): choose a coarser one", cells));
     }
   }
-  if (!sensing.empty()) {
+  if (!sensing.empty() || sight_) {  // sight rays meet what lidar rays meet
     auto s = std::make_shared<Sensing>(*arena_);
     for (const AgentConfig* a : sensing) s->lidars.emplace_back(a, sense::Lidar(a->lidar));
     sensing_ = std::move(s);
@@ -152,6 +156,17 @@ const sense::Lidar* Sim::lidar(Role role, int rank) const {
 }
 
 SimState::SimState(const Sim& sim) : collider(sim.arena_ptr()) {}
+
+KinematicState SimState::known_state(int i, int j) const {
+  const AgentState& o = agents[std::size_t(j)];
+  if (!sight_limited(i)) return o.kinematics;
+  const Sight::Sighting& m = sight.memory[std::size_t(i * agent_count() + j)];
+  if (agents[std::size_t(i)].config->sight.estimate == SightEstimate::kLastSeen || m.time == time) return m.state;
+  // Dead reckoning: on at the velocity it had, within the arena (which the agent knows).
+  KinematicState k = m.state;
+  k.position = o.bounds.clamp(m.state.position + (time - m.time) * m.velocity);
+  return k;
+}
 
 namespace {
 // Agent i's rays in one of the scans' per-ray buffers (empty without a lidar).

@@ -195,6 +195,30 @@ class SimState {
     return !scans.first.empty() && agents[std::size_t(i)].config->map.enabled ? scans.maps[std::size_t(i)].get() : nullptr;
   }
 
+  /// Limited sight (AgentConfig::sight; game/sight.hpp): what each agent knows of each opponent. Entries [i * n + j]
+  /// for n agents; those of pairs of one role are unused. Empty when no agent's sight is limited.
+  struct Sight {
+    /// An agent's latest sighting of an opponent: its state then and when.
+    struct Sighting {
+      KinematicState state;              ///< where it was and its heading
+      Vec3 velocity = Vec3::Zero();      ///< m/s, its velocity then
+      double time = 0.0;                 ///< s, when (0 at the reset: every agent starts knowing the starts)
+    };
+    std::vector<Sighting> memory;        ///< agent i's latest sighting of agent j (its own or a teammate's)
+    std::vector<std::uint8_t> visible;   ///< 1: i sees j now (itself, or a teammate it shares with)
+  } sight;
+  /// Whether agent i's sight is limited (its opponent inputs come from sight.memory).
+  bool sight_limited(int i) const { return !sight.memory.empty() && agents[std::size_t(i)].config->sight.enabled; }
+  /// What agent i takes agent j (an opponent) to be doing now: the truth with full information, else the estimate
+  /// its sighting gives (SightConfig::estimate).
+  KinematicState known_state(int i, int j) const;
+  /// How old (s) agent i's knowledge of opponent j is: 0 with full information or while it sees j.
+  double sighting_age(int i, int j) const {
+    return sight_limited(i) ? time - sight.memory[std::size_t(i * agent_count() + j)].time : 0.0;
+  }
+  /// Whether agent i sees opponent j now (always with full information).
+  bool sees(int i, int j) const { return !sight_limited(i) || sight.visible[std::size_t(i * agent_count() + j)] != 0; }
+
   /// Per-step working storage, sized by reset().
   struct Scratch {
     std::vector<Heading> heading;         ///< each agent's heading this step, from the constraint layer
@@ -238,7 +262,12 @@ class Sim {
   bool pushes() const { return pushes_; }
   /// Physics substeps per game step (maps with movers).
   int substeps() const { return substeps_; }
-  /// What range sensors' rays meet among the map's static solids (null when no agent has a lidar).
+  /// Whether some agent has a lidar.
+  bool has_lidars() const { return sensing_ && !sensing_->lidars.empty(); }
+  /// Whether some agent's sight is limited (AgentConfig::sight).
+  bool limits_sight() const { return sight_; }
+  /// What range sensors' and sight's rays meet among the map's static solids (null when no agent has a lidar or
+  /// limited sight).
   const sense::StaticRayScene* ray_scene() const { return sensing_ ? &sensing_->scene : nullptr; }
   /// The lidar of agent `rank` of `role` (null: none).
   const sense::Lidar* lidar(Role role, int rank) const;
@@ -254,6 +283,7 @@ class Sim {
   int max_steps_ = 0;
   std::shared_ptr<const world::MoverTimeline> movers_;
   bool pushes_ = false;
+  bool sight_ = false;
   int substeps_ = 1;
   struct Sensing {
     explicit Sensing(const world::Arena& arena) : scene(arena) {}

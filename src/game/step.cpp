@@ -8,6 +8,7 @@
 #include "core/step_profile.hpp"
 #include "game/constraints.hpp"
 #include "game/scans.hpp"
+#include "game/sight.hpp"
 #include "game/sim.hpp"
 #include "game/views.hpp"
 #include "sense/scan_map.hpp"
@@ -95,10 +96,14 @@ void constrain(const Sim& sim, SimState& st) {
     if (!a.active) continue;
     const StateProbe probe(sim, st, i, a.nearest_mover);
     const AgentState& o = st.agents[std::size_t(a.opponent)];
-    st.scratch.target_before[std::size_t(i)] = a.view.percept.target_distance;
+    // The reward measures the true distance; with limited sight the percept holds the estimate's.
+    st.scratch.target_before[std::size_t(i)] = st.sight_limited(i) ? (o.kinematics.position - a.kinematics.position).norm()
+                                                                    : a.view.percept.target_distance;
     st.scratch.obstacle_before[std::size_t(i)] = a.view.percept.obstacle.distance;
     st.scratch.position_before[std::size_t(i)] = a.kinematics.position;
-    const ConstraintInputs in{*a.config,   a.role,   sim.config().dt, a.kinematics, o.kinematics.position, o.config->speed,
+    // The motion space steers relative to where the agent takes its opponent to be (with limited sight, its view's).
+    const Vec3& target = st.sight_limited(i) ? a.view.other.position : o.kinematics.position;
+    const ConstraintInputs in{*a.config,   a.role,   sim.config().dt, a.kinematics, target, o.config->speed,
                               a.view.field, a.bounds, &probe,          near_obstacles(sim, st, a)};
     st.scratch.heading[std::size_t(i)] =
         constrained_heading(in, st.events.agents[std::size_t(i)].command, &st.scratch.direction[std::size_t(i)]);
@@ -302,6 +307,7 @@ void observe(const Sim& sim, SimState& st) {
     const StepProfile::Scope profiled(StepProfile::kMovers);
     st.moving_field->set_time(*sim.movers(), st.time);
   }
+  look(sim, st);
   const bool one_on_one = st.agent_count() == 2;
   for (int i = 0; i < st.agent_count(); ++i) {
     AgentState& a = st.agents[std::size_t(i)];
@@ -332,8 +338,9 @@ void reward_all(const Sim& sim, SimState& st) {
     }
     // The distance now to the opponent of the step; the percept already holds it when the opponent is
     // unchanged (the same expression, so the same bits).
-    const double target_after = a.opponent == e.opponent ? a.view.percept.target_distance
-                                                         : (o.kinematics.position - a.kinematics.position).norm();
+    const double target_after = a.opponent == e.opponent && !st.sight_limited(i)
+                                    ? a.view.percept.target_distance
+                                    : (o.kinematics.position - a.kinematics.position).norm();
     {
       const StepProfile::Scope profiled(StepProfile::kRewards);
       // An own map whose obstacles the step's scan changed: d_O before the move measured again in the map as it

@@ -46,7 +46,10 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.index = i;
   v.opponent = a.opponent;
   v.self = a.kinematics;
-  v.other = o.kinematics;
+  // With limited sight, the opponent as the agent knows it (SimState::known_state), and how it knows it.
+  v.other = st.known_state(i, a.opponent);
+  v.other_visible = st.sees(i, a.opponent);
+  v.other_age = st.sighting_age(i, a.opponent);
   v.self_speed = a.config->speed;
   v.other_speed = o.config->speed;
   v.dt = sim.config().dt;
@@ -58,7 +61,7 @@ void update_view(const Sim& sim, SimState& st, int i) {
   // Exactly sensed, the field's distance bounds every mover's from below (sense_obstacle): kept for the step.
   const bool exact = sim.movers() != nullptr && !st.moving_field && !own_map;
   a.mover_clearance = {a.kinematics.position, exact ? st.time : -1.0, v.field.distance};
-  v.percept = perceive(a.role, *a.config, a.kinematics, o.kinematics, v.field, sim.arena().bounds(),
+  v.percept = perceive(a.role, *a.config, a.kinematics, v.other, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());
 }
 

@@ -206,22 +206,32 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"]["map"].erase("insert_agents");
   expect_error(d, "config.map.insert_agents");  // version 7 documents have it
+  d = doc;
+  d["config"].erase("sight");
+  expect_error(d, "config.sight");  // version 8 documents have it
 }
 
 TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
   // Version 1 predates guard.faces, guard.look_ahead, observation.opponent_heading, action and lidar, version 2
   // the look ahead, version 3 the opponent's heading, version 4 the action, version 5 the lidar, version 6
-  // map.insert_agents; their agents played without them (actions as heading changes, no lidar, agents in maps).
+  // map.insert_agents, version 7 sight; their agents played without them (actions as heading changes, no lidar,
+  // agents in maps, full information).
   AgentConfig offset = agent_preset("peg3d", Role::kEvader);
   offset.action = FaclAction::kTargetLineOffset;
   offset.lidar.azimuth_rays = 8;
+  offset.sight.enabled = true;
   nlohmann::json saved = policy_to_json(FaclModel(offset, Role::kEvader));
-  EXPECT_EQ(saved["version"], 7);
+  EXPECT_EQ(saved["version"], 8);
+  EXPECT_TRUE(policy_from_json(saved, "p.json", Role::kEvader)->config().sight.enabled);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().action, FaclAction::kTargetLineOffset);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().lidar, offset.lidar);
   EXPECT_FALSE(policy_from_json(saved, "p.json", Role::kEvader)->config().map.insert_agents);
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
+  // Version 7 agents had full information.
+  doc["version"] = 7;
+  doc["config"].erase("sight");
+  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().sight, SightConfig{});
   // Version 6 maps held the agents' echoes.
   doc["version"] = 6;
   doc["config"]["map"].erase("insert_agents");

@@ -1,0 +1,103 @@
+#include "game/sight.hpp"
+
+#include <cmath>
+
+#include "core/step_profile.hpp"
+#include "geometry/angles.hpp"
+#include "sense/line_of_sight.hpp"
+
+namespace peg3d::game {
+namespace {
+
+SimState::Sight::Sighting sighting_of(const AgentState& o, double time) {
+  return {o.kinematics, o.config->speed * direction(o.kinematics.heading), time};
+}
+
+}  // namespace
+
+void prepare_sight(const Sim& sim, SimState& st) {
+  SimState::Sight& s = st.sight;
+  if (!sim.limits_sight()) {
+    s.memory.clear();
+    s.visible.clear();
+    return;
+  }
+  const int n = st.agent_count();
+  s.memory.resize(std::size_t(n * n));
+  s.visible.assign(std::size_t(n * n), 0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) s.memory[std::size_t(i * n + j)] = sighting_of(st.agents[std::size_t(j)], 0.0);
+  }
+}
+
+bool in_sight(const Sim& sim, const SimState& st, const SightConfig& c, const KinematicState& self, const Vec3& centre,
+              double radius) {
+  const Vec3 line = centre - self.position;
+  const double d2 = line.squaredNorm();
+  if (d2 > c.range * c.range) return false;
+  if (c.fov < 360.0 && d2 > 0.0) {
+    // Within the cone: the angle to the heading at most fov / 2, compared as cosines.
+    const double cos_half = std::cos(0.5 * c.fov * kPi / 180.0);
+    if (direction(self.heading).dot(line) < cos_half * std::sqrt(d2)) return false;
+  }
+  sense::WorldAtInstant w;
+  w.scene = sim.ray_scene();
+  w.movers = sim.movers();
+  w.time = st.time;
+  w.push = st.push.get();
+  w.map = &sim.arena().map();
+  return sense::line_of_sight(w, self.position, centre, radius, c.points);
+}
+
+void look(const Sim& sim, SimState& st) {
+  SimState::Sight& s = st.sight;
+  if (s.memory.empty()) return;
+  const StepProfile::Scope profiled(StepProfile::kSight);
+  const int n = st.agent_count();
+  for (int i = 0; i < n; ++i) {
+    const AgentState& a = st.agents[std::size_t(i)];
+    const bool limited = a.config->sight.enabled && a.active;
+    const int lo = a.role == Role::kPursuer ? st.pursuers : 0, hi = a.role == Role::kPursuer ? n : st.pursuers;
+    for (int j = lo; j < hi; ++j) {
+      const AgentState& o = st.agents[std::size_t(j)];
+      const auto k = std::size_t(i * n + j);
+      s.visible[k] = limited && o.active &&
+                     in_sight(sim, st, a.config->sight, a.kinematics, o.kinematics.position, o.config->radius);
+      if (s.visible[k]) s.memory[k] = sighting_of(o, st.time);
+    }
+  }
+  // Pooling: for each role and opponent, the newest sighting among the sharers, then given to all of them (read
+  // before written, so the order of the agents does not matter).
+  for (int i = 0; i < n; ++i) {
+    const AgentState& a = st.agents[std::size_t(i)];
+    if (!a.config->sight.enabled || !a.config->sight.share) continue;
+    const int team_lo = a.role == Role::kPursuer ? 0 : st.pursuers, team_hi = a.role == Role::kPursuer ? st.pursuers : n;
+    bool first_sharer = true;
+    for (int m = team_lo; m < i; ++m) {
+      const AgentConfig& c = *st.agents[std::size_t(m)].config;
+      if (c.sight.enabled && c.sight.share) first_sharer = false;
+    }
+    if (!first_sharer) continue;  // the team's pool was made by its first sharer
+    const int lo = a.role == Role::kPursuer ? st.pursuers : 0, hi = a.role == Role::kPursuer ? n : st.pursuers;
+    for (int j = lo; j < hi; ++j) {
+      int best = i;
+      bool seen = false;
+      for (int m = team_lo; m < team_hi; ++m) {
+        const AgentConfig& c = *st.agents[std::size_t(m)].config;
+        if (!c.sight.enabled || !c.sight.share) continue;
+        const auto k = std::size_t(m * n + j);
+        seen = seen || s.visible[k] != 0;
+        if (s.memory[k].time > s.memory[std::size_t(best * n + j)].time) best = m;
+      }
+      const SimState::Sight::Sighting newest = s.memory[std::size_t(best * n + j)];
+      for (int m = team_lo; m < team_hi; ++m) {
+        const AgentConfig& c = *st.agents[std::size_t(m)].config;
+        if (!c.sight.enabled || !c.sight.share) continue;
+        s.memory[std::size_t(m * n + j)] = newest;
+        s.visible[std::size_t(m * n + j)] = seen;
+      }
+    }
+  }
+}
+
+}  // namespace peg3d::game
