@@ -16,6 +16,10 @@
 //   BM_WorldScan/<map>/<range_m>    the same with the movers where they are at the scan's instant (quarry: 520
 //                                   bodies and 120 scripted movers), scans 0.1 s apart, each cast at once as the
 //                                   game casts it (sense::cast_all), within range_m (10: a lidar's default)
+//   BM_SightTest/<points>           one sight test (sense::line_of_sight with `points` sight points) from each point
+//                                   of BM_WorldScan/2's walk on maps/quarry.yaml to a sphere of 0.25 m at a random
+//                                   free point 3 to 30 m away, the movers where they are at the walk's instant;
+//                                   items_per_second is pairs per second; counter share_seen
 //   BM_MapInsert/<method>           one 64-ray scan of BM_StaticScan/1 (forest) at 10 m range inserted into an agent's
 //                                   map at 0.25 m: method 0 sense::ScanMap::insert, 1 OctoMap's
 //                                   OcTree::insertPointCloud (the same scans: the same cells); the walk's 2000 scans,
@@ -42,6 +46,7 @@
 #include "world/map/map_spec.hpp"
 #include "world/bodies/mover_timeline.hpp"
 #include "world/moving_field.hpp"
+#include "sense/line_of_sight.hpp"
 #include "sense/static_ray_scene.hpp"
 #include "sense/world_rays.hpp"
 
@@ -316,6 +321,39 @@ void scan_benchmark(benchmark::State& state, bool movers) {
   state.SetItemsProcessed(scans * kRays);  // rays per second; ns per ray = 1e9 / items_per_second
   state.counters["share_hit"] = double(met) / double(std::min<long>(scans, kScans) * kRays);
 }
+void BM_SightTest(benchmark::State& state) {
+  const int points = static_cast<int>(state.range(0));
+  const auto arena = scan_arena(2);
+  const sense::StaticRayScene scene(*arena);
+  const auto timeline = arena->movers_until(200.0);
+  timeline->nearest(arena->bounds().lo, 199.9, 1.0);  // every block simulated before timing
+  const std::vector<Ray> rays = walk_scans(*arena);
+  Rng rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Box inner = arena->bounds().shrunk(0.5);
+  std::vector<Vec3> targets(kScans);
+  for (int s = 0; s < kScans; ++s) {
+    const Vec3& eye = rays[std::size_t(s) * kRays].origin;
+    Vec3 t;
+    do t = inner.lo + inner.size().cwiseProduct(Vec3(u(rng), u(rng), u(rng)));
+    while (arena->nearest_obstacle(t).distance < 0.3 || (t - eye).norm() < 3.0 || (t - eye).norm() > 30.0);
+    targets[std::size_t(s)] = t;
+  }
+  long pairs = 0, seen = 0;
+  for (auto _ : state) {
+    const std::size_t s = std::size_t(pairs % kScans);
+    sense::WorldAtInstant w;
+    w.scene = &scene, w.movers = timeline.get(), w.time = 0.1 * static_cast<double>(s);
+    const bool in_sight = sense::line_of_sight(w, rays[s * kRays].origin, targets[s], 0.25, points);
+    benchmark::DoNotOptimize(in_sight);
+    if (pairs < kScans) seen += in_sight;
+    ++pairs;
+  }
+  state.SetItemsProcessed(pairs);
+  state.counters["share_seen"] = double(seen) / double(std::min<long>(pairs, kScans));
+}
+BENCHMARK(BM_SightTest)->Arg(1)->Arg(5)->Arg(9)->Unit(benchmark::kMicrosecond);
+
 // BM_MapInsert/<method>: the scans' endpoints (an echo's, or one beyond the range) along the forest walk.
 void BM_MapInsert(benchmark::State& state) {
   const bool octomap_tree = state.range(0) == 1;

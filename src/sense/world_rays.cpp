@@ -23,7 +23,10 @@ void cast_movers(const world::MoverTimeline& movers, double t, std::span<const R
     if (moving.mover >= 0 && moving.distance < hits[k].distance) hits[k] = {moving.distance, RayTarget::kMover, moving.mover};
   };
   const bool one_origin = std::all_of(rays.begin(), rays.end(), [&](const Ray& r) { return r.origin == rays[0].origin; });
-  if (!one_origin) {
+  // A fan's walk pays from about kFanFrom rays on (sight tests on quarry: one ray alone 0.43 us, as a fan of one
+  // 1.36 us; eight rays cost the same either way).
+  constexpr std::size_t kFanFrom = 8;
+  if (!one_origin || rays.size() < kFanFrom) {
     for (std::size_t k = 0; k < rays.size(); ++k) take(k, movers.first_along(rays[k], t, hits[k].distance));
     return;
   }

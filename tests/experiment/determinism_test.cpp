@@ -22,6 +22,8 @@ namespace {
 constexpr std::uint64_t kPaperHash = 0x10494b40ad84a1f5; // maps/paper.yaml, peg3d preset, 4 scenarios x 6 training episodes
 constexpr std::uint64_t kPackHash = 0xca3128c92953b4c1;  // maps/pack.yaml, peg3d preset, 4 team scenarios x 3 training episodes
 constexpr std::uint64_t kPatrolHash = 0x9e487d558b277845; // maps/patrol.yaml (scripted movers), 4 scenarios x 2 episodes
+// maps/pack.yaml and maps/patrol.yaml with limited sight (240 deg, dead-reckoned and shared by the pursuers)
+constexpr std::uint64_t kSightHash = 0x686419af1f281155;
 constexpr std::uint64_t kRockfallHash = 0x95c142525eb4321a; // maps/rockfall.yaml (Bullet's boulders), 3 scenarios x 2 episodes
 
 void hash_trace(Fnv1a& h, const game::Trace& t) {
@@ -74,9 +76,9 @@ std::uint64_t train_and_hash(const game::Sim& sim, const world::Scenario& s, std
   return h.value();
 }
 
-std::uint64_t sweep_hash(const char* map, int episodes, int threads) {
+std::uint64_t sweep_hash(const char* map, int episodes, int threads, const game::GameConfig& config = game::preset("peg3d")) {
   const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));
-  const game::Sim sim(arena, game::preset("peg3d"));
+  const game::Sim sim(arena, config);
   const auto& scenarios = arena->map().scenarios;
   std::vector<std::uint64_t> hashes(scenarios.size());
   sweep::run_indexed(scenarios.size(), threads, [&](std::size_t i) {
@@ -110,6 +112,23 @@ TEST(ExperimentDeterminism, MovingObstacleMapsMatchTheGoldenHashesOnOneAndTwoThr
   EXPECT_EQ(sweep_hash("maps/rockfall.yaml", 2, 2), rockfall);
   EXPECT_EQ(patrol, kPatrolHash) << std::hex << "0x" << patrol;
   EXPECT_EQ(rockfall, kRockfallHash) << std::hex << "0x" << rockfall;
+}
+
+TEST(ExperimentDeterminism, LimitedSightMatchesTheGoldenHashOnOneAndTwoThreads) {
+  game::GameConfig c = game::preset("peg3d");
+  for (game::AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true, a->sight.fov = 240.0;
+  c.pursuer.sight.estimate = game::SightEstimate::kDeadReckoning;
+  c.pursuer.sight.share = true;
+  const auto both = [&](int threads) {
+    Fnv1a h;
+    h.add_value(sweep_hash("maps/pack.yaml", 2, threads, c));
+    h.add_value(sweep_hash("maps/patrol.yaml", 2, threads, c));
+    return h.value();
+  };
+  const std::uint64_t one = both(1);
+  std::printf("sight hash 0x%016" PRIx64 "\n", one);
+  EXPECT_EQ(both(2), one);
+  EXPECT_EQ(one, kSightHash) << std::hex << "0x" << one;
 }
 
 }  // namespace

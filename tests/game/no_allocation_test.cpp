@@ -22,7 +22,7 @@ namespace peg3d::game {
 namespace {
 
 void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions, bool lidar = false,
-                          bool own_map = false) {
+                          bool own_map = false, bool sight = false) {
   const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));
   GameConfig c = preset(preset_name);
   c.team.agent_collisions = collisions;
@@ -39,6 +39,12 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
     if (own_map) {
       for (AgentConfig* a : {&c.pursuer, &c.evader}) a->map.enabled = true, a->observation.obstacles = ObstacleSource::kOwnMap;
     }
+  }
+  if (sight) {
+    // Limited sight, in a cone ahead, dead-reckoned and shared by the pursuers.
+    for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true, a->sight.fov = 240.0;
+    c.pursuer.sight.estimate = SightEstimate::kDeadReckoning;
+    c.pursuer.sight.share = true;
   }
   const Sim sim(arena, c);
   SimState state(sim);
@@ -89,6 +95,12 @@ TEST(GameNoAllocation, LidarScans) {
 TEST(GameNoAllocation, OwnMaps) {
   expect_no_allocation("maps/forest.yaml", "peg3d", AgentCollisions::kNone, true, true);
   expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kNone, true, true);
+}
+
+TEST(GameNoAllocation, LimitedSight) {
+  expect_no_allocation("maps/forest.yaml", "peg3d", AgentCollisions::kNone, false, false, true);
+  expect_no_allocation("maps/pack.yaml", "peg3d", AgentCollisions::kNone, false, false, true);
+  expect_no_allocation("maps/patrol.yaml", "peg3d", AgentCollisions::kNone, false, false, true);
 }
 
 TEST(GameNoAllocation, TeamsTrainingAndEvaluation) {
