@@ -27,8 +27,8 @@ int main(int argc, char** argv) {
     return app.add_option(flag, value, what)->capture_default_str();
   };
   option("--algorithms", algorithms, "algorithms that train policies: presets (" + game::preset_list() + ")")->delimiter(',');
-  option("--pursuers", pursuers, "classic pursuers in the league: pure-pursuit, pn, apollonius, random")->delimiter(',');
-  option("--evaders", evaders, "scripted evaders in the league: flee, flee-apollonius, random")->delimiter(',');
+  option("--pursuers", pursuers, "classic pursuers in the league: pure-pursuit, pn, apollonius, random, search")->delimiter(',');
+  option("--evaders", evaders, "scripted evaders in the league: flee, flee-apollonius, random, hide")->delimiter(',');
   option("--eval-maps", eval_maps, "maps the games are played on (default: the training map)")->delimiter(',');
   option("--train-seeds", o.sweep.repeats, "training runs (seeds) per algorithm")->check(CLI::PositiveNumber);
   option("--eval-seeds", s.eval_seeds, "evaluation games per start and pairing (held-out seeds)")->check(CLI::PositiveNumber);

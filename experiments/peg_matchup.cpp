@@ -20,9 +20,9 @@ int main(int argc, char** argv) {
   cli::add_experiment_flags(app, o, "SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee or 'S2_r0_*'", false);
   app.add_option("--config", config_source, "the agents' configuration: a preset (" + game::preset_list() + ") or a JSON file")
       ->capture_default_str();
-  app.add_option("--pursuers", pursuers, "pursuer policies: facl, pure-pursuit, pn, apollonius, random")
+  app.add_option("--pursuers", pursuers, "pursuer policies: facl, pure-pursuit, pn, apollonius, random, search (the partial game: docs/sight.md)")
       ->delimiter(',')->capture_default_str();
-  app.add_option("--evaders", evaders, "evader policies: facl, flee, flee-apollonius, random")
+  app.add_option("--evaders", evaders, "evader policies: facl, flee, flee-apollonius, random, hide (the partial game: docs/sight.md)")
       ->delimiter(',')->capture_default_str();
   app.add_option("--pursuer-policy", pursuer_policy, "a saved pursuer (FACL or MLP) playing the facl slot, not trained");
   app.add_option("--evader-policy", evader_policy, "a saved evader (FACL or MLP) playing the facl slot, not trained");

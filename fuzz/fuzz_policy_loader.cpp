@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 #include "fuzz_input_file.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto file = peg3d::fuzz::write_input(data, size, "policy.json");

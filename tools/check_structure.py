@@ -39,12 +39,13 @@ LAYERS = {
     "world/collision": WORLD | {"world"},
     "sense": {"core", "geometry"} | WORLD_ALL,
     "game": {"core", "geometry", "fuzzy", "sense"} | WORLD_ALL,
+    "players": {"core", "geometry", "fuzzy", "sense", "game"} | WORLD_ALL,
     "sweep": {"core"},
-    "results": {"core", "geometry", "fuzzy", "game", "sense"} | WORLD_ALL,
-    "regress": {"core", "geometry", "fuzzy", "game", "results", "sense"} | WORLD_ALL,
-    "experiment": {"core", "geometry", "fuzzy", "game", "sweep", "results", "sense"} | WORLD_ALL,
+    "results": {"core", "geometry", "fuzzy", "game", "players", "sense"} | WORLD_ALL,
+    "regress": {"core", "geometry", "fuzzy", "game", "players", "results", "sense"} | WORLD_ALL,
+    "experiment": {"core", "geometry", "fuzzy", "game", "players", "sweep", "results", "sense"} | WORLD_ALL,
     "view": {"core", "geometry", "fuzzy", "game", "sense"} | WORLD_ALL,
-    "env": {"core", "geometry", "fuzzy", "game", "sense"} | WORLD_ALL,
+    "env": {"core", "geometry", "fuzzy", "game", "players", "sense"} | WORLD_ALL,
 }
 # No folder may hold more than this share of src/'s lines: a folder that large is several concepts.
 LARGEST_SHARE = 0.20

@@ -15,7 +15,7 @@
 #include "cli_common.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "world/arena.hpp"
 
 namespace {

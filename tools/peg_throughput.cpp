@@ -27,7 +27,7 @@
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "world/bodies/mover_timeline.hpp"
 
 using namespace peg3d;

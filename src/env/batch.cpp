@@ -14,7 +14,7 @@
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/observation_vector.hpp"
-#include "game/policy_factory.hpp"
+#include "players/policy_factory.hpp"
 
 namespace peg3d::env {
 

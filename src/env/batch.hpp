@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "game/observation_vector.hpp"
-#include "game/saved_policy.hpp"
+#include "players/saved_policy.hpp"
 #include "game/sim.hpp"
 
 namespace peg3d::env {

@@ -9,7 +9,7 @@
 #include "core/config_json.hpp"
 #include "core/random.hpp"
 #include "experiment/trial.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 #include "results/codecs.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"

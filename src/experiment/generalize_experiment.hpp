@@ -18,7 +18,7 @@
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
 

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"
 #include "results/statistics.hpp"

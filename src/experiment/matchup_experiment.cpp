@@ -9,7 +9,7 @@
 #include "core/config_json.hpp"
 #include "core/random.hpp"
 #include "experiment/trial.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "results/codecs.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"

@@ -2,7 +2,7 @@
 // Matchups: every pursuer policy against every evader policy, with every agent of a role playing that
 // policy (teams of one policy each). The FACL agents are a co-trained set (trained per scenario and seed, or
 // loaded from policy files); the scripted ones are the classic guidance laws and evaders of
-// game/scripted_policies.hpp. Each pairing plays one greedy episode per scenario and seed.
+// players/scripted_policies.hpp. Each pairing plays one greedy episode per scenario and seed.
 
 #include <cstdint>
 #include <filesystem>
@@ -17,8 +17,8 @@
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
-#include "game/facl_policy.hpp"
-#include "game/saved_policy.hpp"
+#include "players/facl_policy.hpp"
+#include "players/saved_policy.hpp"
 #include "game/game_config.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"

@@ -8,7 +8,7 @@
 
 #include "core/config_json.hpp"
 #include "experiment/trial.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 #include "results/result_files.hpp"
 #include "results/trajectory_file.hpp"
 #include "results/codecs.hpp"

@@ -17,7 +17,7 @@
 #include "experiment/training.hpp"
 #include "experiment/trial.hpp"
 #include "game/episode.hpp"
-#include "game/facl_policy.hpp"
+#include "players/facl_policy.hpp"
 #include "game/game_config.hpp"
 #include "game/sim.hpp"
 #include "results/result_files.hpp"

@@ -13,7 +13,7 @@
 
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "game/sim.hpp"
 #include "sweep/parallel_runner.hpp"
 #include "world/arena.hpp"

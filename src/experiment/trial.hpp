@@ -8,7 +8,7 @@
 
 #include "experiment/training.hpp"
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "game/sim.hpp"
 #include "sweep/parallel_runner.hpp"
 

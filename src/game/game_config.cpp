@@ -34,9 +34,11 @@ bool plays(PolicyKind p, Role role) {
     case PolicyKind::kRandom: return true;
     case PolicyKind::kPurePursuit:
     case PolicyKind::kProportionalNavigation:
-    case PolicyKind::kApollonius: return role == Role::kPursuer;
+    case PolicyKind::kApollonius:
+    case PolicyKind::kSearch: return role == Role::kPursuer;
     case PolicyKind::kFlee:
-    case PolicyKind::kFleeApollonius: return role == Role::kEvader;
+    case PolicyKind::kFleeApollonius:
+    case PolicyKind::kHide: return role == Role::kEvader;
   }
   return false;
 }

@@ -45,14 +45,18 @@ enum class PolicyKind {
   kFlee,                    ///< flee along the line of sight, repelled by walls and obstacles (evader)
   kFleeApollonius,          ///< head for the far side of the evader's dominance region (evader)
   kRandom,                  ///< random steering within the bound (both roles)
+  kSearch,                  ///< the partial game: chase in sight, else go to the last sighting and search (pursuer)
+  kHide,                    ///< the partial game: break line of sight behind an occluder when seen, else flee (evader)
 };
-inline constexpr config::EnumNames<PolicyKind, 7> kPolicyNames{{{PolicyKind::kFacl, "facl"},
+inline constexpr config::EnumNames<PolicyKind, 9> kPolicyNames{{{PolicyKind::kFacl, "facl"},
                                                                 {PolicyKind::kPurePursuit, "pure-pursuit"},
                                                                 {PolicyKind::kProportionalNavigation, "pn"},
                                                                 {PolicyKind::kApollonius, "apollonius"},
                                                                 {PolicyKind::kFlee, "flee"},
                                                                 {PolicyKind::kFleeApollonius, "flee-apollonius"},
-                                                                {PolicyKind::kRandom, "random"}}};
+                                                                {PolicyKind::kRandom, "random"},
+                                                                {PolicyKind::kSearch, "search"},
+                                                                {PolicyKind::kHide, "hide"}}};
 const char* to_string(PolicyKind p);
 /// Whether a policy can play `role` (facl and random play both; guidance laws pursue; flee policies evade).
 bool plays(PolicyKind p, Role role);
@@ -534,8 +538,8 @@ namespace detail {
 template <class V>
 void require_role(V& v, const AgentConfig& a, Role role, const std::string& prefix) {
   v.require(plays(a.policy, role), prefix + ".policy", to_string(a.policy),
-            role == Role::kPursuer ? "is not a pursuer policy (facl, pure-pursuit, pn, apollonius, random)"
-                                   : "is not an evader policy (facl, flee, flee-apollonius, random)");
+            role == Role::kPursuer ? "is not a pursuer policy (facl, pure-pursuit, pn, apollonius, random, search)"
+                                   : "is not an evader policy (facl, flee, flee-apollonius, random, hide)");
   if (role == Role::kPursuer) v.require(a.speed > 0.0, prefix + ".speed", a.speed, "must be > 0 for a pursuer");
 }
 }  // namespace detail

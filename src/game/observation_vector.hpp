@@ -1,7 +1,7 @@
 #pragma once
 // The observation vector of the Python front (env/batch.hpp, docs/python.md) as far as one agent's view
 // holds it: the 20 entries every learner outside the C++ side sees, and what an MLP policy trained there
-// reads back on the C++ side (game/mlp_policy.hpp). The neighbour slots that follow need the whole state and
+// reads back on the C++ side (players/mlp_policy.hpp). The neighbour slots that follow need the whole state and
 // are the batch's. kObservationEntries declares each entry once (name, unit, meaning, what bounds it); the
 // batch's bounds, the Python package's names (peg3d.OBSERVATION) and the replay viewer's labels come from it.
 

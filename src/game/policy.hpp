@@ -11,6 +11,16 @@
 
 namespace peg3d::game {
 
+/// What an agent with limited sight can test of the space about it (game/sight.hpp): whether a straight segment
+/// is clear of the solids it knows, the map's terrain and obstacles and the movers where they are now. The
+/// partial game's scripted players look for hiding places with it.
+class SightProbe {
+ public:
+  virtual ~SightProbe() = default;
+  /// Whether the segment from a to b meets no terrain, obstacle or mover now (agents do not count).
+  virtual bool clear(const Vec3& a, const Vec3& b) const = 0;
+};
+
 /// Everything an agent may use to decide, at one instant.
 struct AgentView {
   Role role = Role::kPursuer;
@@ -22,6 +32,9 @@ struct AgentView {
   KinematicState other;
   bool other_visible = true;  ///< the opponent is in sight now (always with full information)
   double other_age = 0.0;     ///< s, how old the sighting `other` comes from is (0 while in sight)
+  /// With limited sight and the world's obstacles (observation.obstacles = world): the state's probe, valid until
+  /// its next step or reset; null otherwise.
+  const SightProbe* probe = nullptr;
   double self_speed = 0.0;   ///< m/s
   double other_speed = 0.0;  ///< m/s
   double dt = 0.1;           ///< s

@@ -13,6 +13,33 @@ SimState::Sight::Sighting sighting_of(const AgentState& o, double time) {
   return {o.kinematics, o.config->speed * direction(o.kinematics.heading), time};
 }
 
+// The world at the state's time, as sight rays meet it.
+sense::WorldAtInstant world_now(const Sim& sim, const SimState& st) {
+  sense::WorldAtInstant w;
+  w.scene = sim.ray_scene();
+  w.movers = sim.movers();
+  w.time = st.time;
+  w.push = st.push.get();
+  w.map = &sim.arena().map();
+  return w;
+}
+
+class WorldProbe final : public SightProbe {
+ public:
+  WorldProbe(const Sim& sim, const SimState& st) : sim_(&sim), st_(&st) {}
+  bool clear(const Vec3& a, const Vec3& b) const override {
+    const Vec3 d = b - a;
+    const double length = d.norm();
+    if (!(length > 0.0)) return true;
+    const Ray ray{a, d / length};
+    sense::RayHit hit;
+    sense::cast_all(world_now(*sim_, *st_), {&ray, 1}, length, -1, {&hit, 1});
+    return hit.target == sense::RayTarget::kNone;
+  }
+  const Sim* sim_;
+  const SimState* st_;
+};
+
 }  // namespace
 
 void prepare_sight(const Sim& sim, SimState& st) {
@@ -23,6 +50,9 @@ void prepare_sight(const Sim& sim, SimState& st) {
     return;
   }
   const int n = st.agent_count();
+  if (!s.probe) s.probe = std::make_unique<WorldProbe>(sim, st);
+  auto& probe = static_cast<WorldProbe&>(*s.probe);
+  probe.sim_ = &sim, probe.st_ = &st;  // the Sim this reset plays, and the state where it lives now
   s.memory.resize(std::size_t(n * n));
   s.visible.assign(std::size_t(n * n), 0);
   for (int i = 0; i < n; ++i) {
@@ -40,13 +70,7 @@ bool in_sight(const Sim& sim, const SimState& st, const SightConfig& c, const Ki
     const double cos_half = std::cos(0.5 * c.fov * kPi / 180.0);
     if (direction(self.heading).dot(line) < cos_half * std::sqrt(d2)) return false;
   }
-  sense::WorldAtInstant w;
-  w.scene = sim.ray_scene();
-  w.movers = sim.movers();
-  w.time = st.time;
-  w.push = st.push.get();
-  w.map = &sim.arena().map();
-  return sense::line_of_sight(w, self.position, centre, radius, c.points);
+  return sense::line_of_sight(world_now(sim, st), self.position, centre, radius, c.points);
 }
 
 void look(const Sim& sim, SimState& st) {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "core/input_files.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 
 namespace peg3d::results {
 namespace {

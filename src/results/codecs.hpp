@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 
 namespace peg3d::results {
 
@@ -29,7 +29,7 @@ game::AgentSummary agent_summary_from_json(const nlohmann::json& j);
 nlohmann::json trace_to_json(const game::Trace& t);
 game::Trace trace_from_json(const nlohmann::json& j);
 
-/// A role's trained models (policy documents, game/policy_io.hpp) and which one each agent plays. Decoding
+/// A role's trained models (policy documents, players/policy_io.hpp) and which one each agent plays. Decoding
 /// rebuilds each model; a model of the other role is an error.
 nlohmann::json role_models_to_json(const game::RoleModels& m);
 game::RoleModels role_models_from_json(const nlohmann::json& j, game::Role role);

@@ -21,8 +21,8 @@
 #include "core/random.hpp"
 #include "game/episode.hpp"
 #include "game/observation_vector.hpp"
-#include "game/policy_factory.hpp"
-#include "game/saved_policy.hpp"
+#include "players/policy_factory.hpp"
+#include "players/saved_policy.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::env {

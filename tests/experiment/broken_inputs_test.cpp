@@ -16,9 +16,9 @@
 
 #include "core/error.hpp"
 #include "game/config_file.hpp"
-#include "game/facl_policy.hpp"
+#include "players/facl_policy.hpp"
 #include "game/game_config.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace peg3d::experiment {

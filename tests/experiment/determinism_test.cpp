@@ -10,7 +10,7 @@
 #include "core/hash.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "sweep/parallel_runner.hpp"
 #include "world/map/map_loader.hpp"
 #include "world/map/map_spec.hpp"

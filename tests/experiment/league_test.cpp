@@ -10,7 +10,7 @@
 
 #include "experiment/league_experiment.hpp"
 #include "experiment/league_report.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::experiment {

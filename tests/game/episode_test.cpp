@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "game/policy.hpp"
-#include "game/scripted_policies.hpp"
+#include "players/scripted_policies.hpp"
 #include "geometry/motion_cone.hpp"
 #include "test_arena.hpp"
 

@@ -14,7 +14,7 @@
 #include "../support/counting_new.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "world/map/map_loader.hpp"
 #include "world/map/map_spec.hpp"
 

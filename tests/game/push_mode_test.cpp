@@ -7,7 +7,7 @@
 
 #include "core/hash.hpp"
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "world/map/map_loader.hpp"
 
 namespace peg3d::game {

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "game/episode.hpp"
-#include "game/scripted_policies.hpp"
+#include "players/scripted_policies.hpp"
 #include "game/views.hpp"
 #include "test_arena.hpp"
 #include "world/map/map_loader.hpp"

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "game/episode.hpp"
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::testing {

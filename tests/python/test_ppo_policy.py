@@ -1,5 +1,5 @@
 """The PPO pursuer: a short training run (smoke), and the shipped trained network played by the C++ side
-(game/mlp_policy.hpp) and by a Python reference of the documented forward pass, with the same games."""
+(players/mlp_policy.hpp) and by a Python reference of the documented forward pass, with the same games."""
 
 import json
 import math

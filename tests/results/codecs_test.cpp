@@ -10,8 +10,8 @@
 
 #include "core/error.hpp"
 #include "game/game_config.hpp"
-#include "game/lineup.hpp"
-#include "game/policy_io.hpp"
+#include "players/lineup.hpp"
+#include "players/policy_io.hpp"
 
 namespace peg3d::results {
 namespace {

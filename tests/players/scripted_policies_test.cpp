@@ -1,4 +1,4 @@
-#include "game/scripted_policies.hpp"
+#include "players/scripted_policies.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
 #include "core/random.hpp"
-#include "game/policy_factory.hpp"
+#include "players/policy_factory.hpp"
 
 namespace peg3d::game {
 

@@ -1,9 +1,9 @@
-#include "game/saved_policy.hpp"
+#include "players/saved_policy.hpp"
 
 #include <fmt/format.h>
 
 #include "core/hash.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 
 namespace peg3d::game {
 

@@ -1,4 +1,4 @@
-#include "game/facl_policy.hpp"
+#include "players/facl_policy.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -1,7 +1,8 @@
-#include "game/policy_factory.hpp"
+#include "players/policy_factory.hpp"
 
-#include "game/facl_policy.hpp"
-#include "game/scripted_policies.hpp"
+#include "players/facl_policy.hpp"
+#include "players/scripted_policies.hpp"
+#include "players/search_policies.hpp"
 
 namespace peg3d::game {
 
@@ -14,6 +15,8 @@ std::unique_ptr<Policy> make_policy(const AgentConfig& config, Role role, std::u
     case PolicyKind::kFlee: return std::make_unique<FleeLineOfSight>();
     case PolicyKind::kFleeApollonius: return std::make_unique<FleeApollonius>();
     case PolicyKind::kRandom: return std::make_unique<RandomWalk>(config.steering, seed);
+    case PolicyKind::kSearch: return std::make_unique<SearchPursuer>();
+    case PolicyKind::kHide: return std::make_unique<HideEvader>();
   }
   return nullptr;
 }

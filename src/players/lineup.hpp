@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "game/facl_policy.hpp"
+#include "players/facl_policy.hpp"
 #include "game/policy.hpp"
 
 namespace peg3d::game {

@@ -1,4 +1,4 @@
-#include "game/mlp_policy.hpp"
+#include "players/mlp_policy.hpp"
 
 #include <cmath>
 
@@ -6,7 +6,7 @@
 
 #include "core/input_files.hpp"  // json_line_of
 #include "game/observation_vector.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 
 namespace peg3d::game {
 

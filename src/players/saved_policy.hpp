@@ -1,6 +1,6 @@
 #pragma once
-// A policy read from a file and played greedily, whatever trained it: a FACL model (game/policy_io.hpp) or an
-// MLP (game/mlp_policy.hpp, trained in Python). Read once and shared read-only by every game and thread that
+// A policy read from a file and played greedily, whatever trained it: a FACL model (players/policy_io.hpp) or an
+// MLP (players/mlp_policy.hpp, trained in Python). Read once and shared read-only by every game and thread that
 // plays it, so every program that takes a policy file (peg-matchup, peg-league, peg-collide cases, the Python
 // front's opponents) plays both kinds the same way.
 
@@ -8,9 +8,9 @@
 #include <memory>
 #include <string>
 
-#include "game/facl_policy.hpp"
-#include "game/lineup.hpp"
-#include "game/mlp_policy.hpp"
+#include "players/facl_policy.hpp"
+#include "players/lineup.hpp"
+#include "players/mlp_policy.hpp"
 #include "game/policy.hpp"
 
 namespace peg3d::game {

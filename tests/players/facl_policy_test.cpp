@@ -1,4 +1,4 @@
-#include "game/facl_policy.hpp"
+#include "players/facl_policy.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,8 +8,8 @@
 
 #include "core/random.hpp"
 #include "game/episode.hpp"
-#include "game/policy_io.hpp"
-#include "test_arena.hpp"
+#include "players/policy_io.hpp"
+#include "game/test_arena.hpp"
 
 namespace peg3d::game {
 namespace {

@@ -22,7 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "game/facl_policy.hpp"
+#include "players/facl_policy.hpp"
 
 namespace peg3d::game {
 

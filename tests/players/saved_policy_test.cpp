@@ -1,5 +1,5 @@
-// SavedPolicy (game/saved_policy.hpp): one reader for both kinds of policy file, each played as its own kind.
-#include "game/saved_policy.hpp"
+// SavedPolicy (players/saved_policy.hpp): one reader for both kinds of policy file, each played as its own kind.
+#include "players/saved_policy.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include "core/random.hpp"
 #include "game/observation_vector.hpp"
 #include "game/episode.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 #include "game/sim.hpp"
-#include "test_arena.hpp"
+#include "game/test_arena.hpp"
 
 namespace peg3d::game {
 namespace {

@@ -1,4 +1,4 @@
-#include "game/lineup.hpp"
+#include "players/lineup.hpp"
 
 #include <gtest/gtest.h>
 

@@ -61,6 +61,9 @@ class RandomWalk final : public Policy {
   std::uniform_real_distribution<double> u_{-1.0, 1.0};
 };
 
+/// The heading change that turns the view's agent onto `direction` (any length; none for a zero vector).
+Steering steer_toward(const AgentView& view, const Vec3& direction);
+
 /// Distance (m) within which the scripted evaders feel the boundary and obstacles.
 inline constexpr double kAvoidDistance = 4.0;
 

@@ -1,4 +1,4 @@
-#include "game/scripted_policies.hpp"
+#include "players/scripted_policies.hpp"
 
 #include <array>
 #include <cmath>
@@ -6,13 +6,14 @@
 #include "geometry/apollonius.hpp"
 
 namespace peg3d::game {
-namespace {
 
-Steering toward(const AgentView& view, const Vec3& direction) {
+Steering steer_toward(const AgentView& view, const Vec3& direction) {
   if (direction.squaredNorm() == 0.0) return {};
   const AngleErrors e = angle_errors(view.self.heading, direction);
   return {e.azimuth, e.elevation};
 }
+
+namespace {
 
 Vec3 velocity(const KinematicState& s, double speed) { return speed * peg3d::direction(s.heading); }
 
@@ -51,16 +52,16 @@ Vec3 repulsion(const AgentView& view) {
   return r;
 }
 
-Steering PurePursuit::act(const AgentView& view) { return toward(view, view.other.position - view.self.position); }
+Steering PurePursuit::act(const AgentView& view) { return steer_toward(view, view.other.position - view.self.position); }
 
 Steering ProportionalNavigation::act(const AgentView& view) {
   const Vec3 r = view.other.position - view.self.position;
   const Vec3 dir = peg3d::direction(view.self.heading);
-  if (r.squaredNorm() == 0.0 || dir.dot(r) <= 0.0) return toward(view, r);
+  if (r.squaredNorm() == 0.0 || dir.dot(r) <= 0.0) return steer_toward(view, r);
   const Vec3 v_rel = velocity(view.other, view.other_speed) - velocity(view.self, view.self_speed);
   const Vec3 omega = r.cross(v_rel) / r.squaredNorm();  // line-of-sight rotation rate, rad/s
   const Vec3 turned = dir + gain_ * omega.cross(dir) * view.dt;
-  return toward(view, turned);
+  return steer_toward(view, turned);
 }
 
 Steering ApolloniusInterceptor::act(const AgentView& view) {
@@ -68,14 +69,14 @@ Steering ApolloniusInterceptor::act(const AgentView& view) {
   const Vec3& e = view.other.position;
   if (view.other_speed > 0.0) {
     const auto x = interception_point(p, e, peg3d::direction(view.other.heading), view.other_speed / view.self_speed);
-    if (x) return toward(view, view.arena.clamp(*x) - p);
+    if (x) return steer_toward(view, view.arena.clamp(*x) - p);
   }
-  return toward(view, e - p);
+  return steer_toward(view, e - p);
 }
 
 Steering FleeLineOfSight::act(const AgentView& view) {
   const Vec3 away = (view.self.position - view.other.position).normalized();
-  return toward(view, away + repulsion(view));
+  return steer_toward(view, away + repulsion(view));
 }
 
 Steering FleeApollonius::act(const AgentView& view) {
@@ -83,7 +84,7 @@ Steering FleeApollonius::act(const AgentView& view) {
   const Vec3& p = view.other.position;
   const double a = view.other_speed > 0.0 ? view.self_speed / view.other_speed : 2.0;
   if (a >= 1.0 - kUnitRatioTolerance || (e - p).squaredNorm() == 0.0) {
-    return toward(view, (e - p).normalized() + repulsion(view));  // no bounded dominance region: flee
+    return steer_toward(view, (e - p).normalized() + repulsion(view));  // no bounded dominance region: flee
   }
   const ApolloniusSurface surface(p, e, a);
   const Box inside = view.arena.shrunk(1.0);
@@ -99,7 +100,7 @@ Steering FleeApollonius::act(const AgentView& view) {
   }
   const Vec3 to_goal = goal - e;
   const double n = to_goal.norm();
-  return toward(view, (n > 1e-9 ? Vec3(to_goal / n) : Vec3((e - p).normalized())) + repulsion(view));
+  return steer_toward(view, (n > 1e-9 ? Vec3(to_goal / n) : Vec3((e - p).normalized())) + repulsion(view));
 }
 
 Steering RandomWalk::act(const AgentView& view) {

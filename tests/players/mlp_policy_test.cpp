@@ -1,5 +1,5 @@
-// MlpPolicy (game/mlp_policy.hpp): the documented forward pass, and files that do not fit refused with the field.
-#include "game/mlp_policy.hpp"
+// MlpPolicy (players/mlp_policy.hpp): the documented forward pass, and files that do not fit refused with the field.
+#include "players/mlp_policy.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "game/observation_vector.hpp"
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 
 namespace peg3d::game {
 namespace {

@@ -1,4 +1,4 @@
-#include "game/policy_io.hpp"
+#include "players/policy_io.hpp"
 
 #include <cmath>
 
