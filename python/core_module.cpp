@@ -138,6 +138,7 @@ PYBIND11_MODULE(_core, m) {
       })
       .def_property_readonly("rays", [](const env::Batch& b) { return b.rays(); })
       .def_property_readonly("ranges_offset", [](const env::Batch& b) { return b.ranges_offset(); })
+      .def_property_readonly("sight_offset", [](const env::Batch& b) { return b.sight() ? b.sight_offset() : -1; })
       .def_property_readonly("ranges", [](py::object self) {
         // The range readings inside the observations: (games, agents, rays), the same memory.
         env::Batch& b = self.cast<env::Batch&>();

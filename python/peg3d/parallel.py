@@ -43,6 +43,10 @@ class ParallelEnv(_Base):
         # Each agent's latest lidar readings (m) are the last `rays` entries of its observation, from
         # `ranges_offset` (zeros after an agent's own rays; no entries without a lidar).
         self.rays, self.ranges_offset = b.rays, b.ranges_offset
+        # With limited sight (docs/sight.md): entries sight_offset and sight_offset + 1 say whether the agent sees
+        # the opponent of its first entries now (1 or 0) and how old (s) the sighting they come from is; -1: no
+        # agent's sight is limited, no such entries.
+        self.sight_offset = b.sight_offset
         self.agents = []
         self._started = False
         self._closed = False

@@ -65,6 +65,10 @@ class VectorEnv:
         self._rew, self._term, self._trunc = self._split(b.rewards), self._split(b.terminated), self._split(b.truncated)
         # Each agent's latest lidar readings (m): the last `rays` entries of its observation, the same memory.
         self.rays, self.ranges_offset = b.rays, b.ranges_offset
+        # With limited sight (docs/sight.md): entries sight_offset and sight_offset + 1 say whether the agent sees
+        # the opponent of its first entries now (1 or 0) and how old (s) the sighting they come from is; -1: no
+        # agent's sight is limited, no such entries.
+        self.sight_offset = b.sight_offset
         self.ranges = self._split(b.ranges)
         terms = self._split(b.reward_terms)
         self._info = {"reset": b.reset_flags, "acted": self._split(b.acted), "active": self._split(b.active),

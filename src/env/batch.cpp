@@ -146,6 +146,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   }
   sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
   for (int i = 0; i < agents_; ++i) layout_.rays = std::max(layout_.rays, rays(i));
+  layout_.sight = sim_->limits_sight();
   games_.reserve(std::size_t(settings_.games));
   for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
   if (settings_.record) {
@@ -330,6 +331,10 @@ void Batch::write_outputs(int g) {
     game::observation_base(v, o);
     const Vec3& self = v.self.position;
     float* slot = o + ObservationLayout::kBase;
+    // Where agent i takes agent j to be: an opponent as its sight knows it, a teammate as it is.
+    const auto known = [&](int j) {
+      return st.agents[std::size_t(j)].role != a.role ? st.known_state(i, j).position : st.agents[std::size_t(j)].kinematics.position;
+    };
     // The k nearest other opponents, then the k nearest teammates, still in the game.
     for (const bool opponents : {true, false}) {
       std::array<std::pair<double, int>, 2 * world::kMaxAgentsPerRole> near{};
@@ -337,17 +342,22 @@ void Batch::write_outputs(int g) {
       for (int j = 0; j < agents_; ++j) {
         const game::AgentState& b = st.agents[std::size_t(j)];
         if (j == i || !b.active || (b.role != a.role) != opponents || (opponents && j == a.opponent)) continue;
-        near[std::size_t(count++)] = {(b.kinematics.position - self).squaredNorm(), j};
+        near[std::size_t(count++)] = {(known(j) - self).squaredNorm(), j};
       }
       std::sort(near.begin(), near.begin() + count);  // by distance, then index: deterministic
       for (int k = 0; k < layout_.neighbours; ++k, slot += ObservationLayout::kPerNeighbour) {
         if (k < count) {
-          const Vec3 d = st.agents[std::size_t(near[std::size_t(k)].second)].kinematics.position - self;
+          const Vec3 d = known(near[std::size_t(k)].second) - self;
           slot[0] = float(d.x()), slot[1] = float(d.y()), slot[2] = float(d.z()), slot[3] = 1.0f;
         } else {
           slot[0] = slot[1] = slot[2] = slot[3] = 0.0f;
         }
       }
+    }
+    if (layout_.sight) {
+      slot[0] = v.other_visible ? 1.0f : 0.0f;
+      slot[1] = float(v.other_age);
+      slot += ObservationLayout::kSightEntries;
     }
     const std::span<const double> ranges = st.ranges(i);
     for (int k = 0; k < layout_.rays; ++k) slot[k] = k < int(ranges.size()) ? float(ranges[std::size_t(k)]) : 0.0f;
@@ -374,6 +384,10 @@ ObservationBounds Batch::observation_bounds() const {
   for (int k = 0; k < 2 * layout_.neighbours; ++k) {
     for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
     add(0, 1);
+  }
+  if (layout_.sight) {
+    add(0, 1);
+    add(0, sim_->config().time_limit);
   }
   double range = 0.0;  // the farthest any agent's lidar reads
   for (int i = 0; i < agents_; ++i) {

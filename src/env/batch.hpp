@@ -32,14 +32,21 @@ namespace peg3d::env {
 /// The observation vector of one agent, float32, every entry with finite bounds (ObservationBounds): the 20
 /// entries of game::observation_base (game/observation_vector.hpp), then `neighbours` nearest other opponents
 /// and `neighbours` nearest teammates still in the game, nearest first, each as (relative position m, mask 1)
-/// and zeros with mask 0 where there are fewer; then, when some agent has a lidar, the agent's latest range
-/// readings in its lidar's order (SimState::ranges), zeros after them for an agent with fewer rays.
+/// and zeros with mask 0 where there are fewer (with limited sight, an opponent where the agent takes it to be,
+/// SimState::known_state); then, when some agent's sight is limited (AgentConfig::sight), kSightEntries entries
+/// about the opponent of the base entries: whether the agent sees it now (1 or 0) and the age of the sighting
+/// those entries come from (s; 1 and 0 for an agent with full information); then, when some agent has a lidar,
+/// the agent's latest range readings in its lidar's order (SimState::ranges), zeros after them for an agent with
+/// fewer rays.
 struct ObservationLayout {
   static constexpr int kBase = game::kObservationBase;
   static constexpr int kPerNeighbour = 4;
+  static constexpr int kSightEntries = 2;
   int neighbours = 2;  ///< k, in [0, 16]
+  bool sight = false;  ///< some agent's sight is limited: the sight entries are there
   int rays = 0;        ///< the most rays any agent's lidar has (0: no lidar), in [0, sense::kMaxLidarRays]
-  int ranges_offset() const { return kBase + 2 * neighbours * kPerNeighbour; }
+  int sight_offset() const { return kBase + 2 * neighbours * kPerNeighbour; }
+  int ranges_offset() const { return sight_offset() + (sight ? kSightEntries : 0); }
   int size() const { return ranges_offset() + rays; }
 };
 
@@ -80,6 +87,9 @@ class Batch {
   int observation_size() const { return layout_.size(); }
   /// Where in an observation an agent's range readings start, and how many slots they have (ObservationLayout).
   int ranges_offset() const { return layout_.ranges_offset(); }
+  /// Where the sight entries start (ObservationLayout), and whether they are there.
+  int sight_offset() const { return layout_.sight_offset(); }
+  bool sight() const { return layout_.sight; }
   int rays() const { return layout_.rays; }
   /// How many of those slots agent i's lidar fills (0 without a lidar).
   int rays(int i) const;
