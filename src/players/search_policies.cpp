@@ -43,19 +43,30 @@ void SearchPursuer::choose(const AgentView& view) {
   target_ = -1;
 }
 
+bool SearchPursuer::passable(const AgentView& view, const Vec3& a, const Vec3& b) {
+  const Vec3 line = b - a;
+  if (!(line.norm() > 0.0)) return true;
+  const Vec3 axis = line.normalized();
+  Vec3 up = Vec3::UnitZ() - axis.z() * axis;
+  if (up.norm() < 1e-9) up = Vec3::UnitX() - axis.x() * axis;
+  up.normalize();
+  const Vec3 side = axis.cross(up);
+  for (const Vec3& off : {Vec3(Vec3::Zero()), Vec3(kPassage * up), Vec3(-kPassage * up), Vec3(kPassage * side),
+                          Vec3(-kPassage * side)}) {
+    if (!view.probe->clear(a + off, b + off)) return false;
+  }
+  return true;
+}
+
 bool SearchPursuer::stuck(const AgentView& view, int key, const Vec3& goal) {
   const double d = (goal - view.self.position).norm();
-  const Vec3& p = view.self.position;
   if (key != goal_key_ || d < goal_best_ - kProgress) {
-    goal_key_ = key, goal_best_ = d, goal_since_ = view.time, since_at_ = p;
+    goal_key_ = key, goal_best_ = d, goal_since_ = view.time;
     return false;
   }
-  const double elapsed = view.time - goal_since_;
-  if (elapsed <= kStuck) return false;
-  const bool turning = (p - since_at_).norm() < 0.5 * view.self_speed * elapsed;
-  if (!turning && (view.probe == nullptr || view.probe->clear(p, goal))) return false;
-  goal_since_ = view.time, since_at_ = p;  // asked again kStuck from now
-  return true;
+  if (view.time - goal_since_ <= kStuck) return false;
+  goal_since_ = view.time;  // asked again kStuck from now
+  return view.probe == nullptr || !passable(view, view.self.position, goal);
 }
 
 int SearchPursuer::detour(const AgentView& view, const Vec3& goal) const {
@@ -66,8 +77,8 @@ int SearchPursuer::detour(const AgentView& view, const Vec3& goal) const {
   for (std::size_t k = 0; k < points_.size(); ++k) {
     const Vec3& w = points_[k];
     const double legs = (w - p).norm() + (goal - w).norm();
-    if ((w - p).norm() <= kVisit || legs >= best_cost || !view.probe->clear(p, w)) continue;
-    const double cost = legs + (view.probe->clear(w, goal) ? 0.0 : kBlockedLeg);
+    if ((w - p).norm() <= kVisit || legs >= best_cost || !passable(view, p, w)) continue;
+    const double cost = legs + (passable(view, w, goal) ? 0.0 : kBlockedLeg);
     if (cost < best_cost) best_cost = cost, best = int(k);
   }
   return best;

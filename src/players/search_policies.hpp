@@ -15,11 +15,11 @@ namespace peg3d::game {
 /// nearest in the sum of its distances from the pursuer and from the point where the search began. A point counts
 /// as visited when the pursuer passes within kVisit of it. When every point has been visited, the round starts
 /// again. It heads straight for its goal (the obstacle guard keeps it off the solids).
-/// Stuck (no kProgress nearer to its goal in kStuck, and either the straight way there blocked as far as the view's
-/// SightProbe says or less than half that time's flight from where it was: pinned behind a solid, or turning
-/// about against one), it takes a detour through the
-/// lattice point it can fly to straight (the view's SightProbe) that is nearest in the sum of the two legs, those
-/// whose second leg is not clear counting kBlockedLeg more; without a probe or a detour, it gives the goal up (a
+/// Stuck (no kProgress nearer to its goal in kStuck, and the straight way there not passable: one of five
+/// segments, along the line and kPassage off it on four sides, blocked as the view's SightProbe says), it takes a
+/// detour through the
+/// lattice point it can pass to straight that is nearest in the sum of the two legs, those whose second leg is not
+/// passable counting kBlockedLeg more; without a probe or a detour, it gives the goal up (a
 /// search point counts as visited; an estimate as arrived at). Allocates in begin_episode() only.
 class SearchPursuer final : public Policy {
  public:
@@ -28,7 +28,8 @@ class SearchPursuer final : public Policy {
   static constexpr double kVisit = 2.5;       ///< m within which a search point counts as visited
   static constexpr double kProgress = 0.5;    ///< m nearer to its goal that counts as progress
   static constexpr double kStuck = 4.0;       ///< s without progress after which a blocked goal needs a detour
-  static constexpr double kBlockedLeg = 10.0; ///< m added to a detour whose second leg is not clear
+  static constexpr double kBlockedLeg = 10.0; ///< m added to a detour whose second leg is not passable
+  static constexpr double kPassage = 0.8;     ///< m each side of a straight way that must be clear (the guard's stop)
 
   void begin_episode(const AgentView& view, bool learning) override;
   Steering act(const AgentView& view) override;
@@ -36,6 +37,7 @@ class SearchPursuer final : public Policy {
  private:
   void choose(const AgentView& view);
   int detour(const AgentView& view, const Vec3& goal) const;
+  static bool passable(const AgentView& view, const Vec3& a, const Vec3& b);
   // Whether the agent has come no kProgress nearer to `goal` (known by `key`) for kStuck and cannot fly there
   // straight.
   bool stuck(const AgentView& view, int key, const Vec3& goal);
@@ -49,7 +51,6 @@ class SearchPursuer final : public Policy {
   int goal_key_ = -3;            // the goal progress is measured to: -2 the opponent, k search point k, 10000 + k detour k
   double goal_best_ = 0.0;       // m, the nearest it has come to it
   double goal_since_ = 0.0;      // s, when it last came kProgress nearer
-  Vec3 since_at_ = Vec3::Zero(); // where it was then
 };
 
 /// When it sees its pursuer, or saw it less than kAlert ago, goes to a hiding place: among candidate points
