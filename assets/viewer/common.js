@@ -29,7 +29,7 @@ var scriptMs = performance.now();  // this script starts running
 var startMs = scriptMs;             // the replay starts loading (set in start())
 
 var LAYERS = ['obstacles', 'terrain', 'movers', 'agents', 'trails', 'capture', 'collisions', 'apollonius',
-  'cone', 'obstacle_vectors', 'sensing', 'arena'];
+  'cone', 'obstacle_vectors', 'sensing', 'sight', 'arena'];
 var LAYER_LABELS = {
   obstacles: 'Obstacles (spheres, cylinders)',
   terrain: 'Terrain',
@@ -42,6 +42,7 @@ var LAYER_LABELS = {
   cone: 'Optimal cone',
   obstacle_vectors: 'Nearest-obstacle vectors',
   sensing: 'Selected agent\'s rays and own map',
+  sight: 'Lines of sight (seen / hidden), fields of view, last-seen ghosts',
   arena: 'Arena box'
 };
 var SPEEDS = [0.25, 0.5, 1, 2, 5, 10, 50];

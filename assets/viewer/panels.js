@@ -154,6 +154,7 @@ function buildPanels(v) {
     cone: R.pairs.length,
     obstacle_vectors: agents.length,
     sensing: agents.filter(function (a) { return a.lidar; }).length,
+    sight: agents.filter(function (a) { return a.sight; }).length,
     arena: 1
   };
   LAYERS.forEach(function (name) {

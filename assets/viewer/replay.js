@@ -90,6 +90,20 @@ function readLidar(li, key, frames) {
     out.scanFrame.length >= frames;
   return ok ? out : null;
 }
+// An agent's limited sight (every frame's opponent, whether it saw it, where it took it to be), or null when its
+// sight is not limited or the data do not fit together.
+function readSight(si, key, frames) {
+  if (!si || typeof si !== 'object') return null;
+  var out = {
+    fov: Math.min(360, Math.max(0, num(si.fov, 360))),
+    range: Math.max(0, num(si.range, 0)),
+    opponent: u32(si.opponent_u32, key + 'opponent_u32'),
+    visible: u8(si.visible_u8, key + 'visible_u8'),
+    estimate: f32(si.estimate_f32, key + 'estimate_f32')
+  };
+  var ok = out.opponent.length >= frames && out.visible.length >= frames && out.estimate.length >= 3 * frames;
+  return ok ? out : null;
+}
 // An agent's own map as it grows: cells occupied at frame 0, then each change of occupancy, in frame order.
 function readMap(m, key) {
   if (!m || typeof m !== 'object') return null;
@@ -157,7 +171,8 @@ function loadReplay() {
       action: f32(tr.action_f32, key + 'action_f32'),
       reward: f32(tr.reward_f32, key + 'reward_f32'),
       lidar: readLidar(a.lidar, 'agents[' + i + '].lidar.', n),
-      map: readMap(a.map, 'agents[' + i + '].map.')
+      map: readMap(a.map, 'agents[' + i + '].map.'),
+      sight: readSight(a.sight, 'agents[' + i + '].sight.', n)
     };
   });
   // Labels: the names, made unique when several agents share one.

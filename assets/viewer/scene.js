@@ -272,6 +272,37 @@ function buildScene(v) {
     layerGroups.obstacle_vectors.add(a.obstacleLine);
   });
 
+  // --- sight: for each agent with limited sight, the line to where it takes its opponent to be (green while it
+  // sees it, red dashed while hidden), the ghost of a hidden opponent at its estimate, and its field of view as a
+  // cone 3 m long about its heading (below 180 degrees)
+  var seenMat = new THREE.LineBasicMaterial({ color: 0x5ee08e });
+  var hiddenMat = new THREE.LineDashedMaterial({ color: 0xff5a4f, dashSize: 0.4, gapSize: 0.3 });
+  agents.forEach(function (a) {
+    if (!a.sight) return;
+    var g = new THREE.BufferGeometry();
+    var attr = new THREE.BufferAttribute(new Float32Array(6), 3);
+    attr.setUsage(THREE.DynamicDrawUsage);
+    g.setAttribute('position', attr);
+    a.sightLine = new THREE.Line(g, seenMat);
+    a.sightLine.frustumCulled = false;
+    a.sightAttr = attr;
+    a.seenMat = seenMat;
+    a.hiddenMat = hiddenMat;
+    layerGroups.sight.add(a.sightLine);
+    a.ghost = new THREE.Mesh(new THREE.SphereBufferGeometry(1, 12, 8), new THREE.MeshBasicMaterial({
+      color: 0xffffff, wireframe: true, transparent: true, opacity: 0.6, depthWrite: false }));
+    a.ghost.visible = false;
+    layerGroups.sight.add(a.ghost);
+    if (a.sight.fov < 180) {
+      var half = a.sight.fov * Math.PI / 360, len = 3;
+      var cone = new THREE.ConeBufferGeometry(len * Math.tan(half), len, 24, 1, true);
+      cone.translate(0, -len / 2, 0);  // apex at the origin, opening along -y
+      a.fovCone = new THREE.Mesh(cone, new THREE.MeshBasicMaterial({ color: a.color, transparent: true, opacity: 0.12,
+        side: THREE.DoubleSide, depthWrite: false }));
+      layerGroups.sight.add(a.fovCone);
+    }
+  });
+
   // --- sensing: the selected agent's rays (echoes bright, rays that met nothing dim) and each sensing agent's
   // own map, its occupied cells as instanced cubes that appear and vanish as the flips say (timeline.js)
   var mostRays = agents.reduce(function (r, a) { return Math.max(r, a.lidar ? a.lidar.rays : 0); }, 0);

@@ -130,6 +130,34 @@ function updateSensing(v, f) {
 }
 
 // Poses everything at frame f plus a fraction `frac` (in [0, 1)) towards frame f + 1 (playback only).
+// An agent's sight at frame f: the line to its estimate of its opponent, the ghost there while the opponent is
+// hidden, and its field of view along its heading.
+var SIGHT_UP = new THREE.Vector3(0, -1, 0);
+function updateSight(v, a, f, on) {
+  var s = a.sight, opp = s.opponent[f];
+  var known = on && opp < v.agents.length;
+  var est = v.tmpE.set(s.estimate[3 * f], s.estimate[3 * f + 1], s.estimate[3 * f + 2]);
+  known = known && finite3(est);
+  var seen = s.visible[f] === 1;
+  a.sightLine.visible = known;
+  a.ghost.visible = known && !seen;
+  if (known) {
+    var o = a.sightAttr.array;
+    o[0] = a.cur.x; o[1] = a.cur.y; o[2] = a.cur.z;
+    o[3] = est.x; o[4] = est.y; o[5] = est.z;
+    a.sightAttr.needsUpdate = true;
+    a.sightLine.material = seen ? a.seenMat : a.hiddenMat;
+    if (!seen) a.sightLine.computeLineDistances();
+    a.ghost.position.copy(est);
+    a.ghost.scale.setScalar(Math.max(0.05, v.agents[opp].radius));
+  }
+  if (a.fovCone) {
+    a.fovCone.visible = on;
+    a.fovCone.position.copy(a.cur);
+    a.fovCone.quaternion.setFromUnitVectors(SIGHT_UP, a.dir);
+  }
+}
+
 function applyState(v, f, frac) {
   var R = v.R, N = v.N, agents = v.agents, movers = v.movers, state = v.state;
   var camera = v.camera, controls = v.controls, coneMesh = v.coneMesh, coneGroup = v.coneGroup;
@@ -175,6 +203,7 @@ function applyState(v, f, frac) {
       o[3] = a.cur.x + tmpE.x; o[4] = a.cur.y + tmpE.y; o[5] = a.cur.z + tmpE.z;
       a.obstacleAttr.needsUpdate = true;
     }
+    if (a.sight) updateSight(v, a, f, ok && act);
   });
 
   movers.forEach(function (m) {

@@ -113,6 +113,11 @@ void Trace::record(const SimState& st, bool after_step) {
     f.state = a.kinematics;
     f.percept = a.view.percept;
     f.active = a.active;
+    if (st.sight_limited(i)) {
+      f.opponent = a.opponent;
+      f.sees = a.view.other_visible;
+      f.estimate = a.view.other.position;
+    }
     if (after_step) {
       const AgentEvents& e = st.events.agents[std::size_t(i)];
       f.command = e.command;

@@ -76,6 +76,11 @@ struct AgentFrame {
   Steering command;     ///< what it was told to do in the step ending here (zero at the start)
   double reward = 0.0;  ///< its reward for the step ending here
   bool active = true;   ///< in the game at this instant
+  /// With limited sight (AgentConfig::sight): the opponent of its view at this instant (-1: full information, and
+  /// the two fields after it unused), whether it saw it, and where it took it to be.
+  int opponent = -1;
+  bool sees = true;
+  Vec3 estimate = Vec3::Zero();
 };
 
 /// A cell of an agent's own map that became occupied or free at a frame (Trace::map_flips).

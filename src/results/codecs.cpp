@@ -67,12 +67,13 @@ game::CaptureEvent capture_from_json(const nlohmann::json& j) {
   return {int_from(j[0]), number_from_json(j[1]), int_from(j[2]), int_from(j[3]), number_from_json(j[4])};
 }
 
-// One agent at one instant: position, heading, the whole percept, the command, reward and whether in play.
-constexpr std::size_t kFrameValues = 20;
+// One agent at one instant: position, heading, the whole percept, the command, reward and whether in play; with
+// limited sight five more: the opponent, whether it was seen and where it was taken to be.
+constexpr std::size_t kFrameValues = 20, kSightFrameValues = 25;
 
 nlohmann::json frame_to_json(const game::AgentFrame& f) {
   const game::Percept& q = f.percept;
-  return nlohmann::json::array(
+  nlohmann::json j = nlohmann::json::array(
       {number_to_json(f.state.position.x()), number_to_json(f.state.position.y()), number_to_json(f.state.position.z()),
        number_to_json(f.state.heading.alpha), number_to_json(f.state.heading.theta), number_to_json(q.target_distance),
        number_to_json(q.target.azimuth), number_to_json(q.target.elevation), number_to_json(q.obstacle.distance),
@@ -80,10 +81,18 @@ nlohmann::json frame_to_json(const game::AgentFrame& f) {
        static_cast<int>(q.obstacle.found), number_to_json(q.to_obstacle.azimuth), number_to_json(q.to_obstacle.elevation),
        static_cast<int>(q.pinned), number_to_json(f.command.d_alpha), number_to_json(f.command.d_theta),
        number_to_json(f.reward), static_cast<int>(f.active)});
+  if (f.opponent >= 0) {
+    for (const nlohmann::json& v : {nlohmann::json(f.opponent), nlohmann::json(static_cast<int>(f.sees)),
+                                    number_to_json(f.estimate.x()), number_to_json(f.estimate.y()),
+                                    number_to_json(f.estimate.z())}) {
+      j.push_back(v);
+    }
+  }
+  return j;
 }
 
 game::AgentFrame frame_from_json(const nlohmann::json& j) {
-  array_of(j, kFrameValues, "a trace frame needs 20 values");
+  if (!(j.is_array() && j.size() == kSightFrameValues)) array_of(j, kFrameValues, "a trace frame needs 20 values (25 with sight)");
   game::AgentFrame f;
   f.state.position = vec_from(j, 0);
   f.state.heading = {number_from_json(j[3]), number_from_json(j[4])};
@@ -98,6 +107,11 @@ game::AgentFrame frame_from_json(const nlohmann::json& j) {
   f.command = {number_from_json(j[16]), number_from_json(j[17])};
   f.reward = number_from_json(j[18]);
   f.active = int_from(j[19]) != 0;
+  if (j.size() == kSightFrameValues) {
+    f.opponent = int_from(j[20]);
+    f.sees = int_from(j[21]) != 0;
+    f.estimate = vec_from(j, 22);
+  }
   return f;
 }
 

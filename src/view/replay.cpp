@@ -193,6 +193,23 @@ nlohmann::json agent_lidar(const game::Trace& trace, int i, const sense::Lidar& 
           {"echo_u8", encoded(echoes)}, {"scan_frame_u32", encoded(scan_frames)}};
 }
 
+// Agent i's limited sight (AgentConfig::sight): its field of view and range, and at every frame the opponent it
+// looked for (0xffffffff: not recorded, as in a trace from an older journal), whether it saw it and where it took
+// it to be.
+nlohmann::json agent_sight(const game::Trace& trace, int i, const game::SightConfig& sight) {
+  std::vector<std::uint32_t> opponent;
+  std::vector<std::uint8_t> visible;
+  std::vector<float> estimate;
+  for (int f = 0; f < trace.frame_count(); ++f) {
+    const game::AgentFrame& a = trace.at(f, i);
+    opponent.push_back(a.opponent >= 0 ? std::uint32_t(a.opponent) : 0xffffffffu);
+    visible.push_back(a.sees ? 1 : 0);
+    push(estimate, a.estimate);
+  }
+  return {{"fov", sight.fov}, {"range", sight.range}, {"opponent_u32", encoded(opponent)}, {"visible_u8", encoded(visible)},
+          {"estimate_f32", encoded(estimate)}};
+}
+
 // Agent i's own map as it grows: the cells occupied at frame 0, then each change, in order.
 nlohmann::json agent_map(const game::Trace& trace, int i, double resolution) {
   std::vector<std::uint32_t> frames;
@@ -302,6 +319,7 @@ nlohmann::json replay_json(const ReplayScene& scene, const game::Sim& sim, const
       j["agents"].back()["lidar"] = agent_lidar(trace, i, *lidar, a.lidar.range);
       if (a.map.enabled) j["agents"].back()["map"] = agent_map(trace, i, a.map.resolution);
     }
+    if (a.sight.enabled) j["agents"].back()["sight"] = agent_sight(trace, i, a.sight);
   }
 
   // What the trace does not hold, sampled: where the movers are, and each pair's Apollonius sphere and cone.

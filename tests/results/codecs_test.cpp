@@ -108,6 +108,7 @@ TEST(ResultsCodecs, TracesSummariesAndModelsRoundTrip) {
       f.command = {0.01, -0.02};
       f.reward = -kInf;
       f.active = k < 2;
+      if (i == 0) f.opponent = 1, f.sees = k == 0, f.estimate = {k - 0.5, 2.0 / 3.0, 4.0};  // a pursuer with limited sight
       t.frames.push_back(f);
     }
   }
@@ -128,6 +129,9 @@ TEST(ResultsCodecs, TracesSummariesAndModelsRoundTrip) {
     EXPECT_EQ(a.command.d_theta, b.command.d_theta);
     EXPECT_EQ(a.reward, b.reward);
     EXPECT_EQ(a.active, b.active);
+    EXPECT_EQ(a.opponent, b.opponent);
+    EXPECT_EQ(a.sees, b.sees);
+    EXPECT_EQ(a.estimate, b.estimate);
   }
   ASSERT_EQ(r.captures.size(), 1u);
   EXPECT_EQ(r.captures[0].distance, 0.49);

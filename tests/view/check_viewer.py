@@ -217,6 +217,32 @@ def check_sensing(page, html, work):
     check(not problems, "no console error while driving the sensing layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
 
 
+def check_sight(page, html, work):
+    """5. The sight layer: lines of sight, fields of view and ghosts are drawn (pixels change when the layer is
+    hidden), at an instant the pursuer sees the evader and at one it does not (read from the replay's data)."""
+    import numpy as np
+    if not check(load(page, html) is not None, "the limited-sight game's viewer is ready"):
+        return
+    check(page.js("Object.keys(pegView.layers).indexOf('sight') >= 0"), "the sight layer is listed")
+    replay = json.loads(page.js("document.getElementById('peg-replay').textContent"))
+    times = np.frombuffer(base64.b64decode(replay["times_f64"]), dtype="<f8")
+    visible = np.frombuffer(base64.b64decode(replay["agents"][0]["sight"]["visible_u8"]), dtype=np.uint8)
+    for label, frames in (("seen", np.nonzero(visible[1:])[0]), ("hidden", np.nonzero(visible[1:] == 0)[0])):
+        if not check(len(frames) > 0, f"the pursuer's opponent is {label} at some frame"):
+            continue
+        f = int(frames[len(frames) // 2]) + 1
+        page.js(f"pegView.seek({float(times[f])!r})")
+        full = page.screenshot()
+        full.save(os.path.join(work, f"viewer_sight_{label}.png"))
+        page.js("pegView.setLayer('sight', false)")
+        without = page.screenshot()
+        page.js("pegView.setLayer('sight', true)")
+        n = int(changed_pixels(full, without).sum())
+        check(n > 30, f"frame {f}: the sight layer is drawn while the opponent is {label} ({n} pixels)")
+    problems = console_problems(page, html)
+    check(not problems, "no console error while driving the sight layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
+
+
 def main():
     bin_dir, source, work = sys.argv[1:4]
     if shutil.which("chromium") is None:
@@ -260,6 +286,13 @@ def main():
              "--html", "F1_r0_pn_vs_flee", "--plain-progress", *sets])
     sensing_html = os.path.join(sensing_out, "F1_r0_pn_vs_flee.html")
     check(r.returncode == 0 and os.path.exists(sensing_html), "peg-matchup --html writes a sensing game's viewer")
+    sight_out = os.path.join(work, "sight")
+    r = run([os.path.join(bin_dir, "peg-matchup"), "--map", os.path.join(source, "maps", "town.yaml"),
+             "--out", sight_out, "--pursuers", "search", "--evaders", "hide", "--repeats", "1", "--no-cache",
+             "--html", "corner_r0_search_vs_hide", "--plain-progress", "--set", "time_limit=40",
+             "--set", "pursuer.sight.enabled=true", "--set", "pursuer.sight.fov=120", "--set", "evader.sight.enabled=true"])
+    sight_html = os.path.join(sight_out, "corner_r0_search_vs_hide.html")
+    check(r.returncode == 0 and os.path.exists(sight_html), "peg-matchup --html writes a limited-sight game's viewer")
     if failures:
         return 1
 
@@ -268,7 +301,7 @@ def main():
     try:
         page = open_page(port, websocket)
         # 2. Every file opens offline, quietly.
-        for html in (paper_html, view_html, case_html, sensing_html):
+        for html in (paper_html, view_html, case_html, sensing_html, sight_html):
             name = os.path.basename(html)
             seconds = load(page, html)
             if not check(seconds is not None, f"{name}: the viewer is ready ({os.path.getsize(html) / 1e6:.1f} MB)"):
@@ -342,6 +375,7 @@ def main():
         check(not problems, "no console error or network request while driving the page" +
               ("" if not problems else ": " + "; ".join(problems[:5])))
         check_sensing(page, sensing_html, work)
+        check_sight(page, sight_html, work)
     finally:
         proc.kill()
         proc.wait()

@@ -171,6 +171,49 @@ TEST(ViewReplay, HoldsEveryRecordedFrameOfEveryAgent) {
   EXPECT_EQ(j.at("capture_distance").get<double>(), e.config.capture_distance);
 }
 
+TEST(ViewReplay, SightCarriesEachFramesOpponentVisibilityAndEstimate) {
+  // A ball between a pursuer with a 120 degree field of view and an evader fleeing behind it.
+  world::MapSpec m;
+  m.name = "ball";
+  m.bounds = {Vec3::Zero(), Vec3(35, 35, 20)};
+  m.resolution = 0.5;
+  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  m.spheres.push_back({Vec3(10, 5, 10), 2.0});
+  m.scenarios.push_back(peg3d::testing::scenario("S", {5, 5, 10}, {15, 5, 10}));
+  const auto arena = world::Arena::build(m);
+  game::GameConfig c = game::preset("peg3d");
+  c.pursuer.policy = game::PolicyKind::kSearch;
+  c.evader.policy = game::PolicyKind::kFlee;
+  c.pursuer.sight.enabled = true;
+  c.pursuer.sight.fov = 120.0;
+  c.time_limit = 30.0;
+  const game::Sim sim(arena, c);
+  game::Trace trace;
+  peg3d::testing::play_once(sim, m.scenarios[0], 1, &trace);
+  const nlohmann::json j = replay_json(ReplayScene(*arena), sim, trace, {"title", "subtitle"});
+  const int n = trace.frame_count();
+  EXPECT_FALSE(j.at("agents")[1].contains("sight"));  // the evader has full information
+  const auto& sight = j.at("agents")[0].at("sight");
+  EXPECT_EQ(sight.at("fov").get<double>(), 120.0);
+  const auto opponent = series<std::uint32_t>(sight.at("opponent_u32"));
+  const auto visible = series<std::uint8_t>(sight.at("visible_u8"));
+  const auto estimate = series<float>(sight.at("estimate_f32"));
+  ASSERT_EQ(opponent.size(), std::size_t(n));
+  ASSERT_EQ(estimate.size(), std::size_t(3 * n));
+  int hidden = 0, seen = 0;
+  for (int k = 0; k < n; ++k) {
+    const game::AgentFrame& f = trace.at(k, 0);
+    EXPECT_EQ(opponent[std::size_t(k)], 1u);
+    EXPECT_EQ(visible[std::size_t(k)], f.sees ? 1 : 0);
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(estimate[std::size_t(3 * k + a)], float(f.estimate[a]));
+    // In sight the estimate is the evader as it is; hidden it is not.
+    EXPECT_EQ(f.estimate == trace.at(k, 1).state.position, f.sees || k == 0) << "frame " << k;
+    (f.sees ? seen : hidden) += 1;
+  }
+  EXPECT_GT(hidden, 0);
+  EXPECT_GT(seen, 0);
+}
+
 TEST(ViewReplay, PairsCarryTheApolloniusSphereAndTheConeOfEq5) {
   const Episode e = chase();
   const nlohmann::json j = replay_json(ReplayScene(*e.arena), *e.sim, e.trace, {});
