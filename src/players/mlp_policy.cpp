@@ -64,11 +64,12 @@ std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const s
   m->role = role_name == "pursuer" ? Role::kPursuer : Role::kEvader;
   if (m->role != role) r.fail("role", fmt::format("saved for the {}, asked to play the {}", to_string(m->role), to_string(role)));
   const double inputs = r.number(r.at(doc, "inputs", "inputs"), "inputs");
-  if (inputs < kObservationBase || inputs > kObservationBase + 2 * 16 * 4 ||
-      std::fmod(inputs - kObservationBase, 8.0) != 0.0) {
-    r.fail("inputs", "expects 20 + 8 k entries, k in [0, 16]");
+  const double rest = std::fmod(inputs - kObservationBase, 8.0);
+  if (inputs < kObservationBase || inputs > kObservationBase + 2 * 16 * 4 + 2 || (rest != 0.0 && rest != 2.0)) {
+    r.fail("inputs", "expects 20 + 8 k entries, k in [0, 16], or 2 more with limited sight");
   }
   m->inputs = static_cast<int>(inputs);
+  m->sight = rest == 2.0;
   m->action_bound = r.number(r.at(doc, "action_bound", "action_bound"), "action_bound");
   if (!(m->action_bound > 0.0 && m->action_bound <= 3.2)) r.fail("action_bound", "expects a bound in (0, pi] rad");
   m->mean = r.vector(r.at(doc, "input_mean", "input_mean"), "input_mean", m->inputs);
@@ -112,6 +113,10 @@ MlpPolicy::MlpPolicy(std::shared_ptr<const MlpModel> model) : model_(std::move(m
 Steering MlpPolicy::act(const AgentView& view) {
   const MlpModel& m = *model_;
   observation_base(view, obs_.data());  // the neighbour slots stay empty (masks 0): the view has no others
+  if (m.sight) {  // the two sight entries close the inputs, as they follow the neighbour slots in the batch's layout
+    obs_[std::size_t(m.inputs - 2)] = view.other_visible ? 1.0f : 0.0f;
+    obs_[std::size_t(m.inputs - 1)] = float(view.other_age);
+  }
   for (int k = 0; k < m.inputs; ++k) a_[k] = (double(obs_[std::size_t(k)]) - m.mean[k]) * m.inv_std[k];
   Eigen::Index n = m.inputs;
   for (std::size_t l = 0; l < m.weights.size(); ++l) {

@@ -3,7 +3,8 @@
 // front's observation vector (game/observation_vector.hpp), evaluated here with Eigen and no torch, so that it
 // plays wherever a policy plays. The file (docs/python.md, "Policy files"), JSON:
 //   {"format": "peg3d-mlp", "version": 1, "role": "pursuer" | "evader",
-//    "inputs": 20 + 8 k (k neighbours, seen empty on the C++ side), "action_bound": rad,
+//    "inputs": 20 + 8 k (k neighbours, seen empty on the C++ side), plus 2 for a network trained with limited
+//              sight (the sight entries of env/batch.hpp's layout: in sight now, the sighting's age), "action_bound": rad,
 //    "input_mean": [inputs], "input_std": [inputs] (> 0),
 //    "layers": [{"weights": [[in] x out], "bias": [out]}, ...]}
 // act(): x = (obs - mean) / std; tanh after every layer but the last; the action is action_bound * tanh(out),
@@ -28,6 +29,7 @@ inline constexpr int kMlpVersion = 1;
 struct MlpModel {
   Role role = Role::kPursuer;
   int inputs = 0;
+  bool sight = false;  ///< its last two inputs are the sight entries (in sight now, the sighting's age)
   double action_bound = 0.0;  ///< rad, > 0
   Eigen::VectorXd mean, inv_std;
   std::vector<Eigen::MatrixXd> weights;  ///< out x in

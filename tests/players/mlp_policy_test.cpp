@@ -65,6 +65,28 @@ TEST(MlpPolicy, HiddenLayersTakeTanhAndInputsAreNormalized) {
   EXPECT_EQ(u.d_theta, 0.5 * std::tanh(-std::tanh(zero)));
 }
 
+TEST(MlpPolicy, ANetworkTrainedWithSightReadsTheSightEntriesLast) {
+  // 20 + 2 inputs: d_alpha = bound tanh(in sight now), d_theta = bound tanh(0.1 x the sighting's age).
+  nlohmann::json doc = steer_at_target(0.0);
+  doc["inputs"] = 22;
+  doc["input_mean"] = std::vector<double>(22, 0.0);
+  doc["input_std"] = std::vector<double>(22, 1.0);
+  for (int j = 0; j < 2; ++j) {
+    doc["layers"][0]["weights"][std::size_t(j)].push_back(j == 0 ? 1.0 : 0.0);
+    doc["layers"][0]["weights"][std::size_t(j)].push_back(j == 1 ? 0.1 : 0.0);
+  }
+  MlpPolicy policy(load_mlp_policy(write(doc, "sight.json"), Role::kPursuer));
+  for (const bool visible : {true, false}) {
+    AgentView v;
+    v.other_visible = visible;
+    v.other_age = visible ? 0.0 : 3.5;
+    const Steering u = policy.act(v);
+    volatile double seen = visible ? 1.0 : 0.0, age = double(float(v.other_age));
+    EXPECT_EQ(u.d_alpha, 0.5 * std::tanh(seen));
+    EXPECT_EQ(u.d_theta, 0.5 * std::tanh(0.1 * age));
+  }
+}
+
 TEST(MlpPolicy, FilesThatDoNotFitNameTheField) {
   const auto refuses = [](nlohmann::json doc, Role role, const std::string& field) {
     const auto file = write(doc, "bad.json");
