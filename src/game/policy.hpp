@@ -19,6 +19,12 @@ class SightProbe {
   virtual ~SightProbe() = default;
   /// Whether the segment from a to b meets no terrain, obstacle or mover now (agents do not count).
   virtual bool clear(const Vec3& a, const Vec3& b) const = 0;
+  /// Whether the agent's own map (AgentConfig::map) has seen the cell holding p, free or occupied; false
+  /// without a map.
+  virtual bool mapped(const Vec3& p) const {
+    (void)p;
+    return false;
+  }
 };
 
 /// Everything an agent may use to decide, at one instant.

@@ -26,7 +26,11 @@ sense::WorldAtInstant world_now(const Sim& sim, const SimState& st) {
 
 class WorldProbe final : public SightProbe {
  public:
-  WorldProbe(const Sim& sim, const SimState& st) : sim_(&sim), st_(&st) {}
+  WorldProbe(const Sim& sim, const SimState& st, int agent) : sim_(&sim), st_(&st), agent_(agent) {}
+  bool mapped(const Vec3& p) const override {
+    const sense::ScanMap* map = st_->map(agent_);
+    return map != nullptr && !std::isnan(map->log_odds(map->key_of(p)));
+  }
   bool clear(const Vec3& a, const Vec3& b) const override {
     const Vec3 d = b - a;
     const double length = d.norm();
@@ -38,6 +42,7 @@ class WorldProbe final : public SightProbe {
   }
   const Sim* sim_;
   const SimState* st_;
+  int agent_;
 };
 
 }  // namespace
@@ -50,9 +55,12 @@ void prepare_sight(const Sim& sim, SimState& st) {
     return;
   }
   const int n = st.agent_count();
-  if (!s.probe) s.probe = std::make_unique<WorldProbe>(sim, st);
-  auto& probe = static_cast<WorldProbe&>(*s.probe);
-  probe.sim_ = &sim, probe.st_ = &st;  // the Sim this reset plays, and the state where it lives now
+  if (s.probes.size() < std::size_t(n)) s.probes.resize(std::size_t(n));  // never shrunk, like the scans' maps
+  for (int i = 0; i < n; ++i) {
+    if (!s.probes[std::size_t(i)]) s.probes[std::size_t(i)] = std::make_unique<WorldProbe>(sim, st, i);
+    auto& probe = static_cast<WorldProbe&>(*s.probes[std::size_t(i)]);
+    probe.sim_ = &sim, probe.st_ = &st;  // the Sim this reset plays, and the state where it lives now
+  }
   s.memory.resize(std::size_t(n * n));
   s.visible.assign(std::size_t(n * n), 0);
   for (int i = 0; i < n; ++i) {

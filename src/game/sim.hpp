@@ -206,7 +206,7 @@ class SimState {
     };
     std::vector<Sighting> memory;        ///< agent i's latest sighting of agent j (its own or a teammate's)
     std::vector<std::uint8_t> visible;   ///< 1: i sees j now (itself, or a teammate it shares with)
-    std::unique_ptr<SightProbe> probe;   ///< the views' probe of the world now (game/sight.hpp)
+    std::vector<std::unique_ptr<SightProbe>> probes;  ///< agent i's probe of the world now (game/sight.hpp)
   } sight;
   /// Whether agent i's sight is limited (its opponent inputs come from sight.memory).
   bool sight_limited(int i) const { return !sight.memory.empty() && agents[std::size_t(i)].config->sight.enabled; }

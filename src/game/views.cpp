@@ -50,7 +50,7 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.other = st.known_state(i, a.opponent);
   v.other_visible = st.sees(i, a.opponent);
   v.other_age = st.sighting_age(i, a.opponent);
-  v.probe = st.sight_limited(i) && a.config->observation.obstacles == ObstacleSource::kWorld ? st.sight.probe.get() : nullptr;
+  v.probe = st.sight_limited(i) && a.config->observation.obstacles == ObstacleSource::kWorld ? st.sight.probes[std::size_t(i)].get() : nullptr;
   v.self_speed = a.config->speed;
   v.other_speed = o.config->speed;
   v.dt = sim.config().dt;

@@ -28,10 +28,14 @@ void SearchPursuer::choose(const AgentView& view) {
   for (int round = 0; round < 2; ++round) {
     int best = -1;
     double best_cost = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < points_.size(); ++k) {
-      if (visited_[k] >= lost_at_) continue;
-      const double cost = (points_[k] - p).norm() + (points_[k] - search_from_).norm();
-      if (cost < best_cost) best_cost = cost, best = int(k);
+    // The unknown space first: points its own map has not seen (none without a map), then any not visited.
+    for (int pass = 0; pass < 2 && best < 0; ++pass) {
+      for (std::size_t k = 0; k < points_.size(); ++k) {
+        if (visited_[k] >= lost_at_) continue;
+        if (pass == 0 && (view.probe == nullptr || view.probe->mapped(points_[k]))) continue;
+        const double cost = (points_[k] - p).norm() + (points_[k] - search_from_).norm();
+        if (cost < best_cost) best_cost = cost, best = int(k);
+      }
     }
     if (best >= 0) {
       target_ = best;

@@ -12,7 +12,8 @@ namespace peg3d::game {
 /// Chases the evader while it sees it (pure pursuit); once it has lost it, flies to where its estimate puts it (the
 /// last sighting, or dead reckoning from it) and, arrived there within kArrive, searches: it visits the points of
 /// a lattice over the arena about kLattice apart, each time the one not visited since the evader was lost that is
-/// nearest in the sum of its distances from the pursuer and from the point where the search began. A point counts
+/// nearest in the sum of its distances from the pursuer and from the point where the search began; with its own
+/// map (AgentConfig::map), the points the map has not seen come first (the unknown space). A point counts
 /// as visited when the pursuer passes within kVisit of it. When every point has been visited, the round starts
 /// again. It heads straight for its goal (the obstacle guard keeps it off the solids).
 /// Stuck (no kProgress nearer to its goal in kStuck, and the straight way there not passable: one of five

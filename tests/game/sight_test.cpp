@@ -185,3 +185,31 @@ TEST(GameSight, OnAnOpenArenaSightOnPlaysExactlyAsFullInformation) {
 
 }  // namespace
 }  // namespace peg3d::game
+
+namespace peg3d::game {
+namespace {
+
+TEST(GameSight, TheProbeKnowsWhatTheAgentsOwnMapHasSeen) {
+  GameConfig c = straight(true);
+  c.pursuer.lidar.azimuth_rays = 16;
+  c.pursuer.lidar.range = 6.0;
+  c.pursuer.map.enabled = true;
+  const Sim sim(pillar_room(), c);
+  SimState st(sim);
+  reset(sim, st, testing::scenario("s", {4, 15, 5}, {20, 15, 5}), 1);
+  const SightProbe* pursuer = observe(st, 0).probe;
+  const SightProbe* evader = observe(st, 1).probe;
+  ASSERT_NE(pursuer, nullptr);
+  ASSERT_NE(evader, nullptr);
+  EXPECT_TRUE(pursuer->mapped({4, 15, 5}));     // its own cell, which every ray crosses
+  // 3 m out along its first ray left of the heading (16 rays over 360 degrees: at 11.25 degrees)
+  EXPECT_TRUE(pursuer->mapped(Vec3(4, 15, 5) + 3.0 * Vec3(std::cos(kPi / 16), std::sin(kPi / 16), 0)));
+  EXPECT_FALSE(pursuer->mapped({4, 15, 9}));    // above the level scan
+  EXPECT_FALSE(pursuer->mapped({25, 15, 5}));   // beyond its range
+  EXPECT_FALSE(evader->mapped({20, 15, 5}));    // no map
+  EXPECT_TRUE(pursuer->clear({4, 15, 5}, {4, 25, 5}));
+  EXPECT_FALSE(pursuer->clear({4, 15, 5}, {20, 15, 5}));  // through the pillar
+}
+
+}  // namespace
+}  // namespace peg3d::game

@@ -86,6 +86,42 @@ TEST(GameSearchPolicies, OutOfSightTheSearcherGoesToTheEstimateThenVisitsEveryLa
   }
 }
 
+TEST(GameSearchPolicies, WithAMapTheSearcherVisitsTheUnknownSpaceFirst) {
+  // Its map has seen the arena's west (x < 15); the evader was last seen in the west, at (5, 5, 3). Without
+  // the map the search begins among the points beside the last sighting, and 25 s on it is still in the west; with
+  // it, it heads for the unknown east at once.
+  struct WestKnown final : SightProbe {
+    bool clear(const Vec3&, const Vec3&) const override { return true; }
+    bool mapped(const Vec3& p) const override { return p.x() < 15.0; }
+  } west;
+  struct NoMap final : SightProbe {
+    bool clear(const Vec3&, const Vec3&) const override { return true; }
+  } none;
+  for (const SightProbe* probe : {static_cast<const SightProbe*>(&none), static_cast<const SightProbe*>(&west)}) {
+    AgentView v;
+    v.arena = {{0, 0, 0}, {35, 35, 20}};
+    v.self = {{4, 4, 3}, {0.3, 1.2}};
+    v.other = {{5, 5, 3}, {}};
+    v.other_visible = false;
+    v.self_speed = 1.1, v.dt = 0.1;
+    v.probe = probe;
+    SearchPursuer s;
+    s.begin_episode(v, false);
+    for (int k = 0; k <= 250; ++k) {
+      v.time = k * v.dt;
+      v.other_age = v.time;
+      const Steering u = s.act(v);
+      v.self.heading = steer(v.self.heading, u, kPi);
+      v.self.position = v.arena.clamp(v.self.position + v.self_speed * v.dt * direction(v.self.heading));
+    }
+    if (probe == &west) {
+      EXPECT_GT(v.self.position.x(), 15.0) << "the unknown east first";
+    } else {
+      EXPECT_LT(v.self.position.x(), 15.0) << "beside the last sighting first";
+    }
+  }
+}
+
 // The hider or flee against a pursuer flying along y = 5 past the pillar room's pillar; the share of steps in which
 // the pursuer saw the evader.
 double seen_share(PolicyKind evader) {
