@@ -62,12 +62,7 @@ void scan(const Sim& sim, SimState& st, int i) {
   const std::span<Ray> ray_span = std::span<Ray>(s.rays).first(rays);
   const std::span<sense::RayHit> hits = std::span<sense::RayHit>(s.hits).first(rays);
   lidar.rays_at(a.kinematics.position, a.kinematics.heading, ray_span);
-  sense::WorldAtInstant w;
-  w.scene = sim.ray_scene();
-  w.movers = sim.movers();
-  w.time = st.time;
-  w.push = st.push.get();
-  w.map = &sim.arena().map();
+  sense::WorldAtInstant w = world_now(sim, st);
   if (lidar.config().sees_agents) {
     for (int j = 0; j < st.agent_count(); ++j) {
       const AgentState& b = st.agents[std::size_t(j)];

@@ -1,5 +1,6 @@
 #include "game/sight.hpp"
 
+#include <array>
 #include <cmath>
 
 #include "core/step_profile.hpp"
@@ -11,17 +12,6 @@ namespace {
 
 SimState::Sight::Sighting sighting_of(const AgentState& o, double time) {
   return {o.kinematics, o.config->speed * direction(o.kinematics.heading), time};
-}
-
-// The world at the state's time, as sight rays meet it.
-sense::WorldAtInstant world_now(const Sim& sim, const SimState& st) {
-  sense::WorldAtInstant w;
-  w.scene = sim.ray_scene();
-  w.movers = sim.movers();
-  w.time = st.time;
-  w.push = st.push.get();
-  w.map = &sim.arena().map();
-  return w;
 }
 
 class WorldProbe final : public SightProbe {
@@ -98,33 +88,29 @@ void look(const Sim& sim, SimState& st) {
       if (s.visible[k]) s.memory[k] = sighting_of(o, st.time);
     }
   }
-  // Pooling: for each role and opponent, the newest sighting among the sharers, then given to all of them (read
-  // before written, so the order of the agents does not matter).
-  for (int i = 0; i < n; ++i) {
-    const AgentState& a = st.agents[std::size_t(i)];
-    if (!a.config->sight.enabled || !a.config->sight.share) continue;
-    const int team_lo = a.role == Role::kPursuer ? 0 : st.pursuers, team_hi = a.role == Role::kPursuer ? st.pursuers : n;
-    bool first_sharer = true;
-    for (int m = team_lo; m < i; ++m) {
-      const AgentConfig& c = *st.agents[std::size_t(m)].config;
-      if (c.sight.enabled && c.sight.share) first_sharer = false;
-    }
-    if (!first_sharer) continue;  // the team's pool was made by its first sharer
-    const int lo = a.role == Role::kPursuer ? st.pursuers : 0, hi = a.role == Role::kPursuer ? n : st.pursuers;
+  // Pooling, per team: for each opponent, the newest sighting among the sharers (the lower index among equally
+  // new ones), then given to all of them: read before written, so the order of the agents does not matter.
+  const auto shares = [&](int m) {
+    const SightConfig& c = st.agents[std::size_t(m)].config->sight;
+    return c.enabled && c.share;
+  };
+  const int p = st.pursuers;
+  for (const auto& [team_lo, team_hi, lo, hi] : {std::array{0, p, p, n}, std::array{p, n, 0, p}}) {
+    int first = team_lo;
+    while (first < team_hi && !shares(first)) ++first;
+    if (first == team_hi) continue;
     for (int j = lo; j < hi; ++j) {
-      int best = i;
+      int best = first;
       bool seen = false;
-      for (int m = team_lo; m < team_hi; ++m) {
-        const AgentConfig& c = *st.agents[std::size_t(m)].config;
-        if (!c.sight.enabled || !c.sight.share) continue;
+      for (int m = first; m < team_hi; ++m) {
+        if (!shares(m)) continue;
         const auto k = std::size_t(m * n + j);
         seen = seen || s.visible[k] != 0;
         if (s.memory[k].time > s.memory[std::size_t(best * n + j)].time) best = m;
       }
       const SimState::Sight::Sighting newest = s.memory[std::size_t(best * n + j)];
-      for (int m = team_lo; m < team_hi; ++m) {
-        const AgentConfig& c = *st.agents[std::size_t(m)].config;
-        if (!c.sight.enabled || !c.sight.share) continue;
+      for (int m = first; m < team_hi; ++m) {
+        if (!shares(m)) continue;
         s.memory[std::size_t(m * n + j)] = newest;
         s.visible[std::size_t(m * n + j)] = seen;
       }

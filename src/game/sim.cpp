@@ -157,6 +157,16 @@ const sense::Lidar* Sim::lidar(Role role, int rank) const {
 
 SimState::SimState(const Sim& sim) : collider(sim.arena_ptr()) {}
 
+sense::WorldAtInstant world_now(const Sim& sim, const SimState& st) {
+  sense::WorldAtInstant w;
+  w.scene = sim.ray_scene();
+  w.movers = sim.movers();
+  w.time = st.time;
+  w.push = st.push.get();
+  w.map = &sim.arena().map();
+  return w;
+}
+
 KinematicState SimState::known_state(int i, int j) const {
   const AgentState& o = agents[std::size_t(j)];
   if (!sight_limited(i)) return o.kinematics;

@@ -344,6 +344,10 @@ inline void check_commands(const SimState& state, std::span<const Steering> comm
 /// was, when the commands cannot be stepped. The state must not be done. Allocates nothing.
 const StepEvents& step(const Sim& sim, SimState& state, std::span<const Steering> commands);
 
+/// What rays meet in `state`'s world now (sense/world_rays.hpp): the Sim's static solids (it must have a ray scene),
+/// the timeline's movers and push mode's bodies at the state's time; no balls (the caller adds the agents).
+sense::WorldAtInstant world_now(const Sim& sim, const SimState& state);
+
 /// What agent i may use to decide now: its view as the last reset() or step() left it.
 inline const AgentView& observe(const SimState& state, int i) { return state.agents[std::size_t(i)].view; }
 

@@ -29,4 +29,17 @@ struct Box {
   }
 };
 
+/// Two unit vectors that complete the unit `axis` to a right-handed orthonormal frame: `up`, the part of world
+/// +z perpendicular to the axis (of +x when the axis is vertical), and `side` = axis x up. The frame a sight ray's
+/// rim points and a straight way's clearance segments are laid out in.
+struct PerpendicularFrame {
+  Vec3 up, side;
+};
+inline PerpendicularFrame perpendicular_frame(const Vec3& axis) {
+  Vec3 up = Vec3::UnitZ() - axis.z() * axis;
+  if (up.norm() < 1e-9) up = Vec3::UnitX() - axis.x() * axis;
+  up.normalize();
+  return {up, axis.cross(up)};
+}
+
 }  // namespace peg3d

@@ -1,5 +1,6 @@
 #include "players/search_policies.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -50,11 +51,7 @@ void SearchPursuer::choose(const AgentView& view) {
 bool SearchPursuer::passable(const AgentView& view, const Vec3& a, const Vec3& b) {
   const Vec3 line = b - a;
   if (!(line.norm() > 0.0)) return true;
-  const Vec3 axis = line.normalized();
-  Vec3 up = Vec3::UnitZ() - axis.z() * axis;
-  if (up.norm() < 1e-9) up = Vec3::UnitX() - axis.x() * axis;
-  up.normalize();
-  const Vec3 side = axis.cross(up);
+  const auto [up, side] = perpendicular_frame(line.normalized());
   for (const Vec3& off : {Vec3(Vec3::Zero()), Vec3(kPassage * up), Vec3(-kPassage * up), Vec3(kPassage * side),
                           Vec3(-kPassage * side)}) {
     if (!view.probe->clear(a + off, b + off)) return false;
@@ -152,11 +149,11 @@ bool HideEvader::find_cover(const AgentView& view) {
 Steering HideEvader::act(const AgentView& view) {
   const Vec3& e = view.self.position;
   const Vec3& p = view.other.position;
-  if (view.probe == nullptr) return steer_toward(view, (e - p).normalized() + repulsion(view));
+  if (view.probe == nullptr) return flee_.act(view);
   if (has_spot_ && view.probe->clear(p, spot_)) has_spot_ = false;  // the pursuer would see it there now
   if (!has_spot_ && (view.other_visible || view.other_age < kAlert)) has_spot_ = find_cover(view);
   if (has_spot_) return steer_toward(view, spot_ - e);
-  return steer_toward(view, (e - p).normalized() + repulsion(view));
+  return flee_.act(view);
 }
 
 }  // namespace peg3d::game

@@ -2,7 +2,6 @@
 // Classic players of the partial game (AgentConfig::sight, docs/sight.md): a pursuer that searches for an evader it
 // has lost, and an evader that hides. With full information they play as pure pursuit and flee do.
 
-#include <limits>
 #include <vector>
 
 #include "players/scripted_policies.hpp"
@@ -15,13 +14,12 @@ namespace peg3d::game {
 /// nearest in the sum of its distances from the pursuer and from the point where the search began; with its own
 /// map (AgentConfig::map), the points the map has not seen come first (the unknown space). A point counts
 /// as visited when the pursuer passes within kVisit of it. When every point has been visited, the round starts
-/// again. It heads straight for its goal (the obstacle guard keeps it off the solids).
-/// Stuck (no kProgress nearer to its goal in kStuck, and the straight way there not passable: one of five
-/// segments, along the line and kPassage off it on four sides, blocked as the view's SightProbe says), it takes a
-/// detour through the
-/// lattice point it can pass to straight that is nearest in the sum of the two legs, those whose second leg is not
-/// passable counting kBlockedLeg more; without a probe or a detour, it gives the goal up (a
-/// search point counts as visited; an estimate as arrived at). Allocates in begin_episode() only.
+/// again. It heads straight for its goal (the obstacle guard keeps it off the solids). Stuck (no kProgress nearer
+/// to its goal in kStuck, and the straight way there not passable: one of five segments, along the line and
+/// kPassage off it on four sides, blocked as the view's SightProbe says), it takes a detour through the lattice
+/// point it can pass to straight that is nearest in the sum of the two legs, those whose second leg is not
+/// passable counting kBlockedLeg more; without a probe or a detour, it gives the goal up (a search point counts as
+/// visited; an estimate as arrived at). Allocates in begin_episode() only.
 class SearchPursuer final : public Policy {
  public:
   static constexpr double kLattice = 5.0;     ///< m between the search points along each axis (at most)
@@ -75,6 +73,7 @@ class HideEvader final : public Policy {
   bool find_cover(const AgentView& view);
   bool has_spot_ = false;
   Vec3 spot_ = Vec3::Zero();
+  FleeLineOfSight flee_;  // what it does without cover
 };
 
 }  // namespace peg3d::game

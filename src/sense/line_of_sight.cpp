@@ -15,12 +15,8 @@ void sight_points(const Vec3& eye, const Vec3& c, double r, int n, std::span<Vec
   if (n == 1) return;
   const Vec3 line = c - eye;
   const double length = line.norm();
-  const Vec3 axis = length > 0.0 ? Vec3(line / length) : Vec3::UnitZ();
   // The first rim point towards world up (its part perpendicular to the line), +x for a vertical line.
-  Vec3 up = Vec3::UnitZ() - axis.z() * axis;
-  if (up.norm() < 1e-9) up = Vec3::UnitX() - axis.x() * axis;
-  up.normalize();
-  const Vec3 side = axis.cross(up);
+  const auto [up, side] = perpendicular_frame(length > 0.0 ? Vec3(line / length) : Vec3::UnitZ());
   const double rim = kRimFraction * r;
   for (int k = 1; k < n; ++k) {
     const double a = 2.0 * kPi * double(k - 1) / double(n - 1);
