@@ -14,17 +14,7 @@
 namespace peg3d::game {
 namespace {
 
-// A 30 x 30 x 10 m room with a full-height pillar of radius 3 at its centre.
-std::shared_ptr<const world::Arena> pillar_room(bool pillar = true) {
-  world::MapSpec m;
-  m.name = "pillar";
-  m.bounds = {Vec3::Zero(), Vec3(30, 30, 10)};
-  m.resolution = 0.25;
-  m.max_distance = 5.0;
-  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
-  if (pillar) m.cylinders.push_back({{15, 15, 0}, 3.0, 10.0});
-  return world::Arena::build(m);
-}
+using testing::pillar_room;
 
 // Agents that go where their command sends them: no motion space, no guard; headings along +x.
 GameConfig straight(bool sight) {

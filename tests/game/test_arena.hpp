@@ -7,6 +7,7 @@
 #include "game/episode.hpp"
 #include "players/lineup.hpp"
 #include "world/arena.hpp"
+#include "world/world_test_support.hpp"
 
 namespace peg3d::testing {
 
@@ -30,14 +31,19 @@ inline world::Scenario team(const char* name, const std::vector<Vec3>& pursuers,
 /// An arena of the given size with the given spheres; boundary faces are not in the distance field.
 inline std::shared_ptr<const world::Arena> make_arena(const Vec3& size, std::vector<world::SphereObstacle> spheres,
                                                       std::vector<world::Scenario> scenarios, double resolution = 0.25) {
-  world::MapSpec m;
+  world::MapSpec m = world::testing::empty_spec(size, resolution, 5.0);
   m.name = "test";
-  m.bounds = {Vec3::Zero(), size};
-  m.resolution = resolution;
-  m.max_distance = 5.0;
-  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
   m.spheres = std::move(spheres);
   m.scenarios = std::move(scenarios);
+  return world::Arena::build(m);
+}
+
+/// A 30 x 30 x 10 m room with (or without) a full-height pillar of radius 3 m at its centre, for the partial game's
+/// tests: an agent at y = 15 on one side cannot see one on the other.
+inline std::shared_ptr<const world::Arena> pillar_room(bool pillar = true) {
+  world::MapSpec m = world::testing::empty_spec({30, 30, 10}, 0.25, 5.0);
+  m.name = "pillar";
+  if (pillar) m.cylinders.push_back({{15, 15, 0}, 3.0, 10.0});
   return world::Arena::build(m);
 }
 

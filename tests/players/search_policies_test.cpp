@@ -46,6 +46,16 @@ TEST(GameSearchPolicies, WithFullInformationTheyPlayAsPurePursuitAndFlee) {
   }
 }
 
+// Step k of the agent of `v` with no world around it and its opponent out of sight since the start: it turns as
+// `policy` asks (no bound) and flies at its speed, kept in the arena.
+void fly(AgentView& v, Policy& policy, int k) {
+  v.time = k * v.dt;
+  v.other_age = v.time;
+  const Steering u = policy.act(v);
+  v.self.heading = steer(v.self.heading, u, kPi);
+  v.self.position = v.arena.clamp(v.self.position + v.self_speed * v.dt * direction(v.self.heading));
+}
+
 TEST(GameSearchPolicies, OutOfSightTheSearcherGoesToTheEstimateThenVisitsEveryLatticePoint) {
   // No world: the agent turns as it is told and flies 1.1 m/s; the evader, never seen again, was last at `last`.
   for (const Vec3& last : {Vec3(30, 5, 3), Vec3(12, 28, 15)}) {
@@ -62,11 +72,7 @@ TEST(GameSearchPolicies, OutOfSightTheSearcherGoesToTheEstimateThenVisitsEveryLa
     double arrived = -1.0, first_point = -1.0;
     Vec3 first_at = Vec3::Zero();
     for (int k = 0; k < 40000 && visited.size() < 196; ++k) {
-      v.time = k * v.dt;
-      v.other_age = v.time;
-      const Steering u = s.act(v);
-      v.self.heading = steer(v.self.heading, u, kPi);
-      v.self.position = v.arena.clamp(v.self.position + v.self_speed * v.dt * direction(v.self.heading));
+      fly(v, s, k);
       if (arrived < 0 && (v.self.position - last).norm() <= SearchPursuer::kArrive) arrived = v.time;
       for (int i = 0; i < 7; ++i)
         for (int j = 0; j < 7; ++j)
@@ -107,13 +113,7 @@ TEST(GameSearchPolicies, WithAMapTheSearcherVisitsTheUnknownSpaceFirst) {
     v.probe = probe;
     SearchPursuer s;
     s.begin_episode(v, false);
-    for (int k = 0; k <= 250; ++k) {
-      v.time = k * v.dt;
-      v.other_age = v.time;
-      const Steering u = s.act(v);
-      v.self.heading = steer(v.self.heading, u, kPi);
-      v.self.position = v.arena.clamp(v.self.position + v.self_speed * v.dt * direction(v.self.heading));
-    }
+    for (int k = 0; k <= 250; ++k) fly(v, s, k);
     if (probe == &west) {
       EXPECT_GT(v.self.position.x(), 15.0) << "the unknown east first";
     } else {
@@ -125,20 +125,13 @@ TEST(GameSearchPolicies, WithAMapTheSearcherVisitsTheUnknownSpaceFirst) {
 // The hider or flee against a pursuer flying along y = 5 past the pillar room's pillar; the share of steps in which
 // the pursuer saw the evader.
 double seen_share(PolicyKind evader) {
-  world::MapSpec m;
-  m.name = "pillar";
-  m.bounds = {Vec3::Zero(), Vec3(30, 30, 10)};
-  m.resolution = 0.25;
-  m.max_distance = 5.0;
-  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
-  m.cylinders.push_back({{15, 15, 0}, 3.0, 10.0});
   GameConfig c = preset("peg3d");
   c.initial_heading = InitialHeading::kPlusX;
   c.pursuer.motion_space = false;
   c.pursuer.speed = 0.5;
   for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true;
   c.evader = scripted_agent(c.evader, evader);
-  const Sim sim(world::Arena::build(m), c);
+  const Sim sim(testing::pillar_room(), c);
   SimState st(sim);
   reset(sim, st, testing::scenario("s", {3, 5, 5}, {15, 10, 5}), 1);
   auto e = make_policy(c.evader, Role::kEvader, 1);

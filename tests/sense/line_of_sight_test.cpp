@@ -11,6 +11,7 @@
 
 #include "core/random.hpp"
 #include "world/arena.hpp"
+#include "world/world_test_support.hpp"
 
 namespace peg3d::sense {
 namespace {
@@ -58,12 +59,7 @@ TEST(SenseLineOfSight, InSightExactlyWhenASegmentToAPointClearsEverySolid) {
   // farther than its radius.
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     Rng rng(seed);
-    world::MapSpec m;
-    m.name = "sight";
-    m.bounds = {Vec3::Zero(), Vec3(30, 30, 12)};
-    m.resolution = 0.5;
-    m.max_distance = 5.0;
-    m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+    world::MapSpec m = world::testing::empty_spec({30, 30, 12}, 0.5, 5.0);
     for (int k = 0; k < 25; ++k) {
       m.spheres.push_back({{uniform(rng, 4, 26), uniform(rng, 4, 26), uniform(rng, 2, 10)}, uniform(rng, 0.5, 3.0)});
       m.cylinders.push_back({{uniform(rng, 4, 26), uniform(rng, 4, 26), 0.0}, uniform(rng, 0.3, 1.5), uniform(rng, 2, 12)});
@@ -132,12 +128,7 @@ TEST(SenseLineOfSight, InSightExactlyWhenASegmentToAPointClearsEverySolid) {
 
 TEST(SenseLineOfSight, MorePointsSeeWhatTheCentreAloneMisses) {
   // A pole between the eye and a sphere, thinner than the sphere: the centre's ray is blocked, a rim point's is not.
-  world::MapSpec m;
-  m.name = "pole";
-  m.bounds = {Vec3::Zero(), Vec3(20, 20, 10)};
-  m.resolution = 0.5;
-  m.max_distance = 5.0;
-  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  world::MapSpec m = world::testing::empty_spec({20, 20, 10}, 0.5, 5.0);
   m.cylinders.push_back({{10, 10, 0}, 0.1, 10});
   m.cylinders.push_back({{14.47, 5, 0}, 0.01, 10});  // a wire 0.02 m in front of the second sphere
   const auto arena = world::Arena::build(m);

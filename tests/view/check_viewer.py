@@ -157,6 +157,14 @@ def changed_pixels(a, b):
     return d > 24
 
 
+def hidden_layer_pixels(page, layer, full):
+    """How many pixels of the screenshot `full` change when `layer` is hidden (it is shown again after)."""
+    page.js(f"pegView.setLayer('{layer}', false)")
+    without = page.screenshot()
+    page.js(f"pegView.setLayer('{layer}', true)")
+    return int(changed_pixels(full, without).sum())
+
+
 def centroid(mask):
     import numpy as np
     ys, xs = np.nonzero(mask)
@@ -208,10 +216,7 @@ def check_sensing(page, html, work):
     check(page.js("pegView.sensing").get("rays") == replay["agents"][0]["lidar"]["rays"], "the pursuer's rays are drawn mid-game")
     full = page.screenshot()
     full.save(os.path.join(work, "viewer_sensing.png"))
-    page.js("pegView.setLayer('sensing', false)")
-    without = page.screenshot()
-    page.js("pegView.setLayer('sensing', true)")
-    changed = int(changed_pixels(full, without).sum())
+    changed = hidden_layer_pixels(page, "sensing", full)
     check(changed > 100, f"the rays and the map are drawn ({changed} pixels change when they are hidden)")
     problems = console_problems(page, html)
     check(not problems, "no console error while driving the sensing layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
@@ -234,10 +239,7 @@ def check_sight(page, html, work):
         page.js(f"pegView.seek({float(times[f])!r})")
         full = page.screenshot()
         full.save(os.path.join(work, f"viewer_sight_{label}.png"))
-        page.js("pegView.setLayer('sight', false)")
-        without = page.screenshot()
-        page.js("pegView.setLayer('sight', true)")
-        n = int(changed_pixels(full, without).sum())
+        n = hidden_layer_pixels(page, "sight", full)
         check(n > 30, f"frame {f}: the sight layer is drawn while the opponent is {label} ({n} pixels)")
     problems = console_problems(page, html)
     check(not problems, "no console error while driving the sight layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
@@ -331,10 +333,7 @@ def main():
             agents_at[label] = changed_pixels(full, without)
         page.js(f"pegView.seek({0.8 * duration})")
         for layer in ("obstacles", "terrain", "trails", "movers"):
-            page.js(f"pegView.setLayer('{layer}', false)")
-            without = page.screenshot()
-            page.js(f"pegView.setLayer('{layer}', true)")
-            n = int(changed_pixels(shots["late"], without).sum())
+            n = hidden_layer_pixels(page, layer, shots["late"])
             check(n > 100, f"the {layer} are drawn ({n} pixels change when they are hidden)")
         a, b = centroid(agents_at["early"]), centroid(agents_at["late"])
         if check(a is not None and b is not None, "the agents are drawn at both instants"):

@@ -173,13 +173,9 @@ TEST(ViewReplay, HoldsEveryRecordedFrameOfEveryAgent) {
 
 TEST(ViewReplay, SightCarriesEachFramesOpponentVisibilityAndEstimate) {
   // A ball between a pursuer with a 120 degree field of view and an evader fleeing behind it.
-  world::MapSpec m;
-  m.name = "ball";
-  m.bounds = {Vec3::Zero(), Vec3(35, 35, 20)};
-  m.resolution = 0.5;
-  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  world::MapSpec m = world::testing::empty_spec({35, 35, 20}, 0.5, 5.0);
   m.spheres.push_back({Vec3(10, 5, 10), 2.0});
-  m.scenarios.push_back(peg3d::testing::scenario("S", {5, 5, 10}, {15, 5, 10}));
+  m.scenarios = {peg3d::testing::scenario("S", {5, 5, 10}, {15, 5, 10})};
   const auto arena = world::Arena::build(m);
   game::GameConfig c = game::preset("peg3d");
   c.pursuer.policy = game::PolicyKind::kSearch;
