@@ -109,11 +109,9 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     scenarios_.push_back(int(it - all.begin()));
   } else {
     for (std::size_t i = 0; i < all.size(); ++i) {
-      if (all[i].pursuers.size() != all[0].pursuers.size() || all[i].evaders.size() != all[0].evaders.size()) {
-        throw InvalidParameter("scenario", "(every scenario)",
-                               fmt::format("the map's scenarios {} and {} have different teams: choose one", all[0].name, all[i].name));
+      if (all[i].pursuers.size() == all[0].pursuers.size() && all[i].evaders.size() == all[0].evaders.size()) {
+        scenarios_.push_back(int(i));
       }
-      scenarios_.push_back(int(i));
     }
   }
   const world::Scenario& first = all[std::size_t(scenarios_.front())];
@@ -204,6 +202,12 @@ void Batch::build_policies(int g) {
       p = game::make_policy(a, role, derive_seed(settings_.seed, {std::uint64_t(g), kPolicyStream, std::uint64_t(i)}));
     }
   }
+}
+
+std::vector<std::string> Batch::scenario_names() const {
+  std::vector<std::string> names;
+  for (const int i : scenarios_) names.push_back(sim_->arena().map().scenarios[std::size_t(i)].name);
+  return names;
 }
 
 const world::Scenario& Batch::scenario_for(int g, long long episode) const {
@@ -412,6 +416,23 @@ int Batch::rays(int i) const {
 double Batch::action_bound(game::Role role) const {
   double bound = sim_->config().agent(role, 0).steering.step_bound(sim_->config().dt);
   return bound;
+}
+
+ObservationBounds Batch::state_bounds() const {
+  const Box& box = sim_->arena().bounds();
+  ObservationBounds b;
+  const auto add = [&](double lo, double hi) {
+    b.low.push_back(float(lo));
+    b.high.push_back(float(hi));
+  };
+  for (int i = 0; i < agents_; ++i) {
+    for (int k = 0; k < 3; ++k) add(box.lo[k], box.hi[k]);
+    add(-kPi, kPi);
+    add(0.0, kPi);
+    add(0.0, 1.0);
+  }
+  add(0.0, sim_->config().time_limit + sim_->config().dt);
+  return b;
 }
 
 std::vector<float> Batch::global_state(int game) const {

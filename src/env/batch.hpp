@@ -56,9 +56,10 @@ struct BatchSettings {
   int threads = 1;              ///< T, in [1, 256]; capped at games
   std::uint64_t seed = 0;       ///< root seed
   int neighbours = 2;           ///< ObservationLayout::neighbours
-  /// The map's scenario every episode starts from; empty: episode e of game g plays scenario (g + e) mod count,
-  /// so that the games of one batch spread over the starts from their first episode
-  /// (the map's scenarios must then all have the same numbers of pursuers and evaders).
+  /// The map's scenario every episode starts from. Empty: the map's scenarios with the first one's numbers of
+  /// pursuers and evaders (a batch's arrays have one shape; name a scenario for the others), and episode e of
+  /// game g plays the (g + e) mod count-th of them, so that the games spread over the starts from their first
+  /// episode.
   std::string scenario;
   /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> a policy name (flee, pure-pursuit, ...)
   /// or a saved policy file (FACL or MLP): those agents are played on the C++ side. The others take the caller's actions.
@@ -131,9 +132,14 @@ class Batch {
   /// The state vector of game g for centralised critics: per agent position (3), alpha, theta, active; then time.
   std::vector<float> global_state(int game) const;
   int global_state_size() const { return agents_ * 6 + 1; }
+  /// Lower and upper bounds of every global_state entry: positions within the arena's box, alpha in [-pi, pi],
+  /// theta in [0, pi], active in [0, 1], time in [0, time_limit + dt] (the last step may pass the limit).
+  ObservationBounds state_bounds() const;
   long long episode(int game) const { return games_[std::size_t(game)].episode; }
   /// Every instant of game 0's current episode so far when settings.record (null otherwise, and for other games).
   const game::Trace* trace(int game) const { return games_[std::size_t(game)].trace.get(); }
+  /// The names of the scenarios the episodes start from, in the order they take turns (BatchSettings::scenario).
+  std::vector<std::string> scenario_names() const;
 
  private:
   struct Game {

@@ -388,6 +388,28 @@ TEST(EnvBatch, EachEpisodeStartsFromTheScenarioOfItsGameAndNumber) {
   }
 }
 
+TEST(EnvBatch, WithNoScenarioNamedTheScenariosWithTheFirstOnesTeamsTakeTurns) {
+  // 2 v 2, 1 v 1, 2 v 2, 2 v 1: one batch's arrays have one shape, so the 2 v 2 starts play, in turn; the others
+  // play when named.
+  auto mixed = starts();
+  mixed.insert(mixed.begin() + 1, team("duel", {{5, 5, 5}}, {{30, 30, 15}}));
+  mixed.push_back(team("2v1", {{5, 5, 5}, {5, 30, 5}}, {{30, 30, 15}}));
+  const auto map = testing::make_arena(kSize, {kRock}, mixed, 0.5);
+  BatchSettings s = settings(4, 1);
+  Batch all(map, standing_evaders(), s);
+  EXPECT_EQ(all.scenario_names(), (std::vector<std::string>{"capture", "crash", "timeout"}));
+  EXPECT_EQ(all.agents(), 4);
+  for (int g = 0; g < 4; ++g) {
+    EXPECT_EQ(positions(all.state(g)), start_positions(mixed[g % 3 == 0 ? 0 : std::size_t(g % 3 + 1)])) << g;
+  }
+  for (const auto& [named, agents] : {std::pair{"duel", 2}, std::pair{"2v1", 3}}) {
+    s.scenario = named;
+    Batch one(map, standing_evaders(), s);
+    EXPECT_EQ(one.scenario_names(), std::vector<std::string>{named});
+    EXPECT_EQ(one.agents(), agents);
+  }
+}
+
 // The caller's actions for step k: different for every game, agent and step, within the steering bound.
 std::vector<double> varied_actions(int games, int agents, int k) {
   std::vector<double> a(std::size_t(games * agents * 2));
@@ -399,6 +421,38 @@ std::vector<double> varied_actions(int games, int agents, int k) {
     }
   }
   return a;
+}
+
+TEST(EnvBatch, EveryGlobalStateEntryLiesWithinItsBoundsThroughWholeEpisodes) {
+  // Every agent flying and steering hard off its chase heading, crashes, captures and time limits: two episodes
+  // of each game.
+  game::GameConfig everyone_flies = standing_evaders();
+  everyone_flies.evader = game::preset("peg3d").evader;
+  Batch batch(arena(), everyone_flies, settings(4, 1));
+  const auto [low, high] = batch.state_bounds();
+  ASSERT_EQ(int(low.size()), batch.global_state_size());
+  ASSERT_EQ(int(high.size()), batch.global_state_size());
+  EXPECT_FLOAT_EQ(high.back(), float(kLimitSteps * 0.1 + 0.1));
+  double latest = 0.0;
+  for (int k = 0; k < 2 * kLimitSteps + 2; ++k) {
+    // Hard turns at the steering bound, each agent always the same way.
+    const double bound = std::min(batch.action_bound(Role::kPursuer), batch.action_bound(Role::kEvader));
+    std::vector<double> a(std::size_t(4 * 4 * 2));
+    for (std::size_t j = 0; j < a.size(); j += 2) {
+      a[j] = (j / 2) % 2 == 0 ? bound : -bound;
+      a[j + 1] = ((j / 2) % 3 == 0 ? 0.2 : -0.2) * bound;
+    }
+    batch.step(a.data());
+    for (int g = 0; g < 4; ++g) {
+      const std::vector<float> st = batch.global_state(g);
+      for (std::size_t e = 0; e < st.size(); ++e) {
+        ASSERT_GE(st[e], low[e]) << "game " << g << ", step " << k << ", entry " << e;
+        ASSERT_LE(st[e], high[e]) << "game " << g << ", step " << k << ", entry " << e;
+      }
+      latest = std::max(latest, double(st.back()));
+    }
+  }
+  EXPECT_GE(latest, kLimitSteps * 0.1 - 1e-6);  // a game reached its time limit
 }
 
 TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
