@@ -2,7 +2,7 @@
 """Trains a pursuer with PPO on peg3d.vector_env against C++-side evaders, with numpy and PyTorch (CPU) only,
 and saves it as an MLP policy file the C++ side plays (game/mlp_policy.hpp, docs/python.md).
 
-    PYTHONPATH=build/python /usr/bin/python3 examples/ppo_pursuer.py --steps 2000000 --out ppo_pursuer.json \
+    .venv/bin/python examples/ppo_pursuer.py --steps 2000000 --out ppo_pursuer.json \
         --opponent flee --opponent flee-apollonius --opponent robust_0_evader.json
 
 With several --opponent, the games are split evenly among them (one vector env per evader, stepped in turn):

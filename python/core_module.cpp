@@ -55,6 +55,12 @@ py::array numpy_view(py::handle owner, T* data, std::vector<py::ssize_t> shape, 
   return a;
 }
 
+// (low, high) as two float32 arrays.
+py::tuple bounds_arrays(const env::ObservationBounds& o) {
+  return py::make_tuple(py::array_t<float>(py::ssize_t(o.low.size()), o.low.data()),
+                        py::array_t<float>(py::ssize_t(o.high.size()), o.high.data()));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -105,15 +111,13 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("dt", [](const env::Batch& b) { return b.sim().config().dt; })
       .def_property_readonly("max_steps", [](const env::Batch& b) { return b.sim().max_steps(); })
       .def_property_readonly("map_name", [](const env::Batch& b) { return b.sim().arena().map().name; })
+      .def_property_readonly("scenario_names", &env::Batch::scenario_names)
       .def("controlled", [](const env::Batch& b, int i) {
         if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
         return b.controlled(i);
       })
-      .def("observation_bounds", [](const env::Batch& b) {
-        const env::ObservationBounds o = b.observation_bounds();
-        return py::make_tuple(py::array_t<float>(py::ssize_t(o.low.size()), o.low.data()),
-                              py::array_t<float>(py::ssize_t(o.high.size()), o.high.data()));
-      })
+      .def("observation_bounds", [](const env::Batch& b) { return bounds_arrays(b.observation_bounds()); })
+      .def("state_bounds", [](const env::Batch& b) { return bounds_arrays(b.state_bounds()); })
       .def("action_bound", [](const env::Batch& b, bool pursuer) {
         return b.action_bound(pursuer ? game::Role::kPursuer : game::Role::kEvader);
       })

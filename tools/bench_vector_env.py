@@ -2,7 +2,7 @@
 """Env steps per second of peg3d.vector_env driven from Python with uniform random steering, the work of
 `peg-throughput --actions random` (docs/performance.md). Prints one JSON object.
 
-    PYTHONPATH=build/python /usr/bin/python3 tools/bench_vector_env.py [--map M] [--games N] [--threads T] [--steps S]
+    .venv/bin/python tools/bench_vector_env.py [--map M] [--games N] [--threads T] [--steps S]
 """
 
 import argparse

@@ -1,14 +1,16 @@
 """peg3d from Python (docs/python.md): the 3D pursuit-evasion game of the C++ library.
 
-    parallel_env(map=..., ...)              one game, PettingZoo's ParallelEnv API
+    parallel_env(map=..., ...)              one game, a PettingZoo ParallelEnv
+    env(map=..., ...)                       the same game, a PettingZoo AEC env
     vector_env(map=..., num_envs=N, ...)    N games stepped by one call on C++ threads (Gymnasium VectorEnv)
     InputError                              a bad map, configuration, policy or keyword (a ValueError)
     PRESETS                                 the configuration presets `config` may name
 """
 
 from ._core import OBSERVATION_ENTRIES, PRESETS, InputError
-from .parallel import ParallelEnv
-from .spaces import Box
+from gymnasium.spaces import Box
+
+from .parallel import ParallelEnv, aec_env
 from .vector import VectorEnv
 
 OBSERVATION = tuple(name for name, _unit, _meaning in OBSERVATION_ENTRIES)
@@ -22,8 +24,14 @@ def parallel_env(map="maps/paper.yaml", config="peg3d", scenario=None, set=None,
                        render_mode=render_mode, **kwargs)
 
 
+def env(map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None, render_mode=None, **kwargs):
+    return aec_env(map=map, config=config, scenario=scenario, set=set, opponents=opponents, render_mode=render_mode,
+                   **kwargs)
+
+
 def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
     return VectorEnv(map=map, num_envs=num_envs, threads=threads, **kwargs)
 
 
-__all__ = ["Box", "InputError", "OBSERVATION", "OBSERVATION_ENTRIES", "PRESETS", "ParallelEnv", "VectorEnv", "parallel_env", "vector_env"]
+__all__ = ["Box", "InputError", "OBSERVATION", "OBSERVATION_ENTRIES", "PRESETS", "ParallelEnv", "VectorEnv", "env",
+           "parallel_env", "vector_env"]

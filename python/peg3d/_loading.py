@@ -7,16 +7,20 @@ from pathlib import Path
 import numpy as np
 
 from . import _core
-from .spaces import Box
+from gymnasium.spaces import Box
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 
 
 def data_dir():
-    """The staged maps and assets (build/share/peg3d beside build/python), as the programs find them."""
+    """The maps and assets: $PEG3D_DATA_DIR, else those installed with the package (pip install, peg3d/data),
+    else those staged beside the build's module (build/share/peg3d beside build/python)."""
     env = os.environ.get("PEG3D_DATA_DIR")
     if env:
         return Path(env)
+    installed = PACKAGE_DIR / "data"
+    if installed.is_dir():
+        return installed
     return PACKAGE_DIR.parent.parent / "share" / "peg3d"
 
 
@@ -84,9 +88,9 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
 
 def role_spaces(batch, pursuer):
     low, high = batch.observation_bounds()
-    bound = batch.action_bound(pursuer)
+    bound = np.float32(batch.action_bound(pursuer))
     obs = Box(low, high, dtype=np.float32)
-    act = Box(np.full(2, -bound), np.full(2, bound), dtype=np.float32)
+    act = Box(np.full(2, -bound, dtype=np.float32), np.full(2, bound, dtype=np.float32), dtype=np.float32)
     return obs, act
 
 

@@ -1,45 +1,53 @@
-"""peg3d.parallel_env: one game with PettingZoo's ParallelEnv API."""
+"""peg3d.parallel_env: one game as a PettingZoo ParallelEnv; peg3d.env: the same game as an AEC env."""
 
 import os
 
 import numpy as np
+from gymnasium.spaces import Box
+from pettingzoo import ParallelEnv as _ParallelEnv
+from pettingzoo.utils.conversions import parallel_to_aec
 
 from . import _loading
 
 REWARD_TERMS = ("obstacle", "target", "success")
-
-try:  # pragma: no cover - used only when pettingzoo can be imported
-    from pettingzoo import ParallelEnv as _Base  # type: ignore
-except ImportError:
-    _Base = object
+RENDER_MODES = ("human", "html")
 
 
-class ParallelEnv(_Base):
+class ParallelEnv(_ParallelEnv):
     """One peg3d game. Agents are pursuer_0.., evader_0.. (those not left to `opponents`); each step() takes an
     action per agent still in the game and returns dicts keyed by the agents that acted."""
 
-    metadata = {"name": "peg3d_v0", "render_modes": ["html"], "is_parallelizable": True}
+    metadata = {"name": "peg3d_v0", "render_modes": list(RENDER_MODES), "is_parallelizable": True}
 
     def __init__(self, map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None,
-                 render_mode=None, neighbours=2, cache=True, render_path="peg3d_replay.html"):
-        if render_mode not in (None, "html"):
-            raise ValueError(f"render_mode: None or 'html', not {render_mode!r}")
+                 render_mode=None, neighbours=2, cache=True, render_path="peg3d_replay.html", max_cycles=None):
+        if render_mode is not None and render_mode not in RENDER_MODES:
+            raise ValueError(f"render_mode: None, 'human' or 'html', not {render_mode!r}")
         if not isinstance(render_path, (str, os.PathLike)):
             raise TypeError("render_path: a file name")
+        if max_cycles is not None and (isinstance(max_cycles, bool) or not isinstance(max_cycles, (int, np.integer))
+                                       or max_cycles < 1):
+            raise ValueError(f"max_cycles: None or a positive integer, not {max_cycles!r}")
         self.render_mode = render_mode
         self.render_path = str(render_path)
+        self.max_cycles = None if max_cycles is None else int(max_cycles)
         self._batch = _loading.make_batch(map, config, scenario, set, opponents, 1, 1, 0, neighbours, cache,
-                                          record=render_mode == "html")
+                                          record=render_mode is not None)
         self._seed = None
         b = self._batch
+        # The scenarios the episodes start from, in turn: the one named, or the map's scenarios with its first
+        # one's teams (name one of the others to play it).
+        self.scenarios = list(b.scenario_names)
         names = b.agent_names
         self._index = {n: i for i, n in enumerate(names) if not b.controlled(i)}
         self.possible_agents = list(self._index)
         if not self.possible_agents:
             raise ValueError("opponents: every agent is left to the C++ side; none is left to act")
         spaces = {True: _loading.role_spaces(b, True), False: _loading.role_spaces(b, False)}
-        self._observation_spaces = {n: spaces[i < b.pursuers][0] for n, i in self._index.items()}
-        self._action_spaces = {n: spaces[i < b.pursuers][1] for n, i in self._index.items()}
+        self.observation_spaces = {n: spaces[i < b.pursuers][0] for n, i in self._index.items()}
+        self.action_spaces = {n: spaces[i < b.pursuers][1] for n, i in self._index.items()}
+        low, high = b.state_bounds()
+        self.state_space = Box(low, high, dtype=np.float32)
         # Each agent's latest lidar readings (m) are the last `rays` entries of its observation, from
         # `ranges_offset` (zeros after an agent's own rays; no entries without a lidar).
         self.rays, self.ranges_offset = b.rays, b.ranges_offset
@@ -48,6 +56,7 @@ class ParallelEnv(_Base):
         # agent's sight is limited, no such entries.
         self.sight_offset = b.sight_offset
         self.agents = []
+        self._cycles = 0
         self._started = False
         self._closed = False
 
@@ -59,10 +68,10 @@ class ParallelEnv(_Base):
         self._batch.write_map(0, self._index[agent], os.fspath(path))
 
     def observation_space(self, agent):
-        return self._observation_spaces[agent]
+        return self.observation_spaces[agent]
 
     def action_space(self, agent):
-        return self._action_spaces[agent]
+        return self.action_spaces[agent]
 
     @property
     def num_agents(self):
@@ -82,6 +91,7 @@ class ParallelEnv(_Base):
         self._batch.reset(seed)
         if seed is not None:
             self._seed = seed
+        self._cycles = 0
         self._started = True
         active = self._batch.active[0]
         self.agents = [n for n in self.possible_agents if active[self._index[n]]]
@@ -125,6 +135,12 @@ class ParallelEnv(_Base):
                         "collided": bool(collided[i]), "captured": bool(captured[i])}
             if game["done"]:
                 infos[n]["outcome"] = game["outcome"]
+        self._cycles += 1
+        if self.max_cycles is not None and self._cycles >= self.max_cycles and not game["done"]:
+            # The episode ends here for Python; the C++ game is left as it is until reset().
+            for n in acted:
+                truncations[n] = not terminations[n]
+                infos[n]["outcome"] = "max_cycles"
         self.agents = [n for n in acted if not (terminations[n] or truncations[n])]
         return observations, rewards, terminations, truncations, infos
 
@@ -132,12 +148,11 @@ class ParallelEnv(_Base):
         self._check_open()
         return self._batch.global_state(0)
 
-    def state_space_size(self):
-        return self._batch.global_state_size
-
     def render(self):
-        """With render_mode="html": writes the browser replay (docs/viewer.md) of the episode so far (the whole
-        episode once it has ended, until the next reset) to render_path, and returns that path. None otherwise."""
+        """Writes the browser replay (docs/viewer.md) of the episode so far (the whole episode once it has ended,
+        until the next reset) to render_path. With render_mode="html" it returns that path; with "human" it
+        returns None: peg3d has no window, the replay is for a human to open in a browser. None without a
+        render_mode."""
         self._check_open()
         if self.render_mode is None:
             return None
@@ -149,8 +164,14 @@ class ParallelEnv(_Base):
         ending = game["outcome"] if game["done"] else "in progress"
         subtitle = f"peg3d.parallel_env, step {game['step']}, t = {game['time']:.1f} s; {ending}"
         b.write_replay(self.render_path, str(_loading.data_dir() / "assets" / "viewer"), title, subtitle)
-        return self.render_path
+        return self.render_path if self.render_mode == "html" else None
 
     def close(self):
         self._closed = True
         self.agents = []
+
+
+def aec_env(**kwargs):
+    """The game of parallel_env(**kwargs) as a PettingZoo AEC env (agents act in turn; the step is taken once
+    all have acted)."""
+    return parallel_to_aec(ParallelEnv(**kwargs))

@@ -4,14 +4,9 @@ import numpy as np
 
 from . import _loading
 from .parallel import REWARD_TERMS
-from .spaces import Box
+from gymnasium.spaces import Box
 
-try:  # pragma: no cover - used only when gymnasium can be imported
-    from gymnasium.vector import AutoresetMode  # type: ignore
-
-    _NEXT_STEP = AutoresetMode.NEXT_STEP
-except ImportError:
-    _NEXT_STEP = "NextStep"
+from gymnasium.vector import AutoresetMode
 
 ROLES = ("pursuer", "evader")
 
@@ -35,7 +30,7 @@ class VectorEnv:
     (num_envs, agents of the role, ...), read-only views of the C++ buffers that the next step overwrites
     (copy what you keep). Agents left to `opponents` are played on the C++ side: their actions are ignored."""
 
-    metadata = {"autoreset_mode": _NEXT_STEP}
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, map="maps/paper.yaml", num_envs=1, threads=1, config="peg3d", scenario=None, set=None,
                  opponents=None, seed=0, neighbours=2, cache=True):

@@ -1,5 +1,6 @@
-"""The peg3d package from build/python (tests/CMakeLists.txt sets PYTHONPATH; run by hand with
-PYTHONPATH=build/python /usr/bin/python3 -m pytest tests/python)."""
+"""The peg3d package from build/python (tests/CMakeLists.txt sets PYTHONPATH, and runs them in .venv, where
+gymnasium and pettingzoo are). By hand: PYTHONPATH=build/python .venv/bin/python -m pytest tests/python; without
+PYTHONPATH the package installed in .venv is tested."""
 
 import numpy as np
 import pytest

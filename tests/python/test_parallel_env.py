@@ -1,5 +1,5 @@
-"""peg3d.parallel_env against PettingZoo's ParallelEnv contract: the checks of pettingzoo.test.parallel_api_test
-and parallel_seed_test, written here since the package cannot be installed."""
+"""peg3d.parallel_env's own behaviour: its agents, spaces and infos, captures, seeds, state, team maps and
+max_cycles. PettingZoo's generic checks run in test_pettingzoo.py."""
 
 import numpy as np
 import pytest
@@ -79,7 +79,7 @@ def test_seeds_reproduce_episodes_exactly():
 def test_state_is_a_global_vector(env):
     env.reset(seed=0)
     s = env.state()
-    assert s.shape == (env.state_space_size(),) and s.dtype == np.float32
+    assert s.shape == env.state_space.shape and s.dtype == np.float32 and env.state_space.contains(s)
     assert s.shape == (2 * 6 + 1,)
 
 
@@ -99,3 +99,39 @@ def test_every_preset_the_package_names_builds_a_game():
         observations, _ = env.reset(seed=0)
         assert set(observations) == {"pursuer_0"}
         env.close()
+
+
+def test_a_team_map_plays_the_first_starts_teams_unless_a_scenario_is_named():
+    both = peg3d.parallel_env(map="maps/pack.yaml")
+    assert both.scenarios == ["3v2-corners", "3v2-cross"]
+    assert both.possible_agents == ["pursuer_0", "pursuer_1", "pursuer_2", "evader_0", "evader_1"]
+    duel = peg3d.parallel_env(map="maps/pack.yaml", scenario="2v2-middle")
+    assert duel.scenarios == ["2v2-middle"]
+    assert duel.possible_agents == ["pursuer_0", "pursuer_1", "evader_0", "evader_1"]
+
+
+def test_max_cycles_truncates_every_agent_at_that_step_and_each_episode_anew():
+    env = peg3d.parallel_env(opponents={"evader": "flee"}, max_cycles=3)
+    for seed in (1, 2):
+        env.reset(seed=seed)
+        for k in range(3):
+            assert env.agents == ["pursuer_0"]
+            _, _, term, trunc, info = env.step({"pursuer_0": np.zeros(2)})
+        assert trunc == {"pursuer_0": True} and term == {"pursuer_0": False}
+        assert info["pursuer_0"]["outcome"] == "max_cycles" and env.agents == []
+    for bad in (0, -1, 2.5, True):
+        with pytest.raises(ValueError, match="max_cycles"):
+            peg3d.parallel_env(max_cycles=bad)
+
+
+def test_the_aec_env_steps_the_game_once_every_agent_has_acted():
+    aec = peg3d.env(opponents={"evader": "flee"}, set=SHORT)
+    par = peg3d.parallel_env(opponents={"evader": "flee"}, set=SHORT)
+    aec.reset(seed=5)
+    obs, _ = par.reset(seed=5)
+    np.testing.assert_array_equal(aec.observe("pursuer_0"), obs["pursuer_0"])
+    action = np.array([0.05, -0.02], dtype=np.float32)
+    aec.step(action)
+    obs, rew, _, _, _ = par.step({"pursuer_0": action})
+    np.testing.assert_array_equal(aec.observe("pursuer_0"), obs["pursuer_0"])
+    assert aec.rewards["pursuer_0"] == rew["pursuer_0"]

@@ -57,4 +57,14 @@ def test_render_without_a_mode_returns_none_and_a_bad_mode_is_refused(env):
     env.reset(seed=0)
     assert env.render() is None
     with pytest.raises(ValueError, match="render_mode"):
-        peg3d.parallel_env(map="maps/paper.yaml", render_mode="human")
+        peg3d.parallel_env(map="maps/paper.yaml", render_mode="rgb")
+
+
+def test_human_mode_writes_the_replay_for_a_browser_and_returns_none(tmp_path):
+    out = tmp_path / "human.html"
+    env = peg3d.parallel_env(map="maps/paper.yaml", opponents={"evader": "flee"}, set=SHORT,
+                             render_mode="human", render_path=out)
+    play(env, seed=3, steps=4)
+    assert env.render() is None
+    assert replay_of(out)[0]["frames"] == 5
+    env.close()
