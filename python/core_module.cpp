@@ -125,6 +125,10 @@ PYBIND11_MODULE(_core, m) {
         py::gil_scoped_release unlocked;
         b.reset(seed);
       }, py::arg("seed") = py::none())
+      .def("reset_game", [](env::Batch& b, int g, std::optional<std::uint64_t> seed) {
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        b.reset_game(g, seed);
+      }, py::arg("game"), py::arg("seed") = py::none())
       .def("step", [](env::Batch& b, py::array_t<double, py::array::c_style | py::array::forcecast> a) {
         if (a.ndim() != 3 || a.shape(0) != b.games() || a.shape(1) != b.agents() || a.shape(2) != 2) {
           throw py::value_error("actions must have the shape (games, agents, 2)");

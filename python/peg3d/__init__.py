@@ -2,7 +2,9 @@
 
     parallel_env(map=..., ...)              one game, a PettingZoo ParallelEnv
     env(map=..., ...)                       the same game, a PettingZoo AEC env
-    vector_env(map=..., num_envs=N, ...)    N games stepped by one call on C++ threads (Gymnasium VectorEnv)
+    vector_env(map=..., num_envs=N, ...)    N games stepped by one call on C++ threads, per role
+    gymnasium.make("peg3d/Pursuer-v0")      one learner against C++ players (also Evader-v0), a gymnasium.Env;
+    gymnasium.make_vec("peg3d/Pursuer-v0", num_envs=N)   N of them as a gymnasium.vector.VectorEnv
     InputError                              a bad map, configuration, policy or keyword (a ValueError)
     PRESETS                                 the configuration presets `config` may name
 """
@@ -10,8 +12,11 @@
 from ._core import OBSERVATION_ENTRIES, PRESETS, InputError
 from gymnasium.spaces import Box
 
+from .learner import LearnerEnv, LearnerVectorEnv, register
 from .parallel import ParallelEnv, aec_env
 from .vector import VectorEnv
+
+register()
 
 OBSERVATION = tuple(name for name, _unit, _meaning in OBSERVATION_ENTRIES)
 """The names of an observation's first 20 entries, as the C++ library declares them (OBSERVATION_ENTRIES: name,
@@ -33,5 +38,5 @@ def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
     return VectorEnv(map=map, num_envs=num_envs, threads=threads, **kwargs)
 
 
-__all__ = ["Box", "InputError", "OBSERVATION", "OBSERVATION_ENTRIES", "PRESETS", "ParallelEnv", "VectorEnv", "env",
-           "parallel_env", "vector_env"]
+__all__ = ["Box", "InputError", "LearnerEnv", "LearnerVectorEnv", "OBSERVATION", "OBSERVATION_ENTRIES", "PRESETS",
+           "ParallelEnv", "VectorEnv", "env", "parallel_env", "vector_env"]

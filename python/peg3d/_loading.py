@@ -72,7 +72,10 @@ def controllers(opponents):
     return out
 
 
-def make_batch(map, config, scenario, settings, opponents, games, threads, seed, neighbours, cache=True, record=False):
+def make_batch(map, config, scenario, settings, opponents, games, threads, seed, neighbours, cache=True, record=False,
+               extra_controllers=()):
+    """The C++ batch. `extra_controllers`: (agent or role, policy) pairs after those of `opponents`, which they
+    override ("" gives an agent back to the caller)."""
     if not isinstance(map, (str, os.PathLike)):
         raise TypeError("map: a map file")
     if scenario is not None and not isinstance(scenario, str):
@@ -83,7 +86,8 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= int(seed) < 2**64:
         raise ValueError("seed: an integer in [0, 2^64)")
     return _core.Batch(resolve(map), config_source(config), overrides(settings), scenario or "", int(games),
-                       int(threads), int(seed), int(neighbours), controllers(opponents), cache, record)
+                       int(threads), int(seed), int(neighbours), controllers(opponents) + list(extra_controllers), cache,
+                       record)
 
 
 def role_spaces(batch, pursuer):

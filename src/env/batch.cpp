@@ -199,7 +199,7 @@ void Batch::build_policies(int g) {
       const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
       game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
       a.policy = c->kind;
-      p = game::make_policy(a, role, derive_seed(settings_.seed, {std::uint64_t(g), kPolicyStream, std::uint64_t(i)}));
+      p = game::make_policy(a, role, derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)}));
     }
   }
 }
@@ -212,13 +212,13 @@ std::vector<std::string> Batch::scenario_names() const {
 
 const world::Scenario& Batch::scenario_for(int g, long long episode) const {
   const auto& all = sim_->arena().map().scenarios;
-  return all[std::size_t(scenarios_[std::size_t((g + episode) % (long long)scenarios_.size())])];
+  const long long slot = (long long)games_[std::size_t(g)].slot;
+  return all[std::size_t(scenarios_[std::size_t((slot + episode) % (long long)scenarios_.size())])];
 }
 
 void Batch::start_episode(int g) {
   Game& game = games_[std::size_t(g)];
-  game::reset(*sim_, game.state, scenario_for(g, game.episode),
-              derive_seed(settings_.seed, {std::uint64_t(g), std::uint64_t(game.episode)}));
+  game::reset(*sim_, game.state, scenario_for(g, game.episode), derive_seed(game.seed, {game.slot, std::uint64_t(game.episode)}));
   for (int i = 0; i < agents_; ++i) {
     if (game.policies[std::size_t(i)]) game.policies[std::size_t(i)]->begin_episode(game::observe(game.state, i), false);
   }
@@ -238,14 +238,29 @@ void Batch::start_episode(int g) {
 }
 
 void Batch::reset(std::optional<std::uint64_t> seed) {
-  if (seed) {
-    settings_.seed = *seed;
-    for (int g = 0; g < settings_.games; ++g) build_policies(g);
-  }
+  if (seed) settings_.seed = *seed;
   for (int g = 0; g < settings_.games; ++g) {
-    games_[std::size_t(g)].episode = seed ? 0 : games_[std::size_t(g)].episode + 1;
+    Game& game = games_[std::size_t(g)];
+    if (seed) {
+      game.seed = *seed;
+      game.slot = std::uint64_t(g);
+      build_policies(g);
+    }
+    game.episode = seed ? 0 : game.episode + 1;
     start_episode(g);
   }
+}
+
+void Batch::reset_game(int g, std::optional<std::uint64_t> seed) {
+  require_in_range("game", g, 0, settings_.games - 1);
+  Game& game = games_[std::size_t(g)];
+  if (seed) {
+    game.seed = *seed;
+    game.slot = 0;
+    build_policies(g);
+  }
+  game.episode = seed ? 0 : game.episode + 1;
+  start_episode(g);
 }
 
 void Batch::step_game(int g, const double* actions) {

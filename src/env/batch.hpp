@@ -7,7 +7,8 @@
 //
 // Results depend on the root seed only, never on the thread count: game g's episode e starts from
 // derive_seed(seed, {g, e}), its C++ policies are seeded from derive_seed(seed, {g, kPolicyStream, agent}),
-// and the threads take fixed slices of the games.
+// and the threads take fixed slices of the games. A game re-seeded alone (reset_game) plays as game 0 of a
+// batch of that seed: derive_seed(its seed, {0, e}), and so does a one-game batch's game.
 //
 // Autoreset is next-step (Gymnasium's AutoresetMode.NEXT_STEP): the step after a game's episode ended resets
 // that game instead of stepping it; its actions are ignored, its rewards are 0 and its flags false.
@@ -106,6 +107,10 @@ class Batch {
 
   /// Starts a new episode in every game; with a seed, first re-seeds the batch (episodes count from 0 again).
   void reset(std::optional<std::uint64_t> seed = std::nullopt);
+  /// Starts a new episode in game g alone; with a seed, first re-seeds that game: it then plays exactly as
+  /// game 0 of a batch reset with that seed (its episodes count from 0, and take the scenarios in turn from
+  /// the first). The other games are left as they are.
+  void reset_game(int game, std::optional<std::uint64_t> seed = std::nullopt);
   /// Steps every game once. `actions` holds games x agents x 2 doubles (d_alpha, d_theta), rad; entries of
   /// C++-played agents and of agents out of the game are ignored. Games whose episode ended are reset instead
   /// (autoreset). Throws game::CommandError naming the game (CommandError::game) when a command cannot be
@@ -148,6 +153,9 @@ class Batch {
     std::vector<std::unique_ptr<game::Policy>> policies;  // null for the caller's agents
     std::vector<Steering> commands;
     long long episode = 0;
+    // The root seed of its episodes and policies, and the game number they are derived with: the batch's seed
+    // and the game's index, or, once re-seeded alone, its own seed and 0.
+    std::uint64_t seed = 0, slot = 0;
     std::unique_ptr<game::Trace> trace;  // settings.record, game 0 only
   };
   const world::Scenario& scenario_for(int game, long long episode) const;

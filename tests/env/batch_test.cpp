@@ -19,6 +19,7 @@
 
 #include "core/hash.hpp"
 #include "core/random.hpp"
+#include "core/validation.hpp"
 #include "game/episode.hpp"
 #include "game/observation_vector.hpp"
 #include "players/policy_factory.hpp"
@@ -593,6 +594,44 @@ TEST(EnvBatch, ResetWithASeedStartsOverAsANewBatchOfThatSeed) {
     for (int i = 0; i < 4; ++i) EXPECT_EQ(a.observation(g, i), b.observation(g, i)) << "game " << g << ", agent " << i;
     expect_fresh(used, a, g);
   }
+}
+
+TEST(EnvBatch, AGameReseededAlonePlaysAsGameZeroOfABatchOfThatSeedAndTheOthersGoOn) {
+  // Random headings and a random evader_1 on the C++ side: episodes and policies both draw from the seed.
+  game::GameConfig c = standing_evaders();
+  c.initial_heading = game::InitialHeading::kRandom;
+  c.evader.speed = 1.0;
+  BatchSettings s = settings(3, 1, 7);
+  s.controllers = {{"evader_1", "random"}};
+  Batch mixed(arena(), c, s), untouched(arena(), c, s);
+  s.games = 1;
+  s.seed = 99;
+  Batch alone(arena(), c, s);
+  for (int k = 1; k <= 20; ++k) {
+    mixed.step(varied_actions(3, 4, k).data());
+    untouched.step(varied_actions(3, 4, k).data());
+  }
+  mixed.reset_game(2, 99);
+  EXPECT_EQ(mixed.episode(2), 0);
+  EXPECT_EQ(mixed.reset_flags()[2], 1);
+  Buffers m{mixed}, a{alone};
+  // Past the 10 s time limit: the autoreset's second episode is game 0's second one too.
+  for (int k = 21; k <= 21 + kLimitSteps + 30; ++k) {
+    std::vector<double> actions = varied_actions(3, 4, k);
+    mixed.step(actions.data());
+    untouched.step(actions.data());
+    alone.step(actions.data() + 2 * 4 * 2);  // game 2's actions
+    ASSERT_EQ(positions(mixed.state(2)), positions(alone.state(0))) << "step " << k;
+    for (int i = 0; i < 4; ++i) ASSERT_EQ(m.observation(2, i), a.observation(0, i)) << "step " << k;
+    for (int g = 0; g < 2; ++g) ASSERT_EQ(positions(mixed.state(g)), positions(untouched.state(g))) << "game " << g;
+  }
+  EXPECT_EQ(mixed.episode(2), 1);
+  // Without a seed: game 1 alone starts its next episode, from the next scenario in its turn.
+  const long long before = mixed.episode(1);
+  mixed.reset_game(1);
+  EXPECT_EQ(mixed.episode(1), before + 1);
+  EXPECT_EQ(mixed.episode(0), untouched.episode(0));
+  EXPECT_THROW(mixed.reset_game(3), InvalidParameter);
 }
 
 // Every buffer and every game's episode number, hashed after reset() and after each of `steps` steps of

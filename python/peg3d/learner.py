@@ -1,0 +1,155 @@
+"""Gymnasium environments with one learning agent, every other agent played on the C++ side: LearnerEnv, a
+gymnasium.Env, and LearnerVectorEnv, a gymnasium.vector.VectorEnv of N such games stepped by one call on C++
+threads. Registered as peg3d/Pursuer-v0 and peg3d/Evader-v0 (gymnasium.make, gymnasium.make_vec)."""
+
+import gymnasium
+import numpy as np
+from gymnasium.spaces import Box
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from . import _loading
+
+ROLES = ("pursuer", "evader")
+# What plays the other agents unless told: the learner's opponents and its teammates.
+DEFAULT_PLAYERS = {"pursuer": ("flee", "pure-pursuit"), "evader": ("pure-pursuit", "flee")}
+
+
+def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads, seed, neighbours, cache):
+    """The batch, with every agent but the learner (agent 0 of its role) left to the C++ side."""
+    if learner not in ROLES:
+        raise ValueError(f"learner: 'pursuer' or 'evader', not {learner!r}")
+    other = ROLES[1 - ROLES.index(learner)]
+    opponent = DEFAULT_PLAYERS[learner][0] if opponent is None else opponent
+    teammates = DEFAULT_PLAYERS[learner][1] if teammates is None else teammates
+    # Later keys win: the role's players, then the learner itself back to the caller ("").
+    players = {other: opponent, learner: teammates}
+    batch = _loading.make_batch(map, config, scenario, set, players, num_envs, threads, seed, neighbours, cache,
+                                extra_controllers=[(f"{learner}_0", "")])
+    agent = 0 if learner == "pursuer" else batch.pursuers
+    return batch, agent
+
+
+def _spaces(batch, learner):
+    return _loading.role_spaces(batch, learner == "pursuer")
+
+
+class LearnerEnv(gymnasium.Env):
+    """One game in which the learner (pursuer_0 or evader_0) takes the actions and C++ plays everyone else.
+    Observations, actions and rewards are parallel_env's for that agent (docs/python.md). terminated: the
+    learner's game is over for it (capture, collision); truncated: the time limit."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None, config="peg3d",
+                 scenario=None, set=None, neighbours=2, cache=True, render_mode=None):
+        if render_mode is not None:
+            raise ValueError(f"render_mode: None, not {render_mode!r} (peg3d.parallel_env renders replays)")
+        self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, 1, 1, 0,
+                                         neighbours, cache)
+        self.learner = learner
+        self.observation_space, self.action_space = _spaces(self._batch, learner)
+        self._actions = np.zeros((1, self._batch.agents, 2))
+        self._done = True
+
+    def reset(self, *, seed=None, options=None):
+        super().reset(seed=seed)
+        self._batch.reset(_loading.check_seed(seed))
+        self._done = False
+        return self._batch.observations[0, self._agent].copy(), {}
+
+    def step(self, action):
+        if self._done:
+            raise RuntimeError("peg3d: step() before reset() or after the episode ended; call reset()")
+        self._actions[0, self._agent] = _loading.check_action(self.learner, action, (2,))
+        b = self._batch
+        b.step(self._actions)
+        i = self._agent
+        terminated, truncated = bool(b.terminated[0, i]), bool(b.truncated[0, i])
+        self._done = terminated or truncated
+        info = {"collided": bool(b.collided[0, i]), "captured": bool(b.captured[0, i])}
+        game = b.game_info(0)
+        if game["done"]:
+            info["outcome"] = game["outcome"]
+        return b.observations[0, i].copy(), float(b.rewards[0, i]), terminated, truncated, info
+
+    def state(self):
+        """The global state of parallel_env.state(): the truth for every agent, for centralised critics."""
+        return self._batch.global_state(0)
+
+
+class LearnerVectorEnv(VectorEnv):
+    """num_envs games of LearnerEnv, stepped by one call on `threads` C++ threads. Arrays of shape (num_envs, ...)
+    everywhere; autoreset is next-step (metadata["autoreset_mode"]): the step after a game ended resets it and
+    ignores its action. reset(seed=int) seeds the batch (game g's episodes from derive_seed(seed, {g, e}));
+    reset(seed=[s0, s1, ...]) seeds each game alone, so that game g plays as LearnerEnv reset with s_g; None in
+    the list, or a game left out by options["reset_mask"], is not re-seeded."""
+
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+
+    def __init__(self, num_envs=1, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None,
+                 config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True,
+                 render_mode=None):
+        if render_mode is not None:
+            raise ValueError(f"render_mode: None, not {render_mode!r} (peg3d.parallel_env renders replays)")
+        self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads,
+                                         seed, neighbours, cache)
+        b = self._batch
+        self.num_envs = b.games
+        self.learner = learner
+        self.single_observation_space, self.single_action_space = _spaces(b, learner)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self._actions = np.zeros((self.num_envs, b.agents, 2))
+        i = self._agent
+        # Views of the learner's column of the C++ buffers, made once; step() returns copies.
+        self._obs, self._rew = b.observations[:, i], b.rewards[:, i]
+        self._term, self._trunc = b.terminated[:, i], b.truncated[:, i]
+        self._captured, self._collided, self._reset = b.captured[:, i], b.collided[:, i], b.reset_flags
+        self._closed_env = False
+
+    def reset(self, *, seed=None, options=None):
+        per_game = isinstance(seed, (list, tuple, np.ndarray))
+        super().reset(seed=None if per_game else seed)
+        mask = None if options is None else options.get("reset_mask")
+        if mask is not None:
+            mask = np.asarray(mask)
+            if mask.shape != (self.num_envs,) or mask.dtype != np.bool_:
+                raise ValueError(f"options['reset_mask']: a bool array of shape ({self.num_envs},)")
+        if per_game:
+            if len(seed) != self.num_envs:
+                raise ValueError(f"seed: a list of {self.num_envs} seeds (or None), not {len(seed)}")
+            seeds = [None if s is None else _loading.check_seed(int(s)) for s in seed]
+        b = self._batch
+        if mask is None and not per_game:
+            b.reset(_loading.check_seed(seed))
+        else:
+            if seed is not None and not per_game:
+                raise ValueError("seed: with options['reset_mask'], None or a list of one seed (or None) per game")
+            for g in range(self.num_envs):
+                if mask is None or mask[g]:
+                    b.reset_game(g, seeds[g] if per_game else None)
+        return self._obs.copy(), {}
+
+    def step(self, actions):
+        self._actions[:, self._agent] = _loading.check_action(self.learner, actions, (self.num_envs, 2))
+        self._batch.step(self._actions)
+        info = {"captured": self._captured.astype(bool), "collided": self._collided.astype(bool),
+                "reset": self._reset.astype(bool)}
+        return (self._obs.copy(), self._rew.astype(np.float64), self._term.astype(bool), self._trunc.astype(bool),
+                info)
+
+    def state(self, env):
+        """The global state of game `env` (parallel_env.state())."""
+        return self._batch.global_state(env)
+
+
+def register():
+    """peg3d/Pursuer-v0 and peg3d/Evader-v0 for gymnasium.make and gymnasium.make_vec."""
+    for name, learner in (("Pursuer", "pursuer"), ("Evader", "evader")):
+        env_id = f"peg3d/{name}-v0"
+        if env_id in gymnasium.registry:
+            continue
+        gymnasium.register(id=env_id, entry_point="peg3d.learner:LearnerEnv",
+                           vector_entry_point="peg3d.learner:LearnerVectorEnv", kwargs={"learner": learner},
+                           disable_env_checker=False)
