@@ -13,7 +13,7 @@ PACKAGES=(
   python3-matplotlib python3-numpy pybind11-dev python3-dev python3-venv python3-pip
 )
 if [[ "${1:-}" == "--test" ]]; then
-  PACKAGES+=(chromium python3-websocket python3-pil python3-pytest python3-hypothesis python3-torch)
+  PACKAGES+=(chromium python3-websocket python3-pil python3-pytest python3-hypothesis python3-torch python3-pandas)
 fi
 
 missing=()

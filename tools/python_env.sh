@@ -13,6 +13,10 @@ want=$(sha256sum python/constraints.txt pyproject.toml | sha256sum | cut -c1-16)
 if [[ "$(cat .venv/.peg3d-constraints 2>/dev/null)" != "$want" ]]; then
   .venv/bin/python -m pip install --quiet --disable-pip-version-check -c python/constraints.txt \
       gymnasium pettingzoo scikit-build-core >&2
+  # Its own requirements would replace Debian's PyTorch (a pre-release, 1.13.0a0, which pip does not count as
+  # 1.13) with a CUDA build of several GB: the ones it needs are Debian's (tools/deps.sh).
+  .venv/bin/python -m pip install --quiet --disable-pip-version-check --no-deps -c python/constraints.txt \
+      stable-baselines3 >&2
   echo "$want" > .venv/.peg3d-constraints
 fi
 if [[ "${1:-}" == "--package" ]]; then

@@ -41,10 +41,9 @@ class LearnerEnv(gymnasium.Env):
 
     metadata = {"render_modes": []}
 
+    # No render_mode keyword yet: gymnasium.make and Stable-Baselines3's make_vec_env then build it without one.
     def __init__(self, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None, config="peg3d",
-                 scenario=None, set=None, neighbours=2, cache=True, render_mode=None):
-        if render_mode is not None:
-            raise ValueError(f"render_mode: None, not {render_mode!r} (peg3d.parallel_env renders replays)")
+                 scenario=None, set=None, neighbours=2, cache=True):
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, 1, 1, 0,
                                          neighbours, cache)
         self.learner = learner
@@ -88,10 +87,7 @@ class LearnerVectorEnv(VectorEnv):
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
 
     def __init__(self, num_envs=1, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None,
-                 config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True,
-                 render_mode=None):
-        if render_mode is not None:
-            raise ValueError(f"render_mode: None, not {render_mode!r} (peg3d.parallel_env renders replays)")
+                 config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True):
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads,
                                          seed, neighbours, cache)
         b = self._batch
