@@ -1,28 +1,14 @@
 """peg3d.vector_env: N games stepped by one call on T C++ threads, after Gymnasium's VectorEnv."""
 
 import numpy as np
+from gymnasium.spaces import Box, Dict
+from gymnasium.vector import AutoresetMode
+from gymnasium.vector.utils import batch_space
 
 from . import _loading
 from .parallel import REWARD_TERMS
-from gymnasium.spaces import Box
-
-from gymnasium.vector import AutoresetMode
 
 ROLES = ("pursuer", "evader")
-
-
-class RoleSpaces(dict):
-    """A space per role ("pursuer", "evader"), like gymnasium.spaces.Dict: sample() and contains()."""
-
-    def sample(self):
-        return {k: s.sample() for k, s in self.items()}
-
-    def contains(self, x):
-        return isinstance(x, dict) and x.keys() == self.keys() and all(self[k].contains(x[k]) for k in self)
-
-    def seed(self, seed=None):
-        for k, s in self.items():
-            s.seed(None if seed is None else seed + ROLES.index(k))
 
 
 class VectorEnv:
@@ -42,18 +28,16 @@ class VectorEnv:
         self.agent_counts = {"pursuer": p, "evader": b.agents - p}
         self.controlled = {r: np.array([b.controlled(i) for i in range(b.agents)][s], dtype=bool)
                            for r, s in self._slices.items()}
-        single_obs, single_act, batched_obs, batched_act = RoleSpaces(), RoleSpaces(), RoleSpaces(), RoleSpaces()
+        # A gymnasium Dict per role: each role's agents as the rows of its Box.
+        single_obs, single_act = {}, {}
         for r in ROLES:
             obs, act = _loading.role_spaces(b, r == "pursuer")
             n = self.agent_counts[r]
             single_obs[r] = Box(np.tile(obs.low, (n, 1)), np.tile(obs.high, (n, 1)), dtype=np.float32)
             single_act[r] = Box(np.tile(act.low, (n, 1)), np.tile(act.high, (n, 1)), dtype=np.float32)
-            batched_obs[r] = Box(np.tile(obs.low, (self.num_envs, n, 1)), np.tile(obs.high, (self.num_envs, n, 1)),
-                                 dtype=np.float32)
-            batched_act[r] = Box(np.tile(act.low, (self.num_envs, n, 1)), np.tile(act.high, (self.num_envs, n, 1)),
-                                 dtype=np.float32)
-        self.single_observation_space, self.single_action_space = single_obs, single_act
-        self.observation_space, self.action_space = batched_obs, batched_act
+        self.single_observation_space, self.single_action_space = Dict(single_obs), Dict(single_act)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._actions = np.zeros((self.num_envs, b.agents, 2))
         # The C++ buffers never move: their per-role views are made once and returned by every call.
         self._obs = self._split(b.observations)
