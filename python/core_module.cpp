@@ -21,6 +21,7 @@
 #include "game/config_file.hpp"
 #include "game/observation_vector.hpp"
 #include "sense/scan_map.hpp"
+#include "view/frame_renderer.hpp"
 #include "view/replay.hpp"
 #include "view/viewer_html.hpp"
 #include "world/arena.hpp"
@@ -230,4 +231,24 @@ PYBIND11_MODULE(_core, m) {
       return numpy_view(self, (b.*flags)(), {b.games(), b.agents()}, "bool");
     });
   }
+
+  // Images of a batch's games (render_mode "rgb_array"): the camera and the map's fixed solids are drawn once.
+  py::class_<view::FrameRenderer>(m, "FrameRenderer")
+      .def(py::init([](const env::Batch& b, int width, int height) {
+             view::FrameSettings s;
+             s.width = width;
+             s.height = height;
+             return std::make_unique<view::FrameRenderer>(b.sim(), s);
+           }),
+           py::arg("batch"), py::arg("width") = 640, py::arg("height") = 480, py::keep_alive<1, 2>())
+      .def("render", [](view::FrameRenderer& f, const env::Batch& b, int g) {
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        py::array_t<std::uint8_t> image({f.height(), f.width(), 3});
+        std::span<std::uint8_t> out(image.mutable_data(), std::size_t(image.size()));
+        {
+          py::gil_scoped_release unlocked;
+          f.render(b.state(g), out);
+        }
+        return image;
+      });
 }

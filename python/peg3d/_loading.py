@@ -90,6 +90,11 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
                        record)
 
 
+def frame_renderer(batch):
+    """The images of render_mode "rgb_array": 640 x 480, from a fixed camera (src/view/frame_renderer.hpp)."""
+    return _core.FrameRenderer(batch, 640, 480)
+
+
 def role_spaces(batch, pursuer):
     low, high = batch.observation_bounds()
     bound = np.float32(batch.action_bound(pursuer))

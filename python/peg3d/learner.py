@@ -30,6 +30,11 @@ def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, th
     return batch, agent
 
 
+def _check_render_mode(mode):
+    if mode not in (None, "rgb_array"):
+        raise ValueError(f"render_mode: None or 'rgb_array', not {mode!r} (parallel_env also writes replays)")
+
+
 def _spaces(batch, learner):
     return _loading.role_spaces(batch, learner == "pursuer")
 
@@ -39,17 +44,23 @@ class LearnerEnv(gymnasium.Env):
     Observations, actions and rewards are parallel_env's for that agent (docs/python.md). terminated: the
     learner's game is over for it (capture, collision); truncated: the time limit."""
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 10}
 
-    # No render_mode keyword yet: gymnasium.make and Stable-Baselines3's make_vec_env then build it without one.
     def __init__(self, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None, config="peg3d",
-                 scenario=None, set=None, neighbours=2, cache=True):
+                 scenario=None, set=None, neighbours=2, cache=True, render_mode=None):
+        _check_render_mode(render_mode)
+        self.render_mode = render_mode
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, 1, 1, 0,
                                          neighbours, cache)
         self.learner = learner
         self.observation_space, self.action_space = _spaces(self._batch, learner)
         self._actions = np.zeros((1, self._batch.agents, 2))
         self._done = True
+        self._frames = _loading.frame_renderer(self._batch) if render_mode else None
+
+    def render(self):
+        """With render_mode="rgb_array": the game as it stands from a fixed camera, (480, 640, 3) uint8."""
+        return None if self._frames is None else self._frames.render(self._batch, 0)
 
     def reset(self, *, seed=None, options=None):
         super().reset(seed=seed)
@@ -84,10 +95,13 @@ class LearnerVectorEnv(VectorEnv):
     reset(seed=[s0, s1, ...]) seeds each game alone, so that game g plays as LearnerEnv reset with s_g; None in
     the list, or a game left out by options["reset_mask"], is not re-seeded."""
 
-    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": []}
+    metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP, "render_modes": ["rgb_array"], "render_fps": 10}
 
     def __init__(self, num_envs=1, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None,
-                 config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True):
+                 config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True,
+                 render_mode=None):
+        _check_render_mode(render_mode)
+        self.render_mode = render_mode
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads,
                                          seed, neighbours, cache)
         b = self._batch
@@ -102,7 +116,13 @@ class LearnerVectorEnv(VectorEnv):
         self._obs, self._rew = b.observations[:, i], b.rewards[:, i]
         self._term, self._trunc = b.terminated[:, i], b.truncated[:, i]
         self._captured, self._collided, self._reset = b.captured[:, i], b.collided[:, i], b.reset_flags
-        self._closed_env = False
+        self._frames = _loading.frame_renderer(b) if render_mode else None
+
+    def render(self):
+        """With render_mode="rgb_array": every game's image as LearnerEnv.render() gives it, a tuple."""
+        if self._frames is None:
+            return None
+        return tuple(self._frames.render(self._batch, g) for g in range(self.num_envs))
 
     def reset(self, *, seed=None, options=None):
         per_game = isinstance(seed, (list, tuple, np.ndarray))

@@ -10,19 +10,19 @@ from pettingzoo.utils.conversions import parallel_to_aec
 from . import _loading
 
 REWARD_TERMS = ("obstacle", "target", "success")
-RENDER_MODES = ("human", "html")
+RENDER_MODES = ("human", "html", "rgb_array")
 
 
 class ParallelEnv(_ParallelEnv):
     """One peg3d game. Agents are pursuer_0.., evader_0.. (those not left to `opponents`); each step() takes an
     action per agent still in the game and returns dicts keyed by the agents that acted."""
 
-    metadata = {"name": "peg3d_v0", "render_modes": list(RENDER_MODES), "is_parallelizable": True}
+    metadata = {"name": "peg3d_v0", "render_modes": list(RENDER_MODES), "is_parallelizable": True, "render_fps": 10}
 
     def __init__(self, map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None,
                  render_mode=None, neighbours=2, cache=True, render_path="peg3d_replay.html", max_cycles=None):
         if render_mode is not None and render_mode not in RENDER_MODES:
-            raise ValueError(f"render_mode: None, 'human' or 'html', not {render_mode!r}")
+            raise ValueError(f"render_mode: None, 'human', 'html' or 'rgb_array', not {render_mode!r}")
         if not isinstance(render_path, (str, os.PathLike)):
             raise TypeError("render_path: a file name")
         if max_cycles is not None and (isinstance(max_cycles, bool) or not isinstance(max_cycles, (int, np.integer))
@@ -32,7 +32,8 @@ class ParallelEnv(_ParallelEnv):
         self.render_path = str(render_path)
         self.max_cycles = None if max_cycles is None else int(max_cycles)
         self._batch = _loading.make_batch(map, config, scenario, set, opponents, 1, 1, 0, neighbours, cache,
-                                          record=render_mode is not None)
+                                          record=render_mode in ("human", "html"))
+        self._frames = _loading.frame_renderer(self._batch) if render_mode == "rgb_array" else None
         self._seed = None
         b = self._batch
         # The scenarios the episodes start from, in turn: the one named, or the map's scenarios with its first
@@ -149,16 +150,19 @@ class ParallelEnv(_ParallelEnv):
         return self._batch.global_state(0)
 
     def render(self):
-        """Writes the browser replay (docs/viewer.md) of the episode so far (the whole episode once it has ended,
-        until the next reset) to render_path. With render_mode="html" it returns that path; with "human" it
-        returns None: peg3d has no window, the replay is for a human to open in a browser. None without a
-        render_mode."""
+        """With render_mode="rgb_array": the game as it stands, seen from a fixed camera above the arena, as a
+        (480, 640, 3) uint8 array. With "html": writes the browser replay (docs/viewer.md) of the episode so far
+        (the whole episode once it has ended, until the next reset) to render_path and returns that path; with
+        "human" the same, returning None: peg3d has no window, the replay is for a human to open in a browser.
+        None without a render_mode."""
         self._check_open()
         if self.render_mode is None:
             return None
         if not self._started:
             raise RuntimeError("peg3d: render() before reset()")
         b = self._batch
+        if self._frames is not None:
+            return self._frames.render(b, 0)
         game = b.game_info(0)
         title = f"{b.map_name}: {', '.join(self.possible_agents)} (episode {b.episode(0)}, seed {self._seed})"
         ending = game["outcome"] if game["done"] else "in progress"

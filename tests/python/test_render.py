@@ -68,3 +68,43 @@ def test_human_mode_writes_the_replay_for_a_browser_and_returns_none(tmp_path):
     assert env.render() is None
     assert replay_of(out)[0]["frames"] == 5
     env.close()
+
+
+def test_rgb_array_gives_the_game_as_it_stands_as_an_image():
+    env = peg3d.parallel_env(map="maps/forest.yaml", opponents={"evader": "flee"}, set=SHORT, render_mode="rgb_array")
+    assert "rgb_array" in env.metadata["render_modes"] and env.metadata["render_fps"] == 10
+    env.reset(seed=1)
+    first = env.render()
+    assert first.shape == (480, 640, 3) and first.dtype == np.uint8
+    for _ in range(10):
+        env.step({"pursuer_0": np.array([0.3, 0.0])})
+    later = env.render()
+    changed = np.any(first != later, axis=2)
+    assert 0 < changed.sum() < 0.05 * changed.size  # the agents moved; the forest did not
+    np.testing.assert_array_equal(later, env.render())  # rendering changes nothing
+
+
+def test_gymnasiums_record_video_records_the_learner_env(tmp_path):
+    import gymnasium as gym
+
+    env = gym.make("peg3d/Pursuer-v0", map="maps/forest.yaml", set=SHORT, render_mode="rgb_array")
+    env = gym.wrappers.RecordVideo(env, str(tmp_path / "videos"), episode_trigger=lambda e: True, disable_logger=True)
+    env.reset(seed=2)
+    done = False
+    while not done:
+        _, _, term, trunc, _ = env.step(env.action_space.sample())
+        done = term or trunc
+    env.close()
+    videos = list((tmp_path / "videos").glob("*.mp4"))
+    assert len(videos) == 1 and videos[0].stat().st_size > 1000
+
+
+def test_the_vector_env_renders_every_game():
+    import gymnasium as gym
+
+    v = gym.make_vec("peg3d/Pursuer-v0", num_envs=3, vectorization_mode="vector_entry_point", set=SHORT,
+                     render_mode="rgb_array")
+    v.reset(seed=1)  # one seed for the batch: the games start from the map's scenarios in turn
+    frames = v.render()
+    assert len(frames) == 3 and all(f.shape == (480, 640, 3) for f in frames)
+    assert not np.array_equal(frames[0], frames[1])  # other starts
