@@ -54,12 +54,12 @@ def mlp(sizes, out_scale=1.0):
     return nn.Sequential(*layers)
 
 
-def save_policy(path, actor, stats, bound, opponents):
+def save_policy(path, actor, stats, bound, opponents, trained_by="examples/ppo_pursuer.py"):
     layers = [{"weights": m.weight.detach().double().tolist(), "bias": m.bias.detach().double().tolist()}
               for m in actor if isinstance(m, nn.Linear)]
     doc = {"format": "peg3d-mlp", "version": 1, "role": "pursuer", "inputs": int(stats.mean.size),
            "action_bound": float(bound), "input_mean": stats.mean.tolist(), "input_std": stats.std.tolist(),
-           "layers": layers, "trained_by": "examples/ppo_pursuer.py", "opponents": list(opponents)}
+           "layers": layers, "trained_by": trained_by, "opponents": list(opponents)}
     with open(path, "w") as f:
         json.dump(doc, f)
 

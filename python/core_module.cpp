@@ -5,6 +5,7 @@
 
 #include <Python.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -171,6 +172,16 @@ PYBIND11_MODULE(_core, m) {
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");
         const std::vector<float> s = b.global_state(g);
         return py::array_t<float>(py::ssize_t(s.size()), s.data());
+      })
+      .def("global_states", [](const env::Batch& b) {
+        // Every game's global_state, one row each (games x global_state_size), a copy.
+        py::array_t<float> out({b.games(), b.global_state_size()});
+        float* row = out.mutable_data();
+        for (int g = 0; g < b.games(); ++g, row += b.global_state_size()) {
+          const std::vector<float> s = b.global_state(g);
+          std::copy(s.begin(), s.end(), row);
+        }
+        return out;
       })
       .def("agent_states", [](const env::Batch& b, int g) {
         // Every agent's x, y, z, alpha, theta in double precision (what trajectory hashes cover), a copy.

@@ -38,6 +38,8 @@ class VectorEnv:
         self.single_observation_space, self.single_action_space = Dict(single_obs), Dict(single_act)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
+        low, high = b.state_bounds()
+        self.single_state_space = Box(low, high, dtype=np.float32)  # state(env), states() rows
         self._actions = np.zeros((self.num_envs, b.agents, 2))
         # The C++ buffers never move: their per-role views are made once and returned by every call.
         self._obs = self._split(b.observations)
@@ -88,6 +90,11 @@ class VectorEnv:
     def state(self, env):
         self._check_open()
         return self._batch.global_state(env)
+
+    def states(self):
+        """Every game's state() at once: (num_envs, state size) float32, a copy; for centralised critics."""
+        self._check_open()
+        return self._batch.global_states()
 
     def close(self):
         self._closed = True

@@ -99,3 +99,16 @@ def test_the_games_spread_over_the_maps_scenarios_from_the_first_episode():
         np.testing.assert_array_equal(v._batch.agent_states(g)[:, :3], one._batch.agent_states(0)[:, :3])
         one.close()
     v.close()
+
+
+def test_states_are_every_games_state_in_its_space():
+    v = peg3d.vector_env(map="maps/pack.yaml", num_envs=3, opponents={"evader": "flee"}, seed=4)
+    v.reset(seed=4)
+    for _ in range(5):
+        v.step({"pursuer": np.zeros((3, 3, 2))})
+    states = v.states()
+    assert states.shape == (3,) + v.single_state_space.shape and states.dtype == np.float32
+    for g in range(3):
+        np.testing.assert_array_equal(states[g], v.state(g))
+        assert v.single_state_space.contains(states[g])
+    assert not np.array_equal(states[0], states[1])  # the two 3 v 2 starts

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""MAPPO for a team of pursuers on peg3d.vector_env, with numpy and PyTorch (CPU): one actor shared by every
+pursuer, which sees its own observation alone, and one centralised critic, which sees the game's global state
+(vector_env.states(): every agent's position, heading and activity, and the time) and which pursuer it values.
+The evaders are played on the C++ side. The actor is saved as a peg3d-mlp file: peg-league plays it for every
+pursuer of a team (--pursuer-entrant), beside the FACL and classic teams (docs/learning.md).
+
+    .venv/bin/python examples/mappo_pursuers.py --map maps/pack.yaml --steps 2000000 --out mappo_pack.json \
+        --opponent flee --opponent flee-apollonius
+
+The actor sees the 20 entries of its own observation (neighbours=0): an MLP played by the C++ side gets no
+other agents in its view, so that is what it will see in the league. Every pursuer's transition counts once it
+acted; next-step autoreset's reset steps are left out, as in examples/ppo_pursuer.py, whose helpers this uses.
+"""
+
+import argparse
+import json
+import math
+import time
+
+import numpy as np
+import torch
+from torch import nn
+
+import peg3d
+from ppo_pursuer import RunningStats, mlp, save_policy
+
+
+class Games:
+    """One vector env per evader policy, the games split among them, seen as one batch of pursuer arrays."""
+
+    def __init__(self, opponents, num_envs, seed, **kw):
+        k = len(opponents)
+        if num_envs < k:
+            raise SystemExit(f"--num-envs {num_envs}: at least one game per opponent ({k})")
+        self.sizes = [num_envs // k + (i < num_envs % k) for i in range(k)]
+        self.envs = [peg3d.vector_env(num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=0, **kw)
+                     for i, (n, o) in enumerate(zip(self.sizes, opponents))]
+        e = self.envs[0]
+        self.pursuers = e.agent_counts["pursuer"]
+        self.obs_size = e.single_observation_space["pursuer"].shape[-1]
+        self.state_size = e.single_state_space.shape[0]
+        self.bound = float(e.single_action_space["pursuer"].high[0, 0])
+
+    def reset(self, seed):
+        obs = [e.reset(seed=seed + i)[0]["pursuer"] for i, e in enumerate(self.envs)]
+        return np.concatenate(obs).astype(np.float64), self.states()
+
+    def states(self):
+        return np.concatenate([e.states() for e in self.envs]).astype(np.float64)
+
+    def step(self, a):
+        """Per game and pursuer: observation, reward, terminated, truncated, acted, and a capture's success term;
+        per game whether this step reset it (its episode ended in the step before); then the games' states."""
+        out, lo = [], 0
+        for e, n in zip(self.envs, self.sizes):
+            obs, rew, term, trunc, info = e.step({"pursuer": a[lo:lo + n]})
+            out.append((obs["pursuer"], rew["pursuer"], term["pursuer"], trunc["pursuer"], info["acted"]["pursuer"],
+                        info["reward_terms"]["pursuer"]["success"] > 0, info["reset"].astype(bool)))
+            lo += n
+        parts = [np.concatenate(p) for p in zip(*out)]
+        parts[0] = parts[0].astype(np.float64)
+        return parts, self.states()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--map", default="maps/pack.yaml")
+    ap.add_argument("--scenario", help="one start of the map (default: those with its first start's teams)")
+    ap.add_argument("--opponent", action="append", help="an evader policy; repeat to mix (default: flee)")
+    ap.add_argument("--steps", type=int, default=2_000_000, help="env steps (games x steps) to train for")
+    ap.add_argument("--num-envs", type=int, default=32)
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--rollout", type=int, default=128, help="steps per game per update")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--set", action="append", default=[], help="configuration override key=value")
+    ap.add_argument("--out", default="mappo_pursuers.json")
+    args = ap.parse_args()
+    opponents = args.opponent or ["flee"]
+    torch.manual_seed(args.seed)
+    torch.set_num_threads(1)
+    env = Games(opponents, args.num_envs, args.seed, map=args.map, threads=args.threads, scenario=args.scenario,
+                set=dict(s.split("=", 1) for s in args.set))
+    K, n_obs, n_state, bound = env.pursuers, env.obs_size, env.state_size, env.bound
+    actor = mlp([n_obs, 64, 64, 2], 0.01)
+    critic = mlp([n_state + K, 128, 128, 1], 1.0)  # the state and a one-hot of the pursuer it values
+    log_std = nn.Parameter(torch.full((2,), math.log(0.5 * bound)))
+    opt = torch.optim.Adam(list(actor.parameters()) + list(critic.parameters()) + [log_std], lr=3e-4)
+    obs_stats, state_stats = RunningStats(n_obs), RunningStats(n_state)
+    eye = np.broadcast_to(np.eye(K), (args.num_envs, K, K))
+    gamma, lam, clip = 0.99, 0.95, 0.2
+    N, T = args.num_envs, args.rollout
+
+    def critic_input(states):
+        s = (states - state_stats.mean) / state_stats.std
+        return torch.as_tensor(np.concatenate([np.repeat(s[:, None, :], K, axis=1), eye], axis=-1), dtype=torch.float32)
+
+    x, s = env.reset(seed=args.seed)
+    last_capture = np.zeros(N, dtype=bool)
+    done_steps, update, start = 0, 0, time.time()
+    games = captures = 0
+    while done_steps < args.steps:
+        buf = {k: [] for k in ("x", "a", "logp", "r", "term", "trunc", "valid", "c", "c2")}
+        for _ in range(T):
+            obs_stats.update(x.reshape(-1, n_obs))
+            state_stats.update(s)
+            xn = torch.as_tensor((x - obs_stats.mean) / obs_stats.std, dtype=torch.float32)  # (N, K, obs)
+            with torch.no_grad():
+                dist = torch.distributions.Normal(bound * torch.tanh(actor(xn)), log_std.exp())
+                a = dist.sample()
+                logp = dist.log_prob(a).sum(-1)
+            c = critic_input(s)
+            (x2, rew, term, trunc, acted, success, reset), s2 = env.step(a.numpy().astype(np.float64))
+            buf["x"].append(xn.numpy()); buf["a"].append(a.numpy()); buf["logp"].append(logp.numpy())
+            buf["r"].append(rew); buf["term"].append(term); buf["trunc"].append(trunc); buf["valid"].append(acted)
+            buf["c"].append(c.numpy()); buf["c2"].append(critic_input(s2).numpy())
+            # A game reset now ended in the step before: by a capture when its last step captured.
+            games += int(reset.sum())
+            captures += int((reset & last_capture).sum())
+            last_capture = success.any(axis=1)
+            x, s = x2, s2
+        done_steps += N * T
+        b = {k: np.asarray(v) for k, v in buf.items()}  # (T, N, K, ...)
+        with torch.no_grad():
+            v = critic(torch.as_tensor(b["c"])).squeeze(-1).numpy()
+            v2 = critic(torch.as_tensor(b["c2"])).squeeze(-1).numpy()
+        adv = np.zeros((T, N, K))
+        last = np.zeros((N, K))
+        for t in reversed(range(T)):
+            cont = 1.0 - (b["term"][t] | b["trunc"][t])
+            delta = b["r"][t] + gamma * v2[t] * (1.0 - b["term"][t]) - v[t]
+            last = np.where(b["valid"][t], delta + gamma * lam * cont * last, 0.0)
+            adv[t] = last
+        ret = adv + v
+        keep = b["valid"].reshape(-1)
+        flat = lambda z: torch.as_tensor(z.reshape((T * N * K,) + z.shape[3:])[keep])  # noqa: E731
+        xs, acts, logps, cs = flat(b["x"]), flat(b["a"]), flat(b["logp"]), flat(b["c"])
+        adv_t = torch.as_tensor(adv.reshape(-1)[keep], dtype=torch.float32)
+        ret_t = torch.as_tensor(ret.reshape(-1)[keep], dtype=torch.float32)
+        adv_t = (adv_t - adv_t.mean()) / (adv_t.std() + 1e-8)
+        m = adv_t.shape[0]
+        for _ in range(4):
+            for chunk in torch.randperm(m).split(max(1, m // 4)):
+                dist = torch.distributions.Normal(bound * torch.tanh(actor(xs[chunk])), log_std.exp())
+                ratio = (dist.log_prob(acts[chunk]).sum(-1) - logps[chunk]).exp()
+                pg = -torch.min(ratio * adv_t[chunk], ratio.clamp(1 - clip, 1 + clip) * adv_t[chunk]).mean()
+                vl = ((critic(cs[chunk]).squeeze(-1) - ret_t[chunk]) ** 2).mean()
+                opt.zero_grad()
+                (pg + 0.5 * vl).backward()
+                nn.utils.clip_grad_norm_(list(actor.parameters()) + list(critic.parameters()), 0.5)
+                opt.step()
+        update += 1
+        if update % 10 == 0 or done_steps >= args.steps:
+            rate = captures / games if games else float("nan")
+            print(json.dumps({"steps": done_steps, "updates": update, "games": games, "capture_rate": rate,
+                              "seconds": round(time.time() - start, 1)}), flush=True)
+            games = captures = 0
+    save_policy(args.out, actor, obs_stats, bound, opponents, trained_by="examples/mappo_pursuers.py")
+    print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
+
+
+if __name__ == "__main__":
+    main()
