@@ -13,12 +13,13 @@ PACKAGE_DIR = Path(__file__).resolve().parent
 
 
 def data_dir():
-    """The maps and assets: $PEG3D_DATA_DIR, else those installed with the package (pip install, peg3d/data),
+    """The maps and assets: $PEG3D_DATA_DIR, else those installed beside the compiled module (pip install,
+    peg3d/data; an editable install runs this file from the source tree but the module from site-packages),
     else those staged beside the build's module (build/share/peg3d beside build/python)."""
     env = os.environ.get("PEG3D_DATA_DIR")
     if env:
         return Path(env)
-    installed = PACKAGE_DIR / "data"
+    installed = Path(_core.__file__).resolve().parent / "data"
     if installed.is_dir():
         return installed
     return PACKAGE_DIR.parent.parent / "share" / "peg3d"

@@ -11,8 +11,8 @@ import pettingzoo
 
 import peg3d
 
-where = Path(peg3d.__file__).resolve()
-assert "site-packages" in where.parts, f"peg3d imported from {where}, not from the installed package"
+where = Path(peg3d._core.__file__).resolve()
+assert "site-packages" in where.parts, f"peg3d's module imported from {where}, not from the installed package"
 assert importlib.metadata.version("peg3d") == "0.1.0"
 data = peg3d._loading.data_dir()
 assert data == where.parent / "data" and (data / "maps" / "canyon.yaml").is_file(), data
