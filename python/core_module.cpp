@@ -91,17 +91,17 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
-                       const std::string& scenario, int games, int threads, std::uint64_t seed, int neighbours,
+                       const std::vector<std::string>& scenarios, int games, int threads, std::uint64_t seed, int neighbours,
                        const std::vector<std::pair<std::string, std::string>>& controllers, bool cache, bool record) {
              env::BatchSettings s;
              s.games = games, s.threads = threads, s.seed = seed, s.neighbours = neighbours;
-             s.scenario = scenario;
+             s.scenarios = scenarios;
              s.controllers = controllers;
              s.record = record;
              py::gil_scoped_release unlocked;  // building a world can take seconds
              return make_batch(map, config, sets, cache, std::move(s));
            }),
-           py::arg("map"), py::arg("config"), py::arg("sets"), py::arg("scenario"), py::arg("games"),
+           py::arg("map"), py::arg("config"), py::arg("sets"), py::arg("scenarios"), py::arg("games"),
            py::arg("threads"), py::arg("seed"), py::arg("neighbours"), py::arg("controllers"), py::arg("cache") = true,
            py::arg("record") = false)
       .def_property_readonly("games", &env::Batch::games)

@@ -79,14 +79,18 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
     override ("" gives an agent back to the caller)."""
     if not isinstance(map, (str, os.PathLike)):
         raise TypeError("map: a map file")
-    if scenario is not None and not isinstance(scenario, str):
-        raise TypeError("scenario: a scenario name or None")
+    if isinstance(scenario, str):
+        scenario = [scenario]
+    elif scenario is None:
+        scenario = []
+    elif not isinstance(scenario, (list, tuple)) or not all(isinstance(s, str) for s in scenario):
+        raise TypeError("scenario: a scenario name, a list of them or None")
     for name, v in (("num_envs", games), ("threads", threads), ("neighbours", neighbours)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
             raise TypeError(f"{name}: an integer")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= int(seed) < 2**64:
         raise ValueError("seed: an integer in [0, 2^64)")
-    return _core.Batch(resolve(map), config_source(config), overrides(settings), scenario or "", int(games),
+    return _core.Batch(resolve(map), config_source(config), overrides(settings), list(scenario), int(games),
                        int(threads), int(seed), int(neighbours), controllers(opponents) + list(extra_controllers), cache,
                        record)
 

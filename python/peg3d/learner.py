@@ -53,6 +53,8 @@ class LearnerEnv(gymnasium.Env):
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, 1, 1, 0,
                                          neighbours, cache)
         self.learner = learner
+        self.scenarios = list(self._batch.scenario_names)
+        self.metadata = {**self.metadata, "render_fps": 1.0 / self._batch.dt}  # one frame a step
         self.observation_space, self.action_space = _spaces(self._batch, learner)
         self._actions = np.zeros((1, self._batch.agents, 2))
         self._done = True
@@ -107,6 +109,8 @@ class LearnerVectorEnv(VectorEnv):
         b = self._batch
         self.num_envs = b.games
         self.learner = learner
+        self.scenarios = list(b.scenario_names)
+        self.metadata = {**self.metadata, "render_fps": 1.0 / b.dt}  # one frame a step
         self.single_observation_space, self.single_action_space = _spaces(b, learner)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)

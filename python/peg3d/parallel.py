@@ -36,9 +36,10 @@ class ParallelEnv(_ParallelEnv):
         self._frames = _loading.frame_renderer(self._batch) if render_mode == "rgb_array" else None
         self._seed = None
         b = self._batch
-        # The scenarios the episodes start from, in turn: the one named, or the map's scenarios with its first
-        # one's teams (name one of the others to play it).
+        # The scenarios the episodes start from, in turn: those named (a name twice plays twice as often), or the
+        # map's scenarios with its first one's teams (name one of the others to play it).
         self.scenarios = list(b.scenario_names)
+        self.metadata = {**self.metadata, "render_fps": 1.0 / b.dt}  # one frame a step
         names = b.agent_names
         self._index = {n: i for i, n in enumerate(names) if not b.controlled(i)}
         self.possible_agents = list(self._index)

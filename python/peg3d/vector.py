@@ -23,6 +23,7 @@ class VectorEnv:
         self._batch = b = _loading.make_batch(map, config, scenario, set, opponents, num_envs, threads, seed,
                                               neighbours, cache)
         self.num_envs = b.games
+        self.scenarios = list(b.scenario_names)  # the starts the episodes take in turn (parallel_env's)
         p = b.pursuers
         self._slices = {"pursuer": slice(0, p), "evader": slice(p, b.agents)}
         self.agent_counts = {"pursuer": p, "evader": b.agents - p}

@@ -99,15 +99,21 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   layout_.neighbours = settings_.neighbours;
   const auto& all = arena->map().scenarios;
   if (all.empty()) throw InvalidParameter("scenario", "(none)", "the map has no scenario");
-  if (!settings_.scenario.empty()) {
-    const auto it = std::find_if(all.begin(), all.end(), [&](const world::Scenario& s) { return s.name == settings_.scenario; });
+  for (const std::string& name : settings_.scenarios) {
+    const auto it = std::find_if(all.begin(), all.end(), [&](const world::Scenario& s) { return s.name == name; });
     if (it == all.end()) {
       std::string names;
       for (const auto& s : all) names += (names.empty() ? "" : ", ") + s.name;
-      throw InvalidParameter("scenario", settings_.scenario, "is not a scenario of the map (" + names + ")");
+      throw InvalidParameter("scenario", name, "is not a scenario of the map (" + names + ")");
+    }
+    const world::Scenario& head = all[std::size_t(scenarios_.empty() ? it - all.begin() : scenarios_.front())];
+    if (it->pursuers.size() != head.pursuers.size() || it->evaders.size() != head.evaders.size()) {
+      throw InvalidParameter("scenario", name, "has other numbers of pursuers and evaders than " + head.name +
+                                                   " (a batch plays one team size)");
     }
     scenarios_.push_back(int(it - all.begin()));
-  } else {
+  }
+  if (settings_.scenarios.empty()) {
     for (std::size_t i = 0; i < all.size(); ++i) {
       if (all[i].pursuers.size() == all[0].pursuers.size() && all[i].evaders.size() == all[0].evaders.size()) {
         scenarios_.push_back(int(i));
@@ -194,7 +200,7 @@ void Batch::build_policies(int g) {
     std::unique_ptr<game::Policy>& p = game.policies[std::size_t(i)];
     if (!c) continue;
     if (c->saved) {
-      p = c->saved->make();
+      p = c->saved->make(derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)}));
     } else {
       const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
       game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);

@@ -57,11 +57,11 @@ struct BatchSettings {
   int threads = 1;              ///< T, in [1, 256]; capped at games
   std::uint64_t seed = 0;       ///< root seed
   int neighbours = 2;           ///< ObservationLayout::neighbours
-  /// The map's scenario every episode starts from. Empty: the map's scenarios with the first one's numbers of
-  /// pursuers and evaders (a batch's arrays have one shape; name a scenario for the others), and episode e of
-  /// game g plays the (g + e) mod count-th of them, so that the games spread over the starts from their first
-  /// episode.
-  std::string scenario;
+  /// The map's scenarios the episodes start from, by name, taking turns: episode e of game g plays the
+  /// (g + e) mod count-th, so that the games spread over the starts from their first episode. A name may come
+  /// more than once, to play that start more often (for training). They must have the same numbers of pursuers
+  /// and evaders (a batch's arrays have one shape). Empty: the map's scenarios with the first one's numbers.
+  std::vector<std::string> scenarios;
   /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> a policy name (flee, pure-pursuit, ...)
   /// or a saved policy file (FACL or MLP): those agents are played on the C++ side. The others take the caller's actions.
   std::vector<std::pair<std::string, std::string>> controllers;
@@ -143,7 +143,7 @@ class Batch {
   long long episode(int game) const { return games_[std::size_t(game)].episode; }
   /// Every instant of game 0's current episode so far when settings.record (null otherwise, and for other games).
   const game::Trace* trace(int game) const { return games_[std::size_t(game)].trace.get(); }
-  /// The names of the scenarios the episodes start from, in the order they take turns (BatchSettings::scenario).
+  /// The names of the scenarios the episodes start from, in the order they take turns (BatchSettings::scenarios).
   std::vector<std::string> scenario_names() const;
 
  private:

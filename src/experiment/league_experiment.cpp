@@ -285,14 +285,14 @@ void League::play_start(const Start& st, std::span<Game> games) const {
       const game::Sim& sim = sim_of(st.map, group_of(P), group_of(E));
       game::Lineup lineup;
       if (P.saved >= 0) {
-        game::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, np);
+        game::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, np, derive_seed(seed, {1}));
       } else if (P.algorithm >= 0) {
         game::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
       } else {
         game::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
       }
       if (E.saved >= 0) {
-        game::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, ne);
+        game::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, ne, derive_seed(seed, {2}));
       } else if (E.algorithm >= 0) {
         game::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
       } else {

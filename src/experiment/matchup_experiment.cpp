@@ -136,14 +136,14 @@ class MatchupRun {
     const std::uint64_t pseed = derive_seed(seed, {10, p, e});
     game::Lineup lineup;
     if (s_.pursuers[p] == game::PolicyKind::kFacl && s_.pursuer_policy) {
-      game::add_saved(lineup, *s_.pursuer_policy, pursuers);
+      game::add_saved(lineup, *s_.pursuer_policy, pursuers, pseed);
     } else if (s_.pursuers[p] == game::PolicyKind::kFacl) {
       game::add_frozen(lineup, facl_pursuers, pursuers);
     } else {
       game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
     }
     if (s_.evaders[e] == game::PolicyKind::kFacl && s_.evader_policy) {
-      game::add_saved(lineup, *s_.evader_policy, evaders);
+      game::add_saved(lineup, *s_.evader_policy, evaders, derive_seed(pseed, {1}));
     } else if (s_.evaders[e] == game::PolicyKind::kFacl) {
       game::add_frozen(lineup, facl_evaders, evaders);
     } else {

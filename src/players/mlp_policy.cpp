@@ -99,10 +99,24 @@ std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const s
     in = out;
   }
   if (in != 2) r.fail(fmt::format("layers[{}].weights", layers.size() - 1), "the last layer must have 2 outputs (d_alpha, d_theta)");
+  if (doc.contains("action_std")) {
+    m->action_std = r.vector(doc["action_std"], "action_std", 2);
+    for (int k = 0; k < 2; ++k) {
+      if (!(m->action_std[k] >= 0.0 && m->action_std[k] <= m->action_bound)) {
+        r.fail(fmt::format("action_std[{}]", k), "expects a standard deviation in [0, action_bound] rad");
+      }
+    }
+  }
+  if (doc.contains("play")) {
+    const nlohmann::json& play = doc["play"];
+    if (play != "mean" && play != "sample") r.fail("play", "expects \"mean\" or \"sample\"");
+    m->sample = play == "sample";
+    if (m->sample && !doc.contains("action_std")) r.fail("play", "\"sample\" needs the network's action_std");
+  }
   return m;
 }
 
-MlpPolicy::MlpPolicy(std::shared_ptr<const MlpModel> model) : model_(std::move(model)) {
+MlpPolicy::MlpPolicy(std::shared_ptr<const MlpModel> model, std::uint64_t seed) : model_(std::move(model)), rng_(seed) {
   obs_.assign(std::size_t(model_->inputs), 0.0f);
   std::size_t widest = std::size_t(model_->inputs);
   for (const auto& w : model_->weights) widest = std::max(widest, std::size_t(w.rows()));
@@ -130,7 +144,12 @@ Steering MlpPolicy::act(const AgentView& view) {
     n = W.rows();
     std::swap(a_, b_);
   }
-  return {m.action_bound * std::tanh(a_[0]), m.action_bound * std::tanh(a_[1])};
+  Steering out{m.action_bound * std::tanh(a_[0]), m.action_bound * std::tanh(a_[1])};
+  if (m.sample) {  // the game clamps the draw to the steering bound, as the batch clamps the learner's
+    out.d_alpha += m.action_std[0] * normal_(rng_);
+    out.d_theta += m.action_std[1] * normal_(rng_);
+  }
+  return out;
 }
 
 }  // namespace peg3d::game

@@ -6,13 +6,20 @@
 //    "inputs": 20 + 8 k (k neighbours, seen empty on the C++ side), plus 2 for a network trained with limited
 //              sight (the sight entries of env/batch.hpp's layout: in sight now, the sighting's age), "action_bound": rad,
 //    "input_mean": [inputs], "input_std": [inputs] (> 0),
-//    "layers": [{"weights": [[in] x out], "bias": [out]}, ...]}
+//    "layers": [{"weights": [[in] x out], "bias": [out]}, ...],
+//    optional: "action_std": [2] rad in [0, action_bound], the Gaussian the network was trained with;
+//              "play": "mean" (default) or "sample" (needs action_std)}
 // act(): x = (obs - mean) / std; tanh after every layer but the last; the action is action_bound * tanh(out),
 // out = (d_alpha, d_theta). Every sum runs in double over the inputs in order (weights[j][0] x[0] first), so a
-// reference in another language that sums in the same order gets the same bits.
+// reference in another language that sums in the same order gets the same bits. With "play": "sample" the
+// action is drawn about that mean with action_std, as PPO drew it in training, from the player's own engine
+// (seeded per agent by the caller): a policy trained with noise can rely on it, for example to leave a spot
+// where its mean action holds it still (docs/learning.md, the partial game).
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <random>
 #include <string_view>
 #include <vector>
 
@@ -31,6 +38,8 @@ struct MlpModel {
   int inputs = 0;
   bool sight = false;  ///< its last two inputs are the sight entries (in sight now, the sighting's age)
   double action_bound = 0.0;  ///< rad, > 0
+  Eigen::Vector2d action_std = Eigen::Vector2d::Zero();  ///< rad, in [0, action_bound]; 0 when the file has none
+  bool sample = false;  ///< "play": "sample": actions drawn about the mean with action_std
   Eigen::VectorXd mean, inv_std;
   std::vector<Eigen::MatrixXd> weights;  ///< out x in
   std::vector<Eigen::VectorXd> biases;
@@ -48,11 +57,14 @@ bool is_mlp_document(const nlohmann::json& doc);
 
 class MlpPolicy final : public Policy {
  public:
-  explicit MlpPolicy(std::shared_ptr<const MlpModel> model);
+  /// `seed` feeds the draws of a sampling model; a model played by its mean draws nothing.
+  MlpPolicy(std::shared_ptr<const MlpModel> model, std::uint64_t seed);
   Steering act(const AgentView& view) override;
 
  private:
   std::shared_ptr<const MlpModel> model_;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_;
   std::vector<float> obs_;
   Eigen::VectorXd a_, b_;
 };

@@ -17,12 +17,12 @@ std::string hash_of(const std::string& canonical) {
 
 }  // namespace
 
-std::unique_ptr<Policy> SavedPolicy::make() const {
+std::unique_ptr<Policy> SavedPolicy::make(std::uint64_t seed) const {
   std::unique_ptr<Policy> player;
   if (facl) {
     player = std::make_unique<FaclPolicy>(facl);
   } else {
-    player = std::make_unique<MlpPolicy>(mlp);
+    player = std::make_unique<MlpPolicy>(mlp, seed);
   }
   player->set_file(file);
   return player;
@@ -44,8 +44,8 @@ std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path
   return p;
 }
 
-void add_saved(Lineup& lineup, const SavedPolicy& policy, int count) {
-  for (int k = 0; k < count; ++k) lineup.add(policy.make());
+void add_saved(Lineup& lineup, const SavedPolicy& policy, int count, std::uint64_t seed) {
+  for (int k = 0; k < count; ++k) lineup.add(policy.make(agent_seed(seed, k)));
 }
 
 }  // namespace peg3d::game

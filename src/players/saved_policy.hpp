@@ -1,9 +1,10 @@
 #pragma once
-// A policy read from a file and played greedily, whatever trained it: a FACL model (players/policy_io.hpp) or an
+// A policy read from a file and played, not learning, whatever trained it: a FACL model (players/policy_io.hpp) or an
 // MLP (players/mlp_policy.hpp, trained in Python). Read once and shared read-only by every game and thread that
 // plays it, so every program that takes a policy file (peg-matchup, peg-league, peg-collide cases, the Python
 // front's opponents) plays both kinds the same way.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -27,15 +28,16 @@ struct SavedPolicy {
   /// The agent configuration it must play with (its guard, steering, observation): a FACL model's own; null for
   /// an MLP, which plays with the game's agent configuration (the one its observations were made under).
   const AgentConfig* config() const { return facl ? &facl->config() : nullptr; }
-  /// A new greedy player of the policy (its per-agent buffers its own, the model shared).
-  std::unique_ptr<Policy> make() const;
+  /// A new player of the policy (its per-agent buffers its own, the model shared); `seed` feeds an MLP that
+  /// samples its actions ("play": "sample"); every other player is greedy and ignores it.
+  std::unique_ptr<Policy> make(std::uint64_t seed) const;
 };
 
 /// Reads a policy file of either kind for an agent of `role`. A file that cannot be read, is not a policy
 /// document, does not fit or was saved for the other role is a PolicyFormatError (an InputError) naming it.
 std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role);
 
-/// Adds `count` greedy players of `policy` to a line-up.
-void add_saved(Lineup& lineup, const SavedPolicy& policy, int count);
+/// Adds `count` players of `policy` to a line-up, the k-th seeded by agent_seed(seed, k) (as add_configured).
+void add_saved(Lineup& lineup, const SavedPolicy& policy, int count, std::uint64_t seed);
 
 }  // namespace peg3d::game

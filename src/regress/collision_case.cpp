@@ -267,7 +267,7 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     } else if (d->kind == AgentDriver::Kind::kWaypoints) {
       lineup.add(std::make_unique<game::WaypointFollower>(d->waypoints));
     } else if (d->kind == AgentDriver::Kind::kPolicy) {
-      lineup.add(saved[std::size_t(i)]->make());
+      lineup.add(saved[std::size_t(i)]->make(seed));
     } else {
       game::AgentConfig a = config.agent(role, rank);
       a.policy = d->scripted;

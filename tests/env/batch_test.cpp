@@ -4,6 +4,7 @@
 #include "env/batch.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/hash.hpp"
 #include "core/random.hpp"
@@ -367,7 +369,7 @@ TEST(EnvBatch, EachEpisodeStartsFromTheScenarioOfItsGameAndNumber) {
   for (const std::string named : {"", "timeout"}) {
     SCOPED_TRACE("scenario '" + named + "'");
     BatchSettings s = settings(4, 2);
-    s.scenario = named;
+    s.scenarios = named.empty() ? std::vector<std::string>{} : std::vector<std::string>{named};
     Batch batch(arena(), standing_evaders(), s);
     Buffers buf{batch};
     const auto expected_start = [&](int g) {
@@ -404,11 +406,49 @@ TEST(EnvBatch, WithNoScenarioNamedTheScenariosWithTheFirstOnesTeamsTakeTurns) {
     EXPECT_EQ(positions(all.state(g)), start_positions(mixed[g % 3 == 0 ? 0 : std::size_t(g % 3 + 1)])) << g;
   }
   for (const auto& [named, agents] : {std::pair{"duel", 2}, std::pair{"2v1", 3}}) {
-    s.scenario = named;
+    s.scenarios = {named};
     Batch one(map, standing_evaders(), s);
     EXPECT_EQ(one.scenario_names(), std::vector<std::string>{named});
     EXPECT_EQ(one.agents(), agents);
   }
+}
+
+TEST(EnvBatch, NamedScenariosTakeTurnsInTheirOrderAndARepeatedOnePlaysAsOftenAsItIsNamed) {
+  // ["timeout", "capture", "timeout"]: episode e of game g plays the (g + e) mod 3-th name, so timeout twice as
+  // often; a name that is not the map's, or a start with other teams than the first named, is refused.
+  const auto& all = arena()->map().scenarios;
+  const std::vector<Start> order{kTimeout, kCapture, kTimeout};
+  BatchSettings s = settings(5, 2);
+  s.scenarios = {"timeout", "capture", "timeout"};
+  Batch batch(arena(), standing_evaders(), s);
+  EXPECT_EQ(batch.scenario_names(), s.scenarios);
+  Buffers buf{batch};
+  const auto expected_start = [&](int g) {
+    return start_positions(all[std::size_t(order[std::size_t((g + batch.episode(g)) % 3)])]);
+  };
+  std::array<int, 3> episodes_of{};
+  for (int g = 0; g < 5; ++g) {
+    EXPECT_EQ(positions(batch.state(g)), expected_start(g)) << "game " << g;
+    ++episodes_of[std::size_t(order[std::size_t(g % 3)])];
+  }
+  const std::vector<double> zero(std::size_t(5 * 4 * 2), 0.0);
+  for (int k = 0; k < 3 * kLimitSteps + 3; ++k) {
+    batch.step(zero.data());
+    for (int g = 0; g < 5; ++g) {
+      if (!buf.reset(g)) continue;
+      EXPECT_EQ(positions(batch.state(g)), expected_start(g)) << "game " << g << ", episode " << batch.episode(g);
+      ++episodes_of[std::size_t(order[std::size_t((g + batch.episode(g)) % 3)])];
+    }
+  }
+  EXPECT_EQ(episodes_of[kCrash], 0);
+  EXPECT_GT(episodes_of[kTimeout], episodes_of[kCapture]);
+
+  s.scenarios = {"timeout", "nowhere"};
+  EXPECT_THROW(Batch(arena(), standing_evaders(), s), InvalidParameter);
+  auto mixed = starts();
+  mixed.push_back(team("duel", {{5, 5, 5}}, {{30, 30, 15}}));
+  s.scenarios = {"timeout", "duel"};
+  EXPECT_THROW(Batch(testing::make_arena(kSize, {kRock}, mixed, 0.5), standing_evaders(), s), InvalidParameter);
 }
 
 // The caller's actions for step k: different for every game, agent and step, within the steering bound.
@@ -463,7 +503,7 @@ TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
   c.evader.speed = 1.0;
   c.initial_heading = game::InitialHeading::kRandom;  // from each game's episode seed
   BatchSettings s = settings(2, 2, 21);
-  s.scenario = "timeout";
+  s.scenarios = {"timeout"};
   s.controllers = {{"evader_0", "flee"}};
   Batch batch(arena(), c, s);
   EXPECT_TRUE(batch.controlled(2));
@@ -515,7 +555,7 @@ TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
   game::GameConfig c = standing_evaders();
   c.initial_heading = game::InitialHeading::kRandom;  // from each game's episode seed
   BatchSettings s = settings(2, 2, 31);
-  s.scenario = "capture";
+  s.scenarios = {"capture"};
   s.controllers = {{"pursuer", dir + "ppo_pursuer.json"}, {"evader", dir + "robust_evader.json"}};
   Batch batch(arena(), c, s);
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(batch.controlled(i)) << "agent " << i;
@@ -529,7 +569,7 @@ TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
   std::vector<game::Trace> traces(2);
   for (int g = 0; g < 2; ++g) {
     game::SimState ref(batch.sim());
-    const auto p0 = mlp->make(), p1 = mlp->make(), e0 = facl->make(), e1 = facl->make();
+    const auto p0 = mlp->make(0), p1 = mlp->make(0), e0 = facl->make(0), e1 = facl->make(0);
     game::Policy* policies[] = {p0.get(), p1.get(), e0.get(), e1.get()};
     game::play(batch.sim(), ref, arena()->map().scenarios[kCapture], policies, false,
                derive_seed(31, {std::uint64_t(g), 0}), &traces[std::size_t(g)]);
@@ -547,6 +587,35 @@ TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
       }
     }
   }
+}
+
+// An MLP file played by sample ("play": "sample"): its draws come from each game's policy seed, so the games play
+// the same on any number of threads; they differ from the mean's play, and from game to game.
+TEST(EnvBatch, ASampledMlpOpponentPlaysTheSameOnAnyThreadCount) {
+  const std::string dir = std::string(PEG3D_TEST_DATA_DIR) + "/policies/";
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(dir + "ppo_pursuer.json"));
+  doc["action_std"] = {0.1, 0.1};
+  doc["play"] = "sample";
+  const std::filesystem::path sampled = std::filesystem::path(::testing::TempDir()) / "sampled_mlp.json";
+  std::ofstream(sampled) << doc.dump();
+  const auto play = [&](const std::string& file, int threads) {
+    BatchSettings s = settings(4, threads, 9);
+    s.scenarios = {"timeout"};  // the same start in every game
+    s.controllers = {{"pursuer", file}};
+    game::GameConfig c = standing_evaders();
+    c.pursuer.motion_space = false;  // its cone about the line to a standing evader would take the draws away
+    Batch batch(arena(), c, s);
+    const std::vector<double> actions(std::size_t(4 * 4 * 2), 0.0);
+    for (int k = 0; k < 30; ++k) batch.step(actions.data());
+    std::vector<std::vector<Vec3>> out;
+    for (int g = 0; g < 4; ++g) out.push_back(positions(batch.state(g)));
+    return out;
+  };
+  const auto one = play(sampled.string(), 1);
+  EXPECT_EQ(one, play(sampled.string(), 2));
+  EXPECT_EQ(one, play(sampled.string(), 4));
+  EXPECT_NE(one, play(dir + "ppo_pursuer.json", 1));
+  EXPECT_NE(one[0], one[1]);
 }
 
 // A C++-played MLP whose network overflows (finite weights of +-1e308: inf - inf inside its sum) is refused by
@@ -567,7 +636,7 @@ TEST(EnvBatch, APlayedPolicyWhoseCommandIsRefusedNamesItsFileAndGame) {
     out << "]}]}";
   }
   BatchSettings s = settings(3, 1, 5);
-  s.scenario = "timeout";
+  s.scenarios = {"timeout"};
   s.controllers = {{"evader_1", file.string()}};
   Batch batch(arena(), standing_evaders(), s);
   const std::vector<double> actions(std::size_t(3 * 4 * 2), 0.0);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -38,7 +39,7 @@ std::filesystem::path write(const nlohmann::json& doc, const std::string& name) 
 TEST(MlpPolicy, ActsAsTheDocumentedForwardPass) {
   const auto file = write(steer_at_target(2.0), "steer.json");
   ASSERT_TRUE(is_mlp_document(read_policy_document(file).doc));
-  MlpPolicy policy(load_mlp_policy(file, Role::kPursuer));
+  MlpPolicy policy(load_mlp_policy(file, Role::kPursuer), 0);
   AgentView v;
   v.percept.target.azimuth = 0.3;
   v.percept.target.elevation = -0.1;
@@ -55,7 +56,7 @@ TEST(MlpPolicy, HiddenLayersTakeTanhAndInputsAreNormalized) {
   doc["input_mean"][1] = 0.1;
   doc["input_std"][1] = 0.5;
   doc["layers"].push_back({{"weights", {{3.0, 0.0}, {0.0, -1.0}}}, {"bias", {0.25, 0.0}}});
-  MlpPolicy policy(load_mlp_policy(write(doc, "two.json"), Role::kPursuer));
+  MlpPolicy policy(load_mlp_policy(write(doc, "two.json"), Role::kPursuer), 0);
   AgentView v;
   v.percept.target.azimuth = 0.6;
   const Steering u = policy.act(v);
@@ -75,7 +76,7 @@ TEST(MlpPolicy, ANetworkTrainedWithSightReadsTheSightEntriesLast) {
     doc["layers"][0]["weights"][std::size_t(j)].push_back(j == 0 ? 1.0 : 0.0);
     doc["layers"][0]["weights"][std::size_t(j)].push_back(j == 1 ? 0.1 : 0.0);
   }
-  MlpPolicy policy(load_mlp_policy(write(doc, "sight.json"), Role::kPursuer));
+  MlpPolicy policy(load_mlp_policy(write(doc, "sight.json"), Role::kPursuer), 0);
   for (const bool visible : {true, false}) {
     AgentView v;
     v.other_visible = visible;
@@ -85,6 +86,51 @@ TEST(MlpPolicy, ANetworkTrainedWithSightReadsTheSightEntriesLast) {
     EXPECT_EQ(u.d_alpha, 0.5 * std::tanh(seen));
     EXPECT_EQ(u.d_theta, 0.5 * std::tanh(0.1 * age));
   }
+}
+
+TEST(MlpPolicy, PlayedBySampleItDrawsAboutTheMeanWithTheFilesStandardDeviations) {
+  // "play": "sample": d_alpha, d_theta = the mean + action_std x N(0, 1) from the player's engine. Over 20 000
+  // draws at three views each, the mean and standard deviation of (action - mean) / action_std are within 4.5
+  // standard errors of 0 and 1, the two components are uncorrelated, and a seed gives one sequence.
+  nlohmann::json doc = steer_at_target(2.0);
+  doc["action_std"] = {0.05, 0.12};
+  doc["play"] = "sample";
+  const auto model = load_mlp_policy(write(doc, "sample.json"), Role::kPursuer);
+  MlpPolicy mean_player(load_mlp_policy(write(steer_at_target(2.0), "mean.json"), Role::kPursuer), 0);
+  for (const double azimuth : {-0.4, 0.0, 0.25}) {
+    AgentView v;
+    v.percept.target.azimuth = azimuth;
+    v.percept.target.elevation = -0.5 * azimuth;
+    const Steering mean = mean_player.act(v);
+    for (const std::uint64_t seed : {1u, 77u}) {
+      MlpPolicy a(model, seed), again(model, seed), other(model, seed + 1);
+      const int n = 20000;
+      double s[2] = {0, 0}, s2[2] = {0, 0}, cross = 0;
+      bool same = true, differs = false;
+      for (int k = 0; k < n; ++k) {
+        const Steering u = a.act(v), w = again.act(v), x = other.act(v);
+        same = same && u.d_alpha == w.d_alpha && u.d_theta == w.d_theta;
+        differs = differs || u.d_alpha != x.d_alpha;
+        const double z[2] = {(u.d_alpha - mean.d_alpha) / 0.05, (u.d_theta - mean.d_theta) / 0.12};
+        for (int j = 0; j < 2; ++j) s[j] += z[j], s2[j] += z[j] * z[j];
+        cross += z[0] * z[1];
+      }
+      EXPECT_TRUE(same);
+      EXPECT_TRUE(differs);
+      for (int j = 0; j < 2; ++j) {
+        const double m = s[j] / n, var = s2[j] / n - m * m;
+        EXPECT_NEAR(m, 0.0, 4.5 / std::sqrt(double(n))) << j;
+        EXPECT_NEAR(var, 1.0, 4.5 * std::sqrt(2.0 / n)) << j;
+      }
+      EXPECT_NEAR(cross / n, 0.0, 4.5 / std::sqrt(double(n)));
+    }
+  }
+  // Played by its mean (the default, or "play": "mean"), a file with action_std plays exactly the mean.
+  doc["play"] = "mean";
+  MlpPolicy by_mean(load_mlp_policy(write(doc, "by_mean.json"), Role::kPursuer), 5);
+  AgentView v;
+  v.percept.target.azimuth = 0.3;
+  EXPECT_EQ(by_mean.act(v).d_alpha, mean_player.act(v).d_alpha);
 }
 
 TEST(MlpPolicy, FilesThatDoNotFitNameTheField) {
@@ -121,6 +167,17 @@ TEST(MlpPolicy, FilesThatDoNotFitNameTheField) {
   d = steer_at_target(1.0);
   d["action_bound"] = -1;
   refuses(d, Role::kPursuer, "action_bound");
+  d = steer_at_target(1.0);
+  d["action_std"] = {0.1, 0.6};  // above the bound of 0.5
+  refuses(d, Role::kPursuer, "action_std[1]");
+  d["action_std"] = {0.1};
+  refuses(d, Role::kPursuer, "action_std");
+  d = steer_at_target(1.0);
+  d["play"] = "sample";  // with no action_std
+  refuses(d, Role::kPursuer, "play");
+  d["action_std"] = {0.1, 0.1};
+  d["play"] = "greedy";
+  refuses(d, Role::kPursuer, "play");
 }
 
 }  // namespace

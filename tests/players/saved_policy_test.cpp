@@ -69,7 +69,7 @@ TEST(SavedPolicy, AFaclFilePlaysAsItsModelWithItsOwnConfiguration) {
   ASSERT_NE(saved->config(), nullptr);
   EXPECT_EQ(*saved->config(), model->config());
   FaclPolicy reference(model);
-  const auto player = saved->make();
+  const auto player = saved->make(0);
   reference.begin_episode({}, false);
   player->begin_episode({}, false);
   Rng rng(2);
@@ -90,8 +90,8 @@ TEST(SavedPolicy, AnMlpFilePlaysAsTheMlpWithTheGamesConfiguration) {
   const auto saved = load_saved_policy(file, Role::kEvader);
   EXPECT_STREQ(saved->kind_name(), "mlp");
   EXPECT_EQ(saved->config(), nullptr);
-  MlpPolicy reference(load_mlp_policy(file, Role::kEvader));
-  const auto player = saved->make();
+  MlpPolicy reference(load_mlp_policy(file, Role::kEvader), 0);
+  const auto player = saved->make(0);
   Rng rng(3);
   for (int i = 0; i < 200; ++i) {
     const AgentView v = random_view(rng);
@@ -136,7 +136,7 @@ TEST(SavedPolicy, AddSavedGivesEachAgentItsOwnPlayer) {
   const auto file = temp("lineup_mlp.json");
   write_mlp(file, "pursuer");
   Lineup lineup;
-  add_saved(lineup, *load_saved_policy(file, Role::kPursuer), 3);
+  add_saved(lineup, *load_saved_policy(file, Role::kPursuer), 3, 0);
   ASSERT_EQ(lineup.size(), 3);
   EXPECT_NE(&lineup[0], &lineup[1]);
   EXPECT_NE(&lineup[1], &lineup[2]);
@@ -162,7 +162,7 @@ TEST(SavedPolicy, AnOverflowingNetworkIsStoppedAtItsFirstStepNamingItsFile) {
   c.evader.policy = PolicyKind::kFlee;
   const Sim sim(testing::make_arena(Vec3(35, 35, 20), {}, {s}), c);
   Lineup lineup;
-  add_saved(lineup, *saved, 1);
+  add_saved(lineup, *saved, 1, 0);
   add_configured(lineup, c, Role::kEvader, 1, 3);
   SimState state(sim);
   try {

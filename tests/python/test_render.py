@@ -5,6 +5,7 @@ import html
 import json
 import re
 
+import gymnasium
 import numpy as np
 import pytest
 
@@ -68,6 +69,17 @@ def test_human_mode_writes_the_replay_for_a_browser_and_returns_none(tmp_path):
     assert env.render() is None
     assert replay_of(out)[0]["frames"] == 5
     env.close()
+
+
+def test_render_fps_is_one_frame_a_step_of_the_configured_dt():
+    for dt, fps in ((0.1, 10), (0.05, 20), (0.25, 4)):
+        envs = [peg3d.parallel_env(opponents={"evader": "flee"}, set={"dt": dt}),
+                gymnasium.make("peg3d/Pursuer-v0", set={"dt": dt}).unwrapped,
+                gymnasium.make_vec("peg3d/Pursuer-v0", num_envs=2, vectorization_mode="vector_entry_point",
+                                   set={"dt": dt})]
+        for env in envs:
+            assert env.metadata["render_fps"] == pytest.approx(fps), type(env).__name__
+            env.close()
 
 
 def test_rgb_array_gives_the_game_as_it_stands_as_an_image():

@@ -1,6 +1,7 @@
 """peg3d.vector_env: Gymnasium's VectorEnv contract, next-step autoreset, zero-copy buffers, thread independence."""
 
 import numpy as np
+import pytest
 
 import peg3d
 from conftest import SHORT
@@ -99,6 +100,24 @@ def test_the_games_spread_over_the_maps_scenarios_from_the_first_episode():
         np.testing.assert_array_equal(v._batch.agent_states(g)[:, :3], one._batch.agent_states(0)[:, :3])
         one.close()
     v.close()
+
+
+def test_a_list_of_scenarios_takes_turns_in_its_order_repeats_and_all():
+    # scenario=[S4, S1, S4]: game g starts where a game of the (g mod 3)-th named scenario starts
+    names = ["S4", "S1", "S4"]
+    v = peg3d.vector_env(map="maps/paper.yaml", num_envs=3, threads=1, scenario=names, opponents={"evader": "flee"})
+    assert v.scenarios == names
+    v.reset(seed=0)
+    for g, name in enumerate(names):
+        one = peg3d.vector_env(map="maps/paper.yaml", num_envs=1, threads=1, scenario=name, opponents={"evader": "flee"})
+        one.reset(seed=0)
+        np.testing.assert_array_equal(v._batch.agent_states(g)[:, :3], one._batch.agent_states(0)[:, :3])
+        one.close()
+    v.close()
+    with pytest.raises(TypeError, match="scenario"):
+        peg3d.vector_env(map="maps/paper.yaml", scenario=["S1", 2])
+    with pytest.raises(peg3d.InputError, match="S9"):
+        peg3d.vector_env(map="maps/paper.yaml", scenario=["S1", "S9"])
 
 
 def test_states_are_every_games_state_in_its_space():
