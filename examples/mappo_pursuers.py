@@ -22,71 +22,25 @@ import numpy as np
 import torch
 from torch import nn
 
-import peg3d
-from ppo_pursuer import RunningStats, mlp, save_policy
-
-
-class Games:
-    """One vector env per evader policy, the games split among them, seen as one batch of pursuer arrays."""
-
-    def __init__(self, opponents, num_envs, seed, **kw):
-        k = len(opponents)
-        if num_envs < k:
-            raise SystemExit(f"--num-envs {num_envs}: at least one game per opponent ({k})")
-        self.sizes = [num_envs // k + (i < num_envs % k) for i in range(k)]
-        self.envs = [peg3d.vector_env(num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=0, **kw)
-                     for i, (n, o) in enumerate(zip(self.sizes, opponents))]
-        e = self.envs[0]
-        self.pursuers = e.agent_counts["pursuer"]
-        self.obs_size = e.single_observation_space["pursuer"].shape[-1]
-        self.state_size = e.single_state_space.shape[0]
-        self.bound = float(e.single_action_space["pursuer"].high[0, 0])
-
-    def reset(self, seed):
-        obs = [e.reset(seed=seed + i)[0]["pursuer"] for i, e in enumerate(self.envs)]
-        return np.concatenate(obs).astype(np.float64), self.states()
-
-    def states(self):
-        return np.concatenate([e.states() for e in self.envs]).astype(np.float64)
-
-    def step(self, a):
-        """Per game and pursuer: observation, reward, terminated, truncated, acted, and a capture's success term;
-        per game whether this step reset it (its episode ended in the step before); then the games' states."""
-        out, lo = [], 0
-        for e, n in zip(self.envs, self.sizes):
-            obs, rew, term, trunc, info = e.step({"pursuer": a[lo:lo + n]})
-            out.append((obs["pursuer"], rew["pursuer"], term["pursuer"], trunc["pursuer"], info["acted"]["pursuer"],
-                        info["reward_terms"]["pursuer"]["success"] > 0, info["reset"].astype(bool)))
-            lo += n
-        parts = [np.concatenate(p) for p in zip(*out)]
-        parts[0] = parts[0].astype(np.float64)
-        return parts, self.states()
+from ppo_pursuer import RunningStats, add_training_arguments, load_policy, make_games, mlp, save_policy
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--map", default="maps/pack.yaml")
-    ap.add_argument("--scenario", help="one start of the map (default: those with its first start's teams)")
-    ap.add_argument("--opponent", action="append", help="an evader policy; repeat to mix (default: flee)")
-    ap.add_argument("--steps", type=int, default=2_000_000, help="env steps (games x steps) to train for")
-    ap.add_argument("--num-envs", type=int, default=32)
-    ap.add_argument("--threads", type=int, default=1)
-    ap.add_argument("--rollout", type=int, default=128, help="steps per game per update")
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--set", action="append", default=[], help="configuration override key=value")
-    ap.add_argument("--out", default="mappo_pursuers.json")
+    add_training_arguments(ap, map="maps/pack.yaml", steps=2_000_000, threads=1, out="mappo_pursuers.json")
     args = ap.parse_args()
     opponents = args.opponent or ["flee"]
     torch.manual_seed(args.seed)
     torch.set_num_threads(1)
-    env = Games(opponents, args.num_envs, args.seed, map=args.map, threads=args.threads, scenario=args.scenario,
-                set=dict(s.split("=", 1) for s in args.set))
+    env = make_games(args)
     K, n_obs, n_state, bound = env.pursuers, env.obs_size, env.state_size, env.bound
     actor = mlp([n_obs, 64, 64, 2], 0.01)
     critic = mlp([n_state + K, 128, 128, 1], 1.0)  # the state and a one-hot of the pursuer it values
-    log_std = nn.Parameter(torch.full((2,), math.log(0.5 * bound)))
+    log_std = nn.Parameter(torch.full((2,), math.log(args.init_std * bound)))
     opt = torch.optim.Adam(list(actor.parameters()) + list(critic.parameters()) + [log_std], lr=3e-4)
     obs_stats, state_stats = RunningStats(n_obs), RunningStats(n_state)
+    if args.init:
+        load_policy(args.init, actor, obs_stats)
     eye = np.broadcast_to(np.eye(K), (args.num_envs, K, K))
     gamma, lam, clip = 0.99, 0.95, 0.2
     N, T = args.num_envs, args.rollout
@@ -95,7 +49,7 @@ def main():
         s = (states - state_stats.mean) / state_stats.std
         return torch.as_tensor(np.concatenate([np.repeat(s[:, None, :], K, axis=1), eye], axis=-1), dtype=torch.float32)
 
-    x, s = env.reset(seed=args.seed)
+    x, s = env.reset(seed=args.seed), env.states()
     last_capture = np.zeros(N, dtype=bool)
     done_steps, update, start = 0, 0, time.time()
     games = captures = 0
@@ -110,7 +64,8 @@ def main():
                 a = dist.sample()
                 logp = dist.log_prob(a).sum(-1)
             c = critic_input(s)
-            (x2, rew, term, trunc, acted, success, reset), s2 = env.step(a.numpy().astype(np.float64))
+            x2, rew, term, trunc, acted, success, reset = env.step(a.numpy().astype(np.float64))
+            s2 = env.states()
             buf["x"].append(xn.numpy()); buf["a"].append(a.numpy()); buf["logp"].append(logp.numpy())
             buf["r"].append(rew); buf["term"].append(term); buf["trunc"].append(trunc); buf["valid"].append(acted)
             buf["c"].append(c.numpy()); buf["c2"].append(critic_input(s2).numpy())
@@ -146,7 +101,7 @@ def main():
                 pg = -torch.min(ratio * adv_t[chunk], ratio.clamp(1 - clip, 1 + clip) * adv_t[chunk]).mean()
                 vl = ((critic(cs[chunk]).squeeze(-1) - ret_t[chunk]) ** 2).mean()
                 opt.zero_grad()
-                (pg + 0.5 * vl).backward()
+                ((pg if update >= args.critic_warmup else 0.0 * pg) + 0.5 * vl).backward()
                 nn.utils.clip_grad_norm_(list(actor.parameters()) + list(critic.parameters()), 0.5)
                 opt.step()
         update += 1
@@ -155,7 +110,7 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "games": games, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             games = captures = 0
-    save_policy(args.out, actor, obs_stats, bound, opponents, trained_by="examples/mappo_pursuers.py")
+    save_policy(args.out, actor, obs_stats, bound, opponents, log_std, args.play, trained_by="examples/mappo_pursuers.py")
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 
 

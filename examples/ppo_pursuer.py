@@ -8,10 +8,14 @@ and saves it as an MLP policy file the C++ side plays (game/mlp_policy.hpp, docs
 With several --opponent, the games are split evenly among them (one vector env per evader, stepped in turn):
 every update sees every opponent.
 
-The pursuer sees the 20 entries of its observation (no neighbours: a 1 v 1 game), normalized by running
-statistics that are saved with the network. Its policy is a Gaussian about action_bound * tanh(net(obs)); the
-saved file keeps the mean, which is what the C++ side plays (greedy). Autoreset is next-step: the step that
-resets a game is no transition and is left out of the loss.
+With several --scenario, the games take those starts in turn; a start named twice is played twice as often.
+
+The pursuer sees the 20 entries of its observation (no neighbours: a 1 v 1 game; 2 more with limited sight),
+normalized by running statistics that are saved with the network. Its policy is a Gaussian about
+action_bound * tanh(net(obs)) with a learnt standard deviation; the saved file keeps the mean and that deviation,
+and says how the C++ side plays it (--play: the mean, or samples as in training). Autoreset is next-step: the step
+that resets a game is no transition and is left out of the loss. --init starts from a saved network (its input
+normalization then stays the saved one) to train it further, with --critic-warmup updates for its new critic.
 """
 
 import argparse
@@ -29,8 +33,11 @@ import peg3d
 class RunningStats:
     def __init__(self, n):
         self.count, self.mean, self.m2 = 1e-4, np.zeros(n), np.ones(n)
+        self.frozen = False
 
     def update(self, x):
+        if self.frozen:
+            return
         x = np.asarray(x, dtype=np.float64).reshape(-1, self.mean.size)
         n = x.shape[0]
         delta = x.mean(0) - self.mean
@@ -54,70 +61,124 @@ def mlp(sizes, out_scale=1.0):
     return nn.Sequential(*layers)
 
 
-def save_policy(path, actor, stats, bound, opponents, trained_by="examples/ppo_pursuer.py"):
+def save_policy(path, actor, stats, bound, opponents, log_std, play="mean", trained_by="examples/ppo_pursuer.py"):
+    """The actor as a peg3d-mlp file, with the Gaussian's learnt standard deviation (action_std, rad): the C++
+    side plays the mean, or with play="sample" draws about it as training did."""
     layers = [{"weights": m.weight.detach().double().tolist(), "bias": m.bias.detach().double().tolist()}
               for m in actor if isinstance(m, nn.Linear)]
     doc = {"format": "peg3d-mlp", "version": 1, "role": "pursuer", "inputs": int(stats.mean.size),
            "action_bound": float(bound), "input_mean": stats.mean.tolist(), "input_std": stats.std.tolist(),
-           "layers": layers, "trained_by": trained_by, "opponents": list(opponents)}
+           "layers": layers, "action_std": log_std.detach().exp().double().tolist(), "play": play,
+           "trained_by": trained_by, "opponents": list(opponents)}
     with open(path, "w") as f:
         json.dump(doc, f)
 
 
-class MixedOpponents:
-    """One vector env per evader, the games split among them, seen as one batch of pursuer arrays."""
+def load_policy(path, actor, stats):
+    """Starts `actor` and `stats` from a saved peg3d-mlp pursuer of the same shape (--init): to train on."""
+    with open(path) as f:
+        doc = json.load(f)
+    linear = [m for m in actor if isinstance(m, nn.Linear)]
+    shapes = [(len(l["weights"]), len(l["weights"][0])) for l in doc.get("layers", [])]
+    if doc.get("format") != "peg3d-mlp" or shapes != [tuple(m.weight.shape) for m in linear]:
+        raise SystemExit(f"--init {path}: not a peg3d-mlp network of layers {[tuple(m.weight.shape) for m in linear]}")
+    with torch.no_grad():
+        for m, layer in zip(linear, doc["layers"]):
+            m.weight.copy_(torch.tensor(layer["weights"]))
+            m.bias.copy_(torch.tensor(layer["bias"]))
+    # The saved normalization, kept: the network was trained on inputs scaled so, and moving the scale under the
+    # new games' inputs would change what it plays before it has learnt anything from them.
+    stats.mean, stats.count = np.array(doc["input_mean"]), 1.0
+    stats.m2 = np.array(doc["input_std"]) ** 2 - 1e-8
+    stats.frozen = True
+    return doc
+
+
+class Games:
+    """One vector env per evader policy, the games split among them, seen as one batch of pursuer arrays
+    (games x pursuers x ...). Pursuers see no neighbours: an MLP the C++ side plays gets none in its view."""
 
     def __init__(self, opponents, num_envs, seed, **kw):
         k = len(opponents)
         if num_envs < k:
             raise SystemExit(f"--num-envs {num_envs}: at least one game per opponent ({k})")
         self.sizes = [num_envs // k + (i < num_envs % k) for i in range(k)]
-        self.envs = [peg3d.vector_env(num_envs=n, opponents={"evader": o}, seed=seed + i, **kw)
+        self.envs = [peg3d.vector_env(num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=0, **kw)
                      for i, (n, o) in enumerate(zip(self.sizes, opponents))]
-        self.single_observation_space = self.envs[0].single_observation_space
-        self.single_action_space = self.envs[0].single_action_space
+        e = self.envs[0]
+        self.scenarios = e.scenarios
+        self.pursuers = e.agent_counts["pursuer"]
+        self.obs_size = e.single_observation_space["pursuer"].shape[-1]
+        self.state_size = e.single_state_space.shape[0]
+        self.bound = float(e.single_action_space["pursuer"].high[0, 0])
 
     def reset(self, seed):
-        return np.concatenate([e.reset(seed=seed + i)[0]["pursuer"][:, 0] for i, e in enumerate(self.envs)])
+        obs = [e.reset(seed=seed + i)[0]["pursuer"] for i, e in enumerate(self.envs)]
+        return np.concatenate(obs).astype(np.float64)
+
+    def states(self):
+        return np.concatenate([e.states() for e in self.envs]).astype(np.float64)
 
     def step(self, a):
-        """The pursuer's observation, reward, terminated, truncated, acted and success flags, one row per game."""
+        """Per game and pursuer: observation, reward, terminated, truncated, acted, and a capture's success term;
+        then per game whether this step reset it (its episode ended in the step before)."""
         out, lo = [], 0
         for e, n in zip(self.envs, self.sizes):
-            obs, rew, term, trunc, info = e.step({"pursuer": a[lo:lo + n, None, :]})
-            out.append((obs["pursuer"][:, 0], rew["pursuer"][:, 0], term["pursuer"][:, 0], trunc["pursuer"][:, 0],
-                        info["acted"]["pursuer"][:, 0], info["reward_terms"]["pursuer"]["success"][:, 0] > 0))
+            obs, rew, term, trunc, info = e.step({"pursuer": a[lo:lo + n]})
+            out.append((obs["pursuer"], rew["pursuer"], term["pursuer"], trunc["pursuer"], info["acted"]["pursuer"],
+                        info["reward_terms"]["pursuer"]["success"] > 0, info["reset"].astype(bool)))
             lo += n
-        return [np.concatenate(parts) for parts in zip(*out)]
+        parts = [np.concatenate(p) for p in zip(*out)]
+        parts[0] = parts[0].astype(np.float64)
+        return parts
+
+
+def add_training_arguments(ap, map, steps, threads, out):
+    """The flags examples/ppo_pursuer.py and examples/mappo_pursuers.py share."""
+    ap.add_argument("--map", default=map)
+    ap.add_argument("--scenario", action="append",
+                    help="a start of the map; repeat to play several in turn, a name twice to play it twice as often "
+                         "(default: the map's starts with its first start's teams)")
+    ap.add_argument("--opponent", action="append",
+                    help="an evader: flee, flee-apollonius, hide or a saved policy file; repeat to mix (default: flee)")
+    ap.add_argument("--steps", type=int, default=steps, help="env steps (games x steps) to train for")
+    ap.add_argument("--num-envs", type=int, default=32)
+    ap.add_argument("--threads", type=int, default=threads)
+    ap.add_argument("--rollout", type=int, default=128, help="steps per game per update")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--set", action="append", default=[], help="configuration override key=value")
+    ap.add_argument("--init", help="start the actor from this saved peg3d-mlp network (of this script's shape)")
+    ap.add_argument("--init-std", type=float, default=0.5,
+                    help="the exploration's initial standard deviation, as a fraction of the steering bound")
+    ap.add_argument("--critic-warmup", type=int, default=0,
+                    help="updates that train the critic alone before the actor moves (for --init's new critic)")
+    ap.add_argument("--play", choices=["mean", "sample"], default="mean",
+                    help="how the C++ side plays the saved network: its mean action, or drawn from its Gaussian")
+    ap.add_argument("--out", default=out)
+
+
+def make_games(args):
+    return Games(args.opponent or ["flee"], args.num_envs, args.seed, map=args.map, threads=args.threads,
+                 scenario=args.scenario, set=dict(s.split("=", 1) for s in args.set))
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--map", default="maps/paper.yaml")
-    ap.add_argument("--opponent", action="append",
-                    help="an evader: flee, flee-apollonius or a saved policy file; repeat to mix (default: flee)")
-    ap.add_argument("--steps", type=int, default=1_000_000, help="env steps to train for")
-    ap.add_argument("--num-envs", type=int, default=32)
-    ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--rollout", type=int, default=128, help="steps per game per update")
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--set", action="append", default=[], help="configuration override key=value")
-    ap.add_argument("--out", default="ppo_pursuer.json")
+    add_training_arguments(ap, map="maps/paper.yaml", steps=1_000_000, threads=2, out="ppo_pursuer.json")
     args = ap.parse_args()
     opponents = args.opponent or ["flee"]
     torch.manual_seed(args.seed)
     torch.set_num_threads(1)
-    settings = dict(s.split("=", 1) for s in args.set)
-    env = MixedOpponents(opponents, args.num_envs, args.seed, map=args.map, threads=args.threads, neighbours=0,
-                         set=settings)
-    n_obs = env.single_observation_space["pursuer"].shape[-1]
-    bound = float(env.single_action_space["pursuer"].high[0, 0])
+    env = make_games(args)
+    n_obs, bound = env.obs_size, env.bound
     actor, critic = mlp([n_obs, 64, 64, 2], 0.01), mlp([n_obs, 64, 64, 1], 1.0)
-    log_std = nn.Parameter(torch.full((2,), math.log(0.5 * bound)))
+    log_std = nn.Parameter(torch.full((2,), math.log(args.init_std * bound)))
     opt = torch.optim.Adam(list(actor.parameters()) + list(critic.parameters()) + [log_std], lr=3e-4)
     stats = RunningStats(n_obs)
+    if args.init:
+        load_policy(args.init, actor, stats)
     gamma, lam, clip = 0.99, 0.95, 0.2
-    x = env.reset(seed=args.seed).astype(np.float64)
+    x = env.reset(seed=args.seed)[:, 0]
     N, T = args.num_envs, args.rollout
     done_steps, update, start = 0, 0, time.time()
     episodes = captures = 0
@@ -131,8 +192,8 @@ def main():
                 dist = torch.distributions.Normal(mu, log_std.exp())
                 a = dist.sample()
                 logp = dist.log_prob(a).sum(-1)
-            o2, rew, term, trunc, acted, success = env.step(a.numpy().astype(np.float64))
-            x2 = o2.astype(np.float64)
+            x2, rew, term, trunc, acted, success, _ = (z[:, 0] if z.ndim > 1 else z
+                                                       for z in env.step(a.numpy().astype(np.float64)[:, None, :]))
             buf["x"].append(xn.numpy()); buf["a"].append(a.numpy()); buf["logp"].append(logp.numpy())
             buf["r"].append(rew); buf["term"].append(term)
             buf["trunc"].append(trunc); buf["valid"].append(acted)
@@ -167,7 +228,7 @@ def main():
                 ratio = (dist.log_prob(ab).sum(-1) - lb).exp()
                 pg = -torch.min(ratio * adv_t[chunk], ratio.clamp(1 - clip, 1 + clip) * adv_t[chunk]).mean()
                 vl = ((critic(xb).squeeze(-1) - ret_t[chunk]) ** 2).mean()
-                loss = pg + 0.5 * vl - 0.0 * dist.entropy().mean()
+                loss = (pg if update >= args.critic_warmup else 0.0 * pg) + 0.5 * vl
                 opt.zero_grad()
                 loss.backward()
                 nn.utils.clip_grad_norm_(list(actor.parameters()) + list(critic.parameters()), 0.5)
@@ -178,7 +239,7 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "episodes": episodes, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             episodes = captures = 0
-    save_policy(args.out, actor, stats, bound, opponents)
+    save_policy(args.out, actor, stats, bound, opponents, log_std, args.play)
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 
 

@@ -39,6 +39,9 @@ def test_a_short_ppo_run_trains_and_saves_a_policy_the_cpp_side_plays(tmp_path):
     doc = json.loads(out.read_text())
     assert doc["format"] == "peg3d-mlp" and doc["inputs"] == 20
     assert doc["opponents"] == ["flee", str(ROOT / "tests/data/policies/robust_evader.json")]
+    # the Gaussian's learnt standard deviation, near its start of half the bound after 4 096 steps; played by its mean
+    assert len(doc["action_std"]) == 2 and all(0.3 < s / doc["action_bound"] < 0.7 for s in doc["action_std"])
+    assert doc["play"] == "mean"
     v = peg3d.vector_env(num_envs=2, opponents={"pursuer": str(out), "evader": "flee"}, neighbours=0,
                          set={"time_limit": 2.0})
     v.reset(seed=0)
