@@ -20,7 +20,8 @@ SOURCE = Path(__file__).resolve().parents[2]
 KWARGS = {"map": "maps/paper.yaml", "set": {"time_limit": 20.0}}
 
 
-def test_stable_baselines3_checks_and_trains_the_registered_pursuer():
+def test_stable_baselines3_checks_and_trains_the_registered_pursuer(tmp_path, monkeypatch):
+    monkeypatch.setenv("SB3_LOGDIR", str(tmp_path))  # SB3's logger makes a folder, by default one more in /tmp per run
     from stable_baselines3 import PPO
     from stable_baselines3.common.env_checker import check_env
     from stable_baselines3.common.env_util import make_vec_env
