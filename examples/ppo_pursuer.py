@@ -9,6 +9,7 @@ With several --opponent, the games are split evenly among them (one vector env p
 every update sees every opponent.
 
 With several --scenario, the games take those starts in turn; a start named twice is played twice as often.
+With several --map, one network trains on them all (one vector env per map and opponent).
 
 The pursuer sees the 20 entries of its observation (no neighbours: a 1 v 1 game; 2 more with limited sight),
 normalized by running statistics that are saved with the network. Its policy is a Gaussian about
@@ -95,18 +96,21 @@ def load_policy(path, actor, stats):
 
 
 class Games:
-    """One vector env per evader policy, the games split among them, seen as one batch of pursuer arrays
+    """One vector env per map and evader policy, the games split among them, seen as one batch of pursuer arrays
     (games x pursuers x ...). Pursuers see no neighbours: an MLP the C++ side plays gets none in its view."""
 
-    def __init__(self, opponents, num_envs, seed, **kw):
-        k = len(opponents)
+    def __init__(self, opponents, maps, num_envs, seed, **kw):
+        pairs = [(m, o) for m in maps for o in opponents]
+        k = len(pairs)
         if num_envs < k:
-            raise SystemExit(f"--num-envs {num_envs}: at least one game per opponent ({k})")
+            raise SystemExit(f"--num-envs {num_envs}: at least one game per map and opponent ({k})")
         self.sizes = [num_envs // k + (i < num_envs % k) for i in range(k)]
-        self.envs = [peg3d.vector_env(num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=0, **kw)
-                     for i, (n, o) in enumerate(zip(self.sizes, opponents))]
+        self.envs = [peg3d.vector_env(map=m, num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=0, **kw)
+                     for i, (n, (m, o)) in enumerate(zip(self.sizes, pairs))]
         e = self.envs[0]
-        self.scenarios = e.scenarios
+        shapes = {(v.single_observation_space["pursuer"].shape, v.single_state_space.shape) for v in self.envs}
+        if len(shapes) > 1:
+            raise SystemExit(f"--map: the maps give pursuers of different numbers or observations ({sorted(shapes)})")
         self.pursuers = e.agent_counts["pursuer"]
         self.obs_size = e.single_observation_space["pursuer"].shape[-1]
         self.state_size = e.single_state_space.shape[0]
@@ -135,7 +139,9 @@ class Games:
 
 def add_training_arguments(ap, map, steps, threads, out):
     """The flags examples/ppo_pursuer.py and examples/mappo_pursuers.py share."""
-    ap.add_argument("--map", default=map)
+    ap.add_argument("--map", action="append",
+                    help=f"a map to train on; repeat to train one network on several, their games split evenly "
+                         f"(default: {map})")
     ap.add_argument("--scenario", action="append",
                     help="a start of the map; repeat to play several in turn, a name twice to play it twice as often "
                          "(default: the map's starts with its first start's teams)")
@@ -155,11 +161,12 @@ def add_training_arguments(ap, map, steps, threads, out):
     ap.add_argument("--play", choices=["mean", "sample"], default="mean",
                     help="how the C++ side plays the saved network: its mean action, or drawn from its Gaussian")
     ap.add_argument("--out", default=out)
+    ap.set_defaults(default_map=map)
 
 
 def make_games(args):
-    return Games(args.opponent or ["flee"], args.num_envs, args.seed, map=args.map, threads=args.threads,
-                 scenario=args.scenario, set=dict(s.split("=", 1) for s in args.set))
+    return Games(args.opponent or ["flee"], args.map or [args.default_map], args.num_envs, args.seed,
+                 threads=args.threads, scenario=args.scenario, set=dict(s.split("=", 1) for s in args.set))
 
 
 def main():
