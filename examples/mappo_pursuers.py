@@ -64,7 +64,7 @@ def main():
                 a = dist.sample()
                 logp = dist.log_prob(a).sum(-1)
             c = critic_input(s)
-            x2, rew, term, trunc, acted, success, reset = env.step(a.numpy().astype(np.float64))
+            x2, rew, term, trunc, acted, caught, reset = env.step(a.numpy().astype(np.float64))
             s2 = env.states()
             buf["x"].append(xn.numpy()); buf["a"].append(a.numpy()); buf["logp"].append(logp.numpy())
             buf["r"].append(rew); buf["term"].append(term); buf["trunc"].append(trunc); buf["valid"].append(acted)
@@ -72,7 +72,7 @@ def main():
             # A game reset now ended in the step before: by a capture when its last step captured.
             games += int(reset.sum())
             captures += int((reset & last_capture).sum())
-            last_capture = success.any(axis=1)
+            last_capture = caught
             x, s = x2, s2
         done_steps += N * T
         b = {k: np.asarray(v) for k, v in buf.items()}  # (T, N, K, ...)

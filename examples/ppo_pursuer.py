@@ -124,13 +124,14 @@ class Games:
         return np.concatenate([e.states() for e in self.envs]).astype(np.float64)
 
     def step(self, a):
-        """Per game and pursuer: observation, reward, terminated, truncated, acted, and a capture's success term;
-        then per game whether this step reset it (its episode ended in the step before)."""
+        """Per game and pursuer: observation, reward, terminated, truncated and acted; then per game whether an
+        evader was caught in this step, and whether this step reset it (its episode ended in the step before).
+        A catch is read from the game, not from the reward, which has no capture term under some rewards."""
         out, lo = [], 0
         for e, n in zip(self.envs, self.sizes):
             obs, rew, term, trunc, info = e.step({"pursuer": a[lo:lo + n]})
             out.append((obs["pursuer"], rew["pursuer"], term["pursuer"], trunc["pursuer"], info["acted"]["pursuer"],
-                        info["reward_terms"]["pursuer"]["success"] > 0, info["reset"].astype(bool)))
+                        info["captured"]["evader"].any(axis=1), info["reset"].astype(bool)))
             lo += n
         parts = [np.concatenate(p) for p in zip(*out)]
         parts[0] = parts[0].astype(np.float64)
@@ -199,14 +200,14 @@ def main():
                 dist = torch.distributions.Normal(mu, log_std.exp())
                 a = dist.sample()
                 logp = dist.log_prob(a).sum(-1)
-            x2, rew, term, trunc, acted, success, _ = (z[:, 0] if z.ndim > 1 else z
+            x2, rew, term, trunc, acted, caught, _ = (z[:, 0] if z.ndim > 1 else z
                                                        for z in env.step(a.numpy().astype(np.float64)[:, None, :]))
             buf["x"].append(xn.numpy()); buf["a"].append(a.numpy()); buf["logp"].append(logp.numpy())
             buf["r"].append(rew); buf["term"].append(term)
             buf["trunc"].append(trunc); buf["valid"].append(acted)
             buf["x2"].append(((x2 - stats.mean) / stats.std).astype(np.float32))
             episodes += int(((term | trunc) & acted).sum())
-            captures += int((term & success).sum())
+            captures += int((term & caught).sum())
             x = x2
         done_steps += N * T
         b = {k: np.asarray(v) for k, v in buf.items()}  # (T, N, ...)
