@@ -29,7 +29,6 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_training_arguments(ap, map="maps/pack.yaml", steps=2_000_000, threads=1, out="mappo_pursuers.json")
     args = ap.parse_args()
-    opponents = args.opponent or ["flee"]
     torch.manual_seed(args.seed)
     torch.set_num_threads(1)
     env = make_games(args)
@@ -110,7 +109,8 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "games": games, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             games = captures = 0
-    save_policy(args.out, actor, obs_stats, bound, opponents, log_std, args.play, trained_by="examples/mappo_pursuers.py")
+    save_policy(args.out, actor, obs_stats, bound, env.opponents, log_std, args.play,
+                trained_by="examples/mappo_pursuers.py")
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 
 

@@ -100,6 +100,7 @@ class Games:
     (games x pursuers x ...). Pursuers see no neighbours: an MLP the C++ side plays gets none in its view."""
 
     def __init__(self, opponents, maps, num_envs, seed, **kw):
+        self.opponents = list(opponents)
         pairs = [(m, o) for m in maps for o in opponents]
         k = len(pairs)
         if num_envs < k:
@@ -174,7 +175,6 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_training_arguments(ap, map="maps/paper.yaml", steps=1_000_000, threads=2, out="ppo_pursuer.json")
     args = ap.parse_args()
-    opponents = args.opponent or ["flee"]
     torch.manual_seed(args.seed)
     torch.set_num_threads(1)
     env = make_games(args)
@@ -247,7 +247,7 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "episodes": episodes, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             episodes = captures = 0
-    save_policy(args.out, actor, stats, bound, opponents, log_std, args.play)
+    save_policy(args.out, actor, stats, bound, env.opponents, log_std, args.play)
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 
 

@@ -99,6 +99,9 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   layout_.neighbours = settings_.neighbours;
   const auto& all = arena->map().scenarios;
   if (all.empty()) throw InvalidParameter("scenario", "(none)", "the map has no scenario");
+  const auto same_teams = [](const world::Scenario& a, const world::Scenario& b) {
+    return a.pursuers.size() == b.pursuers.size() && a.evaders.size() == b.evaders.size();
+  };
   for (const std::string& name : settings_.scenarios) {
     const auto it = std::find_if(all.begin(), all.end(), [&](const world::Scenario& s) { return s.name == name; });
     if (it == all.end()) {
@@ -107,7 +110,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
       throw InvalidParameter("scenario", name, "is not a scenario of the map (" + names + ")");
     }
     const world::Scenario& head = all[std::size_t(scenarios_.empty() ? it - all.begin() : scenarios_.front())];
-    if (it->pursuers.size() != head.pursuers.size() || it->evaders.size() != head.evaders.size()) {
+    if (!same_teams(*it, head)) {
       throw InvalidParameter("scenario", name, "has other numbers of pursuers and evaders than " + head.name +
                                                    " (a batch plays one team size)");
     }
@@ -115,9 +118,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   }
   if (settings_.scenarios.empty()) {
     for (std::size_t i = 0; i < all.size(); ++i) {
-      if (all[i].pursuers.size() == all[0].pursuers.size() && all[i].evaders.size() == all[0].evaders.size()) {
-        scenarios_.push_back(int(i));
-      }
+      if (same_teams(all[i], all[0])) scenarios_.push_back(int(i));
     }
   }
   const world::Scenario& first = all[std::size_t(scenarios_.front())];

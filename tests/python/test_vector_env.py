@@ -88,18 +88,22 @@ def test_each_game_is_the_parallel_env_game_of_its_seed():
     assert len(set(starts.tolist())) == 3
 
 
-def test_the_games_spread_over_the_maps_scenarios_from_the_first_episode():
-    # episode e of game g plays scenario (g + e) mod count: with 4 games on the paper map's 4 starts, game g
-    # starts where a game of scenario S(g+1) starts
-    v = peg3d.vector_env(map="maps/paper.yaml", num_envs=4, threads=1, opponents={"evader": "flee"})
+def assert_game_g_starts_as_scenario_g(v, names):
+    """After a reset with seed 0, game g of the paper-map env `v` starts where a one-game env of names[g] starts."""
     v.reset(seed=0)
-    names = ["S1", "S2", "S3", "S4"]
     for g, name in enumerate(names):
         one = peg3d.vector_env(map="maps/paper.yaml", num_envs=1, threads=1, scenario=name, opponents={"evader": "flee"})
         one.reset(seed=0)
         np.testing.assert_array_equal(v._batch.agent_states(g)[:, :3], one._batch.agent_states(0)[:, :3])
         one.close()
     v.close()
+
+
+def test_the_games_spread_over_the_maps_scenarios_from_the_first_episode():
+    # episode e of game g plays scenario (g + e) mod count: with 4 games on the paper map's 4 starts, game g
+    # starts where a game of scenario S(g+1) starts
+    v = peg3d.vector_env(map="maps/paper.yaml", num_envs=4, threads=1, opponents={"evader": "flee"})
+    assert_game_g_starts_as_scenario_g(v, ["S1", "S2", "S3", "S4"])
 
 
 def test_a_list_of_scenarios_takes_turns_in_its_order_repeats_and_all():
@@ -107,13 +111,7 @@ def test_a_list_of_scenarios_takes_turns_in_its_order_repeats_and_all():
     names = ["S4", "S1", "S4"]
     v = peg3d.vector_env(map="maps/paper.yaml", num_envs=3, threads=1, scenario=names, opponents={"evader": "flee"})
     assert v.scenarios == names
-    v.reset(seed=0)
-    for g, name in enumerate(names):
-        one = peg3d.vector_env(map="maps/paper.yaml", num_envs=1, threads=1, scenario=name, opponents={"evader": "flee"})
-        one.reset(seed=0)
-        np.testing.assert_array_equal(v._batch.agent_states(g)[:, :3], one._batch.agent_states(0)[:, :3])
-        one.close()
-    v.close()
+    assert_game_g_starts_as_scenario_g(v, names)
     with pytest.raises(TypeError, match="scenario"):
         peg3d.vector_env(map="maps/paper.yaml", scenario=["S1", 2])
     with pytest.raises(peg3d.InputError, match="S9"):
