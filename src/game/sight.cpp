@@ -58,7 +58,7 @@ void prepare_sight(const Sim& sim, SimState& st) {
   }
 }
 
-bool in_sight(const Sim& sim, const SimState& st, const SightConfig& c, const KinematicState& self, const Vec3& centre,
+bool in_sight(const Sim& sim, const SimState& st, const sense::SightConfig& c, const KinematicState& self, const Vec3& centre,
               double radius) {
   const Vec3 line = centre - self.position;
   const double d2 = line.squaredNorm();
@@ -91,7 +91,7 @@ void look(const Sim& sim, SimState& st) {
   // Pooling, per team: for each opponent, the newest sighting among the sharers (the lower index among equally
   // new ones), then given to all of them: read before written, so the order of the agents does not matter.
   const auto shares = [&](int m) {
-    const SightConfig& c = st.agents[std::size_t(m)].config->sight;
+    const sense::SightConfig& c = st.agents[std::size_t(m)].config->sight;
     return c.enabled && c.share;
   };
   const int p = st.pursuers;

@@ -13,7 +13,7 @@ void prepare_sight(const Sim& sim, SimState& state);
 
 /// Whether `eye`, an agent at `self` with `config`, sees the sphere (centre, radius) now: within range and field
 /// of view, and a sight ray reaching it through the world at the state's time (sense/line_of_sight.hpp).
-bool in_sight(const Sim& sim, const SimState& state, const SightConfig& config, const KinematicState& self,
+bool in_sight(const Sim& sim, const SimState& state, const sense::SightConfig& config, const KinematicState& self,
               const Vec3& centre, double radius);
 
 /// Every agent in the game with limited sight looks at every opponent in the game: a seen one's sighting becomes

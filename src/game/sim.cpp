@@ -171,7 +171,7 @@ KinematicState SimState::known_state(int i, int j) const {
   const AgentState& o = agents[std::size_t(j)];
   if (!sight_limited(i)) return o.kinematics;
   const Sight::Sighting& m = sight.memory[std::size_t(i * agent_count() + j)];
-  if (agents[std::size_t(i)].config->sight.estimate == SightEstimate::kLastSeen || m.time == time) return m.state;
+  if (agents[std::size_t(i)].config->sight.estimate == sense::SightEstimate::kLastSeen || m.time == time) return m.state;
   // Dead reckoning: on at the velocity it had, within the arena (which the agent knows).
   KinematicState k = m.state;
   k.position = o.bounds.clamp(m.state.position + (time - m.time) * m.velocity);

@@ -211,7 +211,7 @@ class SimState {
   /// Whether agent i's sight is limited (its opponent inputs come from sight.memory).
   bool sight_limited(int i) const { return !sight.memory.empty() && agents[std::size_t(i)].config->sight.enabled; }
   /// What agent i takes agent j (an opponent) to be doing now: the truth with full information, else the estimate
-  /// its sighting gives (SightConfig::estimate).
+  /// its sighting gives (sense::SightConfig::estimate).
   KinematicState known_state(int i, int j) const;
   /// How old (s) agent i's knowledge of opponent j is: 0 with full information or while it sees j.
   double sighting_age(int i, int j) const {

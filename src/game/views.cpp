@@ -33,7 +33,7 @@ double own_map_obstacle_distance(const Sim& sim, const SimState& st, int i, cons
   const AgentState& a = st.agents[std::size_t(i)];
   KinematicState self = a.kinematics;
   self.position = p;
-  return perceive(a.role, *a.config, self, st.agents[std::size_t(a.opponent)].kinematics, sense_own_map(sim, st, i, p),
+  return perceive(a.role, a.config->observation, a.config->radius, self, st.agents[std::size_t(a.opponent)].kinematics, sense_own_map(sim, st, i, p),
                   sim.arena().bounds(), sim.arena().max_distance())
       .obstacle.distance;
 }
@@ -62,7 +62,7 @@ void update_view(const Sim& sim, SimState& st, int i) {
   // Exactly sensed, the field's distance bounds every mover's from below (sense_obstacle): kept for the step.
   const bool exact = sim.movers() != nullptr && !st.moving_field && !own_map;
   a.mover_clearance = {a.kinematics.position, exact ? st.time : -1.0, v.field.distance};
-  v.percept = perceive(a.role, *a.config, a.kinematics, v.other, v.field, sim.arena().bounds(),
+  v.percept = perceive(a.role, a.config->observation, a.config->radius, a.kinematics, v.other, v.field, sim.arena().bounds(),
                        sim.arena().max_distance());
 }
 

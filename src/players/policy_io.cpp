@@ -117,7 +117,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
       image["map"]["insert_agents"] = true;  // version 6 put the agents' echoes into the map
     }
     if (image.is_object() && version.get<long long>() < 8 && !image.contains("sight")) {
-      image["sight"] = config::to_json(SightConfig{});
+      image["sight"] = config::to_json(sense::SightConfig{});
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);

@@ -196,7 +196,7 @@ nlohmann::json agent_lidar(const game::Trace& trace, int i, const sense::Lidar& 
 // Agent i's limited sight (AgentConfig::sight): its field of view and range, and at every frame the opponent it
 // looked for (0xffffffff: not recorded, as in a trace from an older journal), whether it saw it and where it took
 // it to be.
-nlohmann::json agent_sight(const game::Trace& trace, int i, const game::SightConfig& sight) {
+nlohmann::json agent_sight(const game::Trace& trace, int i, const sense::SightConfig& sight) {
   std::vector<std::uint32_t> opponent;
   std::vector<std::uint8_t> visible;
   std::vector<float> estimate;

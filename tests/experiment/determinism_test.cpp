@@ -117,7 +117,7 @@ TEST(ExperimentDeterminism, MovingObstacleMapsMatchTheGoldenHashesOnOneAndTwoThr
 TEST(ExperimentDeterminism, LimitedSightMatchesTheGoldenHashOnOneAndTwoThreads) {
   game::GameConfig c = game::preset("peg3d");
   for (game::AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true, a->sight.fov = 240.0;
-  c.pursuer.sight.estimate = game::SightEstimate::kDeadReckoning;
+  c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
   c.pursuer.sight.share = true;
   const auto both = [&](int threads) {
     Fnv1a h;

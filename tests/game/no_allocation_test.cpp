@@ -43,7 +43,7 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
   if (sight) {
     // Limited sight, in a cone ahead, dead-reckoned and shared by the pursuers.
     for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true, a->sight.fov = 240.0;
-    c.pursuer.sight.estimate = SightEstimate::kDeadReckoning;
+    c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
     c.pursuer.sight.share = true;
   }
   const Sim sim(arena, c);

@@ -58,7 +58,7 @@ TEST(GameSight, AnOpponentBehindAPillarIsKnownWhereItWasLastSeen) {
 
 TEST(GameSight, DeadReckoningMovesTheLastSightingOnAtItsVelocityWithinTheArena) {
   GameConfig c = straight(true);
-  c.pursuer.sight.estimate = SightEstimate::kDeadReckoning;
+  c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
   c.evader.speed = 0.7;
   const Sim sim(pillar_room(), c);
   SimState st(sim);
@@ -155,7 +155,7 @@ TEST(GameSight, OnAnOpenArenaSightOnPlaysExactlyAsFullInformation) {
       c.pursuer.policy = pursuer;
       c.time_limit = 20;
       c.pursuer.sight.enabled = c.evader.sight.enabled = sight;
-      c.pursuer.sight.estimate = SightEstimate::kDeadReckoning;
+      c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
       const Sim sim(arena, c);
       results.push_back(testing::play_once(sim, testing::scenario("s", {3, 4, 5}, {20, 22, 6}), 9, &traces[sight]));
     }

@@ -231,7 +231,7 @@ TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
   // Version 7 agents had full information.
   doc["version"] = 7;
   doc["config"].erase("sight");
-  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().sight, SightConfig{});
+  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().sight, sense::SightConfig{});
   // Version 6 maps held the agents' echoes.
   doc["version"] = 6;
   doc["config"]["map"].erase("insert_agents");

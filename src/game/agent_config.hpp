@@ -1,0 +1,137 @@
+#pragma once
+// One agent's settings: who drives it, how it moves, senses, is rewarded and learns. Each part is declared beside
+// the code it configures (steering: geometry/kinematics.hpp, the guard: game/obstacle_guard.hpp, the percept:
+// game/percept.hpp, the reward: game/reward.hpp, FACL's rates: fuzzy/facl_learner.hpp, the sensors and the own
+// map: sense/); this header composes them, with the few fields that belong to the agent itself.
+
+#include <concepts>
+#include <string>
+#include <type_traits>
+
+#include "core/config_fields.hpp"
+#include "fuzzy/facl_learner.hpp"
+#include "game/obstacle_guard.hpp"
+#include "game/percept.hpp"
+#include "game/reward.hpp"
+#include "game/role.hpp"
+#include "geometry/kinematics.hpp"
+#include "sense/lidar.hpp"
+#include "sense/scan_map.hpp"
+#include "sense/sight.hpp"
+
+namespace peg3d::game {
+
+/// Who drives an agent when the game is played by policies (an external caller may instead pass its own
+/// steering commands to step()).
+enum class PolicyKind {
+  kFacl,                    ///< fuzzy actor-critic learning (both roles)
+  kPurePursuit,             ///< head straight at the opponent (pursuer)
+  kProportionalNavigation,  ///< 3D proportional navigation with gain pn_gain (pursuer)
+  kApollonius,              ///< aim at the Apollonius interception point (pursuer)
+  kFlee,                    ///< flee along the line of sight, repelled by walls and obstacles (evader)
+  kFleeApollonius,          ///< head for the far side of the evader's dominance region (evader)
+  kRandom,                  ///< random steering within the bound (both roles)
+  kSearch,                  ///< the partial game: chase in sight, else go to the last sighting and search (pursuer)
+  kHide,                    ///< the partial game: break line of sight behind an occluder when seen, else flee (evader)
+};
+inline constexpr config::EnumNames<PolicyKind, 9> kPolicyNames{{{PolicyKind::kFacl, "facl"},
+                                                                {PolicyKind::kPurePursuit, "pure-pursuit"},
+                                                                {PolicyKind::kProportionalNavigation, "pn"},
+                                                                {PolicyKind::kApollonius, "apollonius"},
+                                                                {PolicyKind::kFlee, "flee"},
+                                                                {PolicyKind::kFleeApollonius, "flee-apollonius"},
+                                                                {PolicyKind::kRandom, "random"},
+                                                                {PolicyKind::kSearch, "search"},
+                                                                {PolicyKind::kHide, "hide"}}};
+const char* to_string(PolicyKind p);
+/// Whether a policy can play `role` (facl and random play both; guidance laws pursue; flee policies evade).
+bool plays(PolicyKind p, Role role);
+/// The policy called `name` for `role`; throws InvalidParameter naming `field` for an unknown name or one
+/// that does not play the role.
+PolicyKind policy_named(const std::string& name, Role role, const std::string& field);
+
+/// How FACL turns observations into the two steering angles.
+enum class FaclStructure {
+  kJoint,     ///< one actor-critic over all inputs with two outputs (the paper)
+  kPerAngle,  ///< one actor-critic per steering angle, each over d_PE, its target error, d_O and its obstacle error
+};
+inline constexpr config::EnumNames<FaclStructure, 2> kFaclStructureNames{
+    {{FaclStructure::kJoint, "joint"}, {FaclStructure::kPerAngle, "per-angle"}}};
+
+/// What a FACL actor's outputs are. A residual: with kTargetLineOffset a fresh actor (outputs 0) already flies
+/// pure pursuit (a pursuer) or straight away from its pursuer (an evader, away-from-pursuer reference), and
+/// learning shapes corrections to that instead of the whole turn.
+enum class FaclAction {
+  kHeadingChange,     ///< the paper: the outputs are the changes of azimuth and polar angle
+  kTargetLineOffset,  ///< the outputs are added to the turn onto the line the target angles are measured from
+};
+inline constexpr config::EnumNames<FaclAction, 2> kFaclActionNames{
+    {{FaclAction::kHeadingChange, "heading-change"}, {FaclAction::kTargetLineOffset, "target-line-offset"}}};
+
+/// One agent: who drives it and how it moves, senses, is rewarded and learns.
+struct AgentConfig {
+  PolicyKind policy = PolicyKind::kFacl;
+  double speed = 1.0;    ///< m/s; pursuer > 0, evader >= 0 (0: a motionless target); paper 1.1 and 1.0
+  double radius = 0.25;  ///< m, collision sphere, > 0
+  SteeringConfig steering;
+  bool motion_space = true;  ///< keep the heading in the paper's optimal motion space (section 3.1)
+  ObstacleGuard guard;
+  ObservationConfig observation;
+  RewardConfig reward;
+  fuzzy::FaclConfig facl;
+  FaclStructure structure = FaclStructure::kPerAngle;
+  FaclAction action = FaclAction::kHeadingChange;
+  double pn_gain = 3.0;  ///< proportional-navigation constant N, > 0
+  sense::LidarConfig lidar;  ///< its range sensor (none by default)
+  sense::ScanMapConfig map;  ///< its own occupancy map, built from its lidar's scans (none by default)
+  sense::SightConfig sight;         ///< opponents seen only in line of sight (off by default: full information)
+  bool operator==(const AgentConfig&) const = default;
+};
+
+/// The most rules one FACL channel may have (2^20: 24 MB of tables); bounds what a config or policy can allocate.
+inline constexpr long long kMaxFaclRules = 1LL << 20;
+/// Rules of each FACL channel: sets^inputs, inputs 4 (azimuth, or one channel per angle) or 6 (joint
+/// azimuth-elevation), plus one per observed angle of the opponent's heading.
+constexpr long long facl_rules(const AgentConfig& c) {
+  const bool joint_both =
+      c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
+  const int inputs = (joint_both ? 6 : 4) + (c.observation.opponent_heading ? (joint_both ? 2 : 1) : 0);
+  long long rules = 1;
+  for (int i = 0; i < inputs; ++i) rules *= c.observation.sets;
+  return rules;
+}
+
+// ---- Field table (core/config_fields.hpp) ----
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, AgentConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.choice("policy", c.policy, kPolicyNames, "who drives the agent");
+  v.number("speed", c.speed, Range::non_negative(), "m/s",
+           "constant speed; a pursuer's > 0, an evader may stand still (paper 1.1 and 1.0)");
+  v.number("radius", c.radius, Range::positive(), "m", "collision sphere (the paper gives none)");
+  v.section("steering", c.steering, "steering bound and climb limit");
+  v.flag("motion_space", c.motion_space, "keep the heading in the paper's optimal motion space (section 3.1)");
+  v.section("guard", c.guard, "the obstacle guard");
+  v.section("observation", c.observation, "FACL inputs");
+  v.section("reward", c.reward, "reward terms");
+  v.section("facl", c.facl, "FACL learning rates and exploration");
+  v.choice("structure", c.structure, kFaclStructureNames, "one joint learner (the paper) or one per steering angle");
+  v.choice("action", c.action, kFaclActionNames,
+           "the actor's outputs: the heading change (the paper) or an offset to the turn onto the target line");
+  v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
+  v.section("lidar", c.lidar, "the agent's range sensor (sense/lidar.hpp); none by default");
+  v.section("map", c.map, "the agent's occupancy map from its own scans (sense/scan_map.hpp); none by default");
+  v.section("sight", c.sight, "opponents seen only in line of sight (docs/sight.md); off by default");
+  v.require(!c.map.enabled || c.lidar.enabled(), "map.enabled", "true", "needs a lidar (lidar.azimuth_rays > 0)");
+  v.require(c.observation.obstacles != ObstacleSource::kOwnMap || c.map.enabled, "observation.obstacles", "own-map",
+            "needs map.enabled");
+  v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
+            "structure", "per-angle", "needs observation.angles = azimuth-elevation");
+  // sets^inputs rules, each a row of the actor and critic: without a bound, 64 sets over 6 inputs asks for 10^11.
+  v.require(facl_rules(c) <= kMaxFaclRules, "observation.sets", c.observation.sets,
+            "gives more than 2^20 FACL rules per channel (sets^inputs: 4 inputs, or 6 with azimuth-elevation joint)");
+}
+
+}  // namespace peg3d::game
