@@ -7,7 +7,8 @@
 #include <fmt/format.h>
 
 #include "core/config_json.hpp"
-#include "game/config_file.hpp"
+#include "experiment/trial_config.hpp"
+#include "players/registry.hpp"
 #include "results/result_files.hpp"
 #include "results/run_info.hpp"
 
@@ -41,6 +42,13 @@ void add_experiment_flags(CLI::App& app, ExperimentOptions& o, const std::string
   if (!html_keys.empty()) add_html_option(app, o.html, html_keys);
   if (plots) app.add_flag("!--no-plots", o.plots, "skip the figures");
   app.add_flag("--list-config", o.list_config, "print every configuration field and exit");
+  app.add_flag_callback(
+      "--list-players",
+      [] {
+        std::fputs(players::player_listing().c_str(), stdout);
+        throw CLI::Success();
+      },
+      "print every player (the values of --pursuers, --evaders and policy fields) and exit");
 }
 
 std::optional<std::vector<experiment::Algorithm>> algorithms_or_listing(const std::vector<std::string>& names,
@@ -51,8 +59,8 @@ std::optional<std::vector<experiment::Algorithm>> algorithms_or_listing(const st
   return std::nullopt;
 }
 
-std::optional<game::GameConfig> config_or_listing(const std::string& source, const ExperimentOptions& o) {
-  game::GameConfig config = game::apply_game_overrides(game::load_game_config(source), o.sets);
+std::optional<experiment::TrialConfig> config_or_listing(const std::string& source, const ExperimentOptions& o) {
+  experiment::TrialConfig config = experiment::load_trial_config(source, o.sets);
   if (!o.list_config) return config;
   std::fputs(config::format_field_list(config::list_fields(config)).c_str(), stdout);
   return std::nullopt;

@@ -16,16 +16,16 @@
 
 namespace peg3d::cli {
 
-/// The flags every experiment binary has: the sweep's (add_sweep_options), and --html, --no-plots and
-/// --list-config, which its main declares when the experiment has them (add_experiment_flags).
+/// The flags every experiment binary has: the sweep's (add_sweep_options), and --html, --no-plots,
+/// --list-config and --list-players, which its main declares when the experiment has them (add_experiment_flags).
 struct ExperimentOptions : SweepOptions {
   std::vector<std::string> html;  ///< --html patterns: the recorded episodes written as viewer files
   bool plots = true;              ///< false: --no-plots
   bool list_config = false;       ///< --list-config: print the configuration and stop
 };
 
-/// add_sweep_options, --list-config, then --html (when `html_keys` names the keys episodes have) and
-/// --no-plots (when `plots`).
+/// add_sweep_options, --list-config, --list-players (prints the players' registry and exits), then --html (when
+/// `html_keys` names the keys episodes have) and --no-plots (when `plots`).
 void add_experiment_flags(CLI::App& app, ExperimentOptions& o, const std::string& html_keys, bool plots);
 
 /// Builds the experiment from the parsed flags; null when the flags asked for something else, done already
@@ -44,8 +44,8 @@ int experiment_main(CLI::App& app, int argc, char** argv, const ExperimentOption
 std::optional<std::vector<experiment::Algorithm>> algorithms_or_listing(const std::vector<std::string>& names,
                                                                         const ExperimentOptions& o);
 
-/// One configuration, a preset or a JSON file (game::load_game_config), with --set applied; with --list-config,
-/// prints every field and returns nullopt.
-std::optional<game::GameConfig> config_or_listing(const std::string& source, const ExperimentOptions& o);
+/// One configuration, a preset or a JSON file (experiment::load_trial_config), with --set applied; with
+/// --list-config, prints every field and returns nullopt.
+std::optional<experiment::TrialConfig> config_or_listing(const std::string& source, const ExperimentOptions& o);
 
 }  // namespace peg3d::cli

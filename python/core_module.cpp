@@ -20,6 +20,7 @@
 #include "core/hash.hpp"
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
+#include "players/registry.hpp"
 #include "game/observation_vector.hpp"
 #include "sense/scan_map.hpp"
 #include "view/frame_renderer.hpp"
@@ -35,7 +36,7 @@ namespace {
 
 std::unique_ptr<env::Batch> make_batch(const std::string& map, const std::string& config,
                                        const std::vector<std::string>& sets, bool cache, env::BatchSettings settings) {
-  game::GameConfig c = game::apply_game_overrides(game::load_game_config(config), sets);
+  game::GameConfig c = game::apply_game_overrides(game::load_game_config(config), sets, players::check_players);
   const world::MapSpec spec = world::load_map(map);
   world::BuildOptions options;
   if (cache) options.cache_dir = world::default_cache_dir();

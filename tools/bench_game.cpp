@@ -67,7 +67,7 @@ BENCHMARK(BM_FireDense);
 
 void BM_FaclActLearn(benchmark::State& state) {
   const game::AgentConfig c = game::agent_preset(state.range(0) == 0 ? "paper" : "peg3d", game::Role::kPursuer);
-  game::FaclPolicy p(c, game::Role::kPursuer, 1);
+  players::FaclPolicy p(c, game::Role::kPursuer, 1);
   Rng rng(2);
   std::uniform_real_distribution<double> d(0, 35), a(-kPi, kPi);
   std::vector<game::AgentView> views(1024);
@@ -99,9 +99,9 @@ void training_steps(benchmark::State& state, const char* map, const char* preset
   std::uint64_t episode = 0;
   // One set of learners plays every scenario in turn (they all have the first scenario's team sizes).
   const world::Scenario& first = scenarios[std::size_t(std::max(only_scenario, 0))];
-  game::Lineup lineup;
-  game::add_configured(lineup, config, game::Role::kPursuer, int(first.pursuers.size()), 1);
-  game::add_configured(lineup, config, game::Role::kEvader, int(first.evaders.size()), 2);
+  players::Lineup lineup;
+  players::add_configured(lineup, config, game::Role::kPursuer, int(first.pursuers.size()), 1);
+  players::add_configured(lineup, config, game::Role::kEvader, int(first.evaders.size()), 2);
   for (auto _ : state) {
     const std::size_t k = only_scenario >= 0 ? std::size_t(only_scenario) : episode % scenarios.size();
     const long long before = steps;

@@ -57,9 +57,9 @@ int main(int argc, char** argv) {
     const game::Sim sim(arena, config);
     game::SimState state(sim);
     const auto& scenarios = arena->map().scenarios;
-    game::Lineup lineup;
-    game::add_configured(lineup, config, game::Role::kPursuer, int(scenarios[0].pursuers.size()), derive_seed(seed, {1}));
-    game::add_configured(lineup, config, game::Role::kEvader, int(scenarios[0].evaders.size()), derive_seed(seed, {2}));
+    players::Lineup lineup;
+    players::add_configured(lineup, config, game::Role::kPursuer, int(scenarios[0].pursuers.size()), derive_seed(seed, {1}));
+    players::add_configured(lineup, config, game::Role::kEvader, int(scenarios[0].evaders.size()), derive_seed(seed, {2}));
     const auto start = std::chrono::steady_clock::now();
     long long steps = 0, captures = 0;
     long warm_kib = -1, peak_after_warmup = 0;

@@ -26,6 +26,7 @@
 #include "core/step_profile.hpp"
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
+#include "players/registry.hpp"
 #include "game/episode.hpp"
 #include "players/lineup.hpp"
 #include "world/bodies/mover_timeline.hpp"
@@ -50,9 +51,9 @@ Pass run_pass(const game::Sim& sim, long long steps, int threads, bool profiled)
     if (profiled) StepProfile::current() = &mine.profile;
     game::SimState st(sim);
     const world::Scenario& first = scenarios.front();
-    game::Lineup lineup;
-    game::add_configured(lineup, sim.config(), game::Role::kPursuer, int(first.pursuers.size()), derive_seed(1, {std::uint64_t(t)}));
-    game::add_configured(lineup, sim.config(), game::Role::kEvader, int(first.evaders.size()), derive_seed(2, {std::uint64_t(t)}));
+    players::Lineup lineup;
+    players::add_configured(lineup, sim.config(), game::Role::kPursuer, int(first.pursuers.size()), derive_seed(1, {std::uint64_t(t)}));
+    players::add_configured(lineup, sim.config(), game::Role::kEvader, int(first.evaders.size()), derive_seed(2, {std::uint64_t(t)}));
     const long long share = steps / threads + (t < steps % threads ? 1 : 0);
     for (std::uint64_t episode = 0; mine.steps < share; ++episode) {
       const world::Scenario& s = scenarios[episode % scenarios.size()];
@@ -142,7 +143,7 @@ int main(int argc, char** argv) {
   app.add_option("--games", games, "with --actions random: games stepped together")->capture_default_str()->check(CLI::Range(1, 65536));
 
   return cli::guarded_main(app, argc, argv, [&] {
-    const game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), sets);
+    const game::GameConfig config = game::apply_game_overrides(game::load_game_config(config_source), sets, players::check_players);
     const auto build_start = std::chrono::steady_clock::now();
     const auto arena = cli::load_arena(map, !no_cache);
     const game::Sim sim(arena, config);

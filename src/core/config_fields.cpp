@@ -6,6 +6,14 @@
 
 namespace peg3d::config {
 
+bool is_name(std::string_view text) {
+  if (text.empty() || text.size() > kMaxNameLength) return false;
+  for (const char c : text) {
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_')) return false;
+  }
+  return true;
+}
+
 bool Range::contains(double v) const {
   if (!std::isfinite(v)) return false;
   const bool above = lo_open ? v > lo : v >= lo;
@@ -30,6 +38,21 @@ void Validator::integer(const char* key, const int& value, long long lo, long lo
   if (value < lo || value > hi) {
     throw InvalidParameter(field(key), std::to_string(value), fmt::format("must lie in [{}, {}]", lo, hi));
   }
+}
+
+void Validator::name(const char* key, const std::string& value, const char* valid, const char*) {
+  if (!is_name(value)) {
+    const std::string shown = value.size() <= 40 ? value : value.substr(0, 37) + "...";
+    throw InvalidParameter(field(key), "\"" + shown + "\"",
+                           fmt::format("must be a name of 1 to {} characters a-z, 0-9, - and _: {}", kMaxNameLength, valid));
+  }
+}
+
+void Validator::names(const char* key, const std::vector<std::string>& value, const char* valid, const char* doc) {
+  if (value.size() > kMaxNames) {
+    throw InvalidParameter(field(key), fmt::format("{} names", value.size()), fmt::format("must list at most {}", kMaxNames));
+  }
+  for (std::size_t i = 0; i < value.size(); ++i) name((std::string(key) + "." + std::to_string(i)).c_str(), value[i], valid, doc);
 }
 
 void Validator::require(bool ok, std::string_view key, double value, const char* requirement) const {

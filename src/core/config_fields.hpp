@@ -5,6 +5,8 @@
 //   void visit_fields(V& v, C& c) {
 //     v.number("actor_rate", c.actor_rate, Range::open_closed(0, 1), "", "alpha_a, the actor's learning rate");
 //     v.choice("reading", c.reading, kReadingNames, "how max_turn is read");
+//     v.name("policy", c.policy, "a player (--list-players)", "who drives the agent");   // a word, checked elsewhere
+//     v.names("pursuers", c.pursuers, "players (--list-players)", "the pool's pursuers");  // a list of words
 //     v.section("facl", c.facl, "the learner");
 //     v.require(c.hi > c.lo, "hi", c.hi, "must be > lo");   // a rule between fields
 //   }
@@ -14,8 +16,9 @@
 // `--list-config`, and a field count that tests compare with the struct's member count, so a member the
 // table forgets is a failing test rather than a silently unsaved setting.
 //
-// A visitor provides number, integer, flag, choice, section, sections and require with the signatures the
-// Validator below shows. Keys are plain words; nested fields are addressed "section.key" and list
+// A visitor provides number, integer, flag, choice, name, names, section, sections and require with the
+// signatures the Validator below shows. A name is a word a table elsewhere gives the meaning of (a player's name,
+// from players/registry.hpp): the table here checks only that it is a word; its user checks that it is known. Keys are plain words; nested fields are addressed "section.key" and list
 // elements "list.3.key", the same paths `--set` takes.
 
 #include <array>
@@ -30,6 +33,12 @@
 #include "core/validation.hpp"
 
 namespace peg3d::config {
+
+/// The longest name (Validator::name) and the most names in a list (Validator::names).
+inline constexpr std::size_t kMaxNameLength = 64;
+inline constexpr std::size_t kMaxNames = 64;
+/// Whether `text` is a name: 1 to kMaxNameLength characters of a-z, 0-9, '-' and '_'.
+bool is_name(std::string_view text);
 
 /// The valid values of a number: an interval of finite reals, each end open or closed.
 struct Range {
@@ -97,6 +106,8 @@ class Validator {
   void flag(const char*, const bool&, const char*) {}
   template <class E, std::size_t N>
   void choice(const char* key, const E& value, const EnumNames<E, N>& names, const char* doc);
+  void name(const char* key, const std::string& value, const char* valid, const char* doc);
+  void names(const char* key, const std::vector<std::string>& value, const char* valid, const char* doc);
   template <class S>
   void section(const char* key, const S& value, const char* doc);
   template <class S>
@@ -129,6 +140,10 @@ struct FieldCounter {
   void flag(A&&...) { ++count; }
   template <class... A>
   void choice(A&&...) { ++count; }
+  template <class... A>
+  void name(A&&...) { ++count; }
+  template <class... A>
+  void names(A&&...) { ++count; }
   template <class... A>
   void section(A&&...) { ++count; }
   template <class... A>

@@ -63,6 +63,30 @@ void JsonReader::flag(const char* key, bool& v, const char*) {
   v = j->get<bool>();
 }
 
+void JsonReader::name(const char* key, std::string& v, const char* valid, const char*) {
+  const nlohmann::json* j = take(key);
+  if (j == nullptr) return;
+  if (!j->is_string()) fail(key, std::string("expects a name (") + valid + "), got " + brief(*j));
+  v = j->get<std::string>();
+}
+
+void JsonReader::names(const char* key, std::vector<std::string>& v, const char* valid, const char*) {
+  const nlohmann::json* j = take(key);
+  if (j == nullptr) return;
+  if (!j->is_array()) fail(key, std::string("expects a list of names (") + valid + "), got " + brief(*j));
+  // Bounded before anything is copied: a list of a million names is refused, not read.
+  if (j->size() > kMaxNames) fail(key, fmt::format("lists {} names, at most {}", j->size(), kMaxNames));
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < j->size(); ++i) {
+    if (!(*j)[i].is_string()) {
+      const std::string element = field(key) + "." + std::to_string(i);
+      throw ConfigError(options_.file, options_.line_of(element), element, std::string("expects a name (") + valid + ")");
+    }
+    out.push_back((*j)[i].get<std::string>());
+  }
+  v = std::move(out);
+}
+
 void JsonReader::finish() const {
   for (const auto& item : in_.items()) {
     if (std::find(taken_.begin(), taken_.end(), item.key()) != taken_.end()) continue;
@@ -87,6 +111,16 @@ void FieldLister::integer(const char* key, const int& v, long long lo, long long
 
 void FieldLister::flag(const char* key, const bool& v, const char* doc) {
   out_.push_back({prefix_ + key, "flag", "", "true, false", v ? "true" : "false", doc});
+}
+
+void FieldLister::name(const char* key, const std::string& v, const char* valid, const char* doc) {
+  out_.push_back({prefix_ + key, "name", "", valid, v, doc});
+}
+
+void FieldLister::names(const char* key, const std::vector<std::string>& v, const char* valid, const char* doc) {
+  std::string list;
+  for (const std::string& n : v) list += (list.empty() ? "" : ",") + n;
+  out_.push_back({prefix_ + key, "names", "", valid, list.empty() ? "(none)" : list, doc});
 }
 
 std::string format_field_list(const std::vector<FieldInfo>& fields) {

@@ -49,6 +49,8 @@ class JsonWriter {
   void choice(const char* key, const E& v, const EnumNames<E, N>& names, const char*) {
     out_[key] = enum_name(names, v);
   }
+  void name(const char* key, const std::string& v, const char*, const char*) { out_[key] = v; }
+  void names(const char* key, const std::vector<std::string>& v, const char*, const char*) { out_[key] = v; }
   template <class S>
   void section(const char* key, const S& v, const char*) {
     JsonWriter sub(out_[key]);
@@ -79,6 +81,8 @@ class JsonReader {
   void number(const char* key, double& v, Range, const char*, const char*);
   void integer(const char* key, int& v, long long, long long, const char*, const char*);
   void flag(const char* key, bool& v, const char*);
+  void name(const char* key, std::string& v, const char* valid, const char*);
+  void names(const char* key, std::vector<std::string>& v, const char* valid, const char*);
   template <class E, std::size_t N>
   void choice(const char* key, E& v, const EnumNames<E, N>& names, const char*) {
     const nlohmann::json* j = take(key);
@@ -154,10 +158,25 @@ void from_json(const nlohmann::json& j, T& c, const ReadOptions& options = {}) {
   r.finish();
 }
 
+/// Reads a configuration file (JSON, through read_input_file's bounds) over `c`, then calls `check(c)`
+/// (config::validate and any rule of the caller's). ConfigError names the file, line and field of a key that does
+/// not fit; an InvalidParameter from the check comes back as an InputError naming the file and the field's line.
+template <class T, class Check>
+void read_config_file(const std::filesystem::path& file, T& c, const Check& check) {
+  const std::string text = read_input_file(file, "configuration file");
+  const nlohmann::json j = parse_json_text(text, file);
+  from_json(j, c, {file, false, text});
+  try {
+    check(c);
+  } catch (const InvalidParameter& e) {
+    throw InputError(file, json_line_of(text, e.parameter()), e.parameter(), e.message());
+  }
+}
+
 /// One row of a field listing (`--list-config`).
 struct FieldInfo {
   std::string key;    ///< dotted path, as `--set` takes it
-  std::string kind;   ///< number, integer, flag, choice, list
+  std::string kind;   ///< number, integer, flag, choice, name, names, list
   std::string unit;   ///< m, s, rad, ...; empty when none
   std::string valid;  ///< the range or the choices
   std::string value;  ///< the value in the listed configuration
@@ -176,6 +195,8 @@ class FieldLister {
   void choice(const char* key, const E& v, const EnumNames<E, N>& names, const char* doc) {
     out_.push_back({prefix_ + key, "choice", "", enum_choices(names), enum_name(names, v), doc});
   }
+  void name(const char* key, const std::string& v, const char* valid, const char* doc);
+  void names(const char* key, const std::vector<std::string>& v, const char* valid, const char* doc);
   template <class S>
   void section(const char* key, const S& v, const char*) {
     FieldLister sub(out_, prefix_ + key + ".");

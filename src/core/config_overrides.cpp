@@ -193,8 +193,19 @@ void apply_override(json& config, std::string_view assignment) {
   }
 
   json parsed = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  // Text that is not JSON is a string; into a string leaf, any text that is not a JSON string is verbatim.
-  if (parsed.is_discarded() || (node->is_string() && !parsed.is_string())) parsed = std::string(text);
+  const bool names = node->is_array() && (node->empty() || node->front().is_string());
+  if (names && !parsed.is_array()) {
+    // A list of names (players): "flee,random" as ["flee", "random"]; "" empties it.
+    parsed = json::array();
+    for (std::size_t start = 0; start < text.size();) {
+      const std::size_t comma = std::min(text.find(',', start), text.size());
+      parsed.push_back(std::string(text.substr(start, comma - start)));
+      start = comma + 1;
+    }
+  } else if (parsed.is_discarded() || (node->is_string() && !parsed.is_string())) {
+    // Text that is not JSON is a string; into a string leaf, any text that is not a JSON string is verbatim.
+    parsed = std::string(text);
+  }
 
   std::optional<json> value = coerce(*node, parsed);
   if (!value) {

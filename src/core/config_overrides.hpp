@@ -21,7 +21,8 @@ namespace peg3d::config {
 ///   Every key must exist already.
 /// - Value: parsed as JSON when it parses (3, -1.5, 1e3, true, [1,2], "quoted"), else taken as the raw
 ///   string. When the leaf is a string, unparsable or non-string text is kept verbatim (name=123 sets
-///   "123").
+///   "123"). When the leaf is a list of strings (names), text that is not a JSON list is split at commas
+///   (pool.evaders=flee,random sets ["flee", "random"]; an empty value empties it).
 /// - Type: the new value must have the old one's JSON type. Integers and floats are interchangeable, except
 ///   that an integer leaf only accepts integral values (2.0 or 2e3, not 2.5) and an unsigned leaf no
 ///   negative ones; an integer written into a float leaf is stored as a float. Array elements are checked

@@ -14,7 +14,7 @@
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/observation_vector.hpp"
-#include "players/policy_factory.hpp"
+#include "players/registry.hpp"
 
 namespace peg3d::env {
 
@@ -180,12 +180,13 @@ Batch::Controller Batch::resolve_controller(int i, const std::string& source) co
   Controller c;
   std::error_code ec;
   if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
-    c.saved = game::load_saved_policy(source, role);
+    c.saved = players::load_saved_policy(source, role);
     return c;
   }
   const std::string field = "opponents." + names_[std::size_t(i)];
-  c.kind = game::policy_named(source, role, field);
-  if (c.kind == game::PolicyKind::kFacl) {
+  const players::PlayerInfo& player = players::player_named(source, role, field);
+  c.player = std::string(player.name);
+  if (player.learns()) {
     throw InvalidParameter(field, source, "a FACL opponent plays a saved policy: give its file");
   }
   return c;
@@ -205,8 +206,8 @@ void Batch::build_policies(int g) {
     } else {
       const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
       game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
-      a.policy = c->kind;
-      p = game::make_policy(a, role, derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)}));
+      a.policy = c->player;
+      p = players::make_player(a, role, derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)}));
     }
   }
 }

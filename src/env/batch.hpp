@@ -178,8 +178,8 @@ class Batch {
   // How a C++-played agent plays: a classic strategy, or a model read once from its file and shared, read-only,
   // by every game's policy (nullopt: the caller's agent).
   struct Controller {
-    game::PolicyKind kind = game::PolicyKind::kFacl;
-    std::shared_ptr<const game::SavedPolicy> saved;  // a policy file of either kind
+    std::string player;  // a player of the registry (players/registry.hpp)
+    std::shared_ptr<const players::SavedPolicy> saved;  // a policy file of either kind
   };
   Controller resolve_controller(int agent, const std::string& source) const;
   std::vector<std::optional<Controller>> controllers_;

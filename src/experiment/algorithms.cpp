@@ -21,7 +21,7 @@ std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, co
       throw InvalidParameter("--algorithms", entry, "an algorithm's name must be non-empty, without '.', '=', ',' or spaces");
     }
     if (!seen.insert(name).second) throw InputError("algorithm '" + name + "' is listed twice");
-    out.push_back({name, game::preset(preset)});
+    out.push_back({name, trial_preset(preset)});
   }
   std::vector<nlohmann::json> configs;
   for (const Algorithm& a : out) configs.push_back(config::to_json(a.config));
@@ -49,14 +49,14 @@ std::vector<Algorithm> make_algorithms(const std::vector<std::string>& names, co
 std::vector<game::Sim> make_sims(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms) {
   std::vector<game::Sim> sims;
   sims.reserve(algorithms.size());
-  for (const Algorithm& a : algorithms) sims.emplace_back(arena, a.config);
+  for (const Algorithm& a : algorithms) sims.emplace_back(arena, a.config.game);
   return sims;
 }
 
 std::vector<OpponentPool> make_pools(const std::shared_ptr<const world::Arena>& arena, const std::vector<Algorithm>& algorithms) {
   std::vector<OpponentPool> pools;
   pools.reserve(algorithms.size());
-  for (const Algorithm& a : algorithms) pools.emplace_back(arena, a.config);
+  for (const Algorithm& a : algorithms) pools.push_back(make_pool(arena, a.config.game, a.config.training));
   return pools;
 }
 

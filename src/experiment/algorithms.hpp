@@ -1,6 +1,6 @@
 #pragma once
-// The algorithms an experiment compares: each a name and the whole game configuration it plays and trains
-// with (a preset, with `--set` overrides), and what is built from them once per sweep, before any run.
+// The algorithms an experiment compares: each a name and the whole configuration it plays and trains with (a
+// preset, with `--set` overrides), and what is built from them once per sweep, before any run.
 
 #include <memory>
 #include <string>
@@ -9,16 +9,17 @@
 #include <nlohmann/json.hpp>
 
 #include "experiment/training.hpp"
+#include "experiment/trial_config.hpp"
 #include "game/game_config.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
 
 namespace peg3d::experiment {
 
-/// An algorithm of the comparison: a name and the whole game configuration it plays with.
+/// An algorithm of the comparison: a name and the whole configuration it plays and trains with.
 struct Algorithm {
   std::string name;
-  game::GameConfig config;
+  TrialConfig config;
 };
 
 /// Builds algorithms from preset names, each `PRESET` or `NAME=PRESET` (a named variant, so that one preset can

@@ -36,13 +36,14 @@ std::size_t generalize_run_count(const game::Sim& train, const GeneralizeSetting
   return train.arena().map().scenarios.size() * static_cast<std::size_t>(s.sweep.repeats);
 }
 
-nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMap>& evals, const GeneralizeSettings& s) {
+nlohmann::json generalize_setup(const game::Sim& train, const TrialConfig& config, const std::vector<EvalMap>& evals,
+                                const GeneralizeSettings& s) {
   nlohmann::json maps = nlohmann::json::array();
   for (const EvalMap& m : evals) maps.push_back({{"name", m.name}, {"map_hash", results::map_content_hash(m.sim.arena())}});
   nlohmann::json setup = setup_header("generalize", train.arena(), s.sweep);
   setup["eval_maps"] = std::move(maps);
   setup["repeats"] = s.sweep.repeats;
-  setup["config"] = config::to_json(train.config());
+  setup["config"] = config::to_json(config);
   return setup;
 }
 
@@ -71,9 +72,9 @@ std::vector<GeneralizeRecord> evaluate_everywhere(const TrialResult& t, const st
     for (std::size_t k = 0; k < eval_scenarios.size(); ++k) {
       sweep::throw_if_stopped(s.sweep.control.stop);
       const world::Scenario& es = eval_scenarios[k];
-      game::Lineup lineup;
-      game::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
-      game::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
+      players::Lineup lineup;
+      players::add_frozen(lineup, t.pursuer_models, static_cast<int>(es.pursuers.size()));
+      players::add_frozen(lineup, t.evader_models, static_cast<int>(es.evaders.size()));
       GeneralizeRecord r{train_scenario, rep, evals[m].name, es.name, {}, {}};
       std::shared_ptr<game::Trace> trace;
       if (s.keep_trace && s.keep_trace(generalize_key(r))) {
@@ -139,9 +140,9 @@ std::vector<EvalMap> make_eval_maps(const std::vector<std::shared_ptr<const worl
 
 GeneralizeExperiment::GeneralizeExperiment(std::shared_ptr<const world::Arena> train,
                                            std::vector<std::shared_ptr<const world::Arena>> evals,
-                                           const game::GameConfig& config, GeneralizeSettings settings)
-    : train_(train, config), evals_(make_eval_maps(evals, config)), settings_(std::move(settings)) {
-  if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(train, config);
+                                           const TrialConfig& config, GeneralizeSettings settings)
+    : config_(config), train_(train, config.game), evals_(make_eval_maps(evals, config.game)), settings_(std::move(settings)) {
+  if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(make_pool(train, config.game, config.training));
 }
 
 std::size_t GeneralizeExperiment::episodes_per_run() const {
@@ -170,6 +171,7 @@ void GeneralizeExperiment::run_one(std::size_t i) {
                                      .seed = seed,
                                      .episodes = settings_.sweep.episodes,
                                      .stop = control.stop,
+                                     .training = config_.training,
                                      .pool = settings_.pool.get(),
                                      .progress = control.progress});
   per_run_[i] = evaluate_everywhere(t, scenarios[std::size_t(sc)].name, rep, seed, evals_, settings_);
@@ -205,7 +207,7 @@ void GeneralizeExperiment::write_results(const std::filesystem::path& out, const
          {std::pair{"pursuer", &kept_[sc].pursuer_models}, std::pair{"evader", &kept_[sc].evader_models}}) {
       for (std::size_t m = 0; m < models->models.size(); ++m) {
         const std::string key = scenarios[sc].name + "_" + role + (m == 0 ? std::string() : std::to_string(m));
-        game::save_policy(results::output_file(out / "policies", key, ".json"), *models->models[m]);
+        players::save_policy(results::output_file(out / "policies", key, ".json"), *models->models[m]);
       }
     }
   }

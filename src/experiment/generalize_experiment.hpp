@@ -16,6 +16,7 @@
 #include "experiment/trial.hpp"
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
+#include "experiment/trial_config.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "players/lineup.hpp"
@@ -60,7 +61,7 @@ std::size_t generalize_run_count(const game::Sim& train, const GeneralizeSetting
 /// Everything the sweep's results depend on, for its journal header and run_info.json: the experiment, the
 /// peg3d build, the training map's content hash, each evaluation map's name and content hash, seed, episodes,
 /// repeats and the configuration.
-nlohmann::json generalize_setup(const game::Sim& train, const std::vector<EvalMap>& evals,
+nlohmann::json generalize_setup(const game::Sim& train, const TrialConfig& config, const std::vector<EvalMap>& evals,
                                 const GeneralizeSettings& settings);
 
 /// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
@@ -82,10 +83,10 @@ class GeneralizeExperiment : public Experiment {
   /// Builds the training Sim and one per evaluation map, each checking its map's starts against the agents,
   /// and, unless settings.pool is set, the classic opponents training mixes in.
   GeneralizeExperiment(std::shared_ptr<const world::Arena> train, std::vector<std::shared_ptr<const world::Arena>> evals,
-                       const game::GameConfig& config, GeneralizeSettings settings);
+                       const TrialConfig& config, GeneralizeSettings settings);
 
   std::string kind() const override { return "generalize"; }
-  nlohmann::json setup() const override { return generalize_setup(train_, evals_, settings_); }
+  nlohmann::json setup() const override { return generalize_setup(train_, config_, evals_, settings_); }
   std::size_t run_count() const override { return generalize_run_count(train_, settings_); }
   std::size_t episodes_per_run() const override;
   void begin(const sweep::SweepControl& control) override;
@@ -107,6 +108,7 @@ class GeneralizeExperiment : public Experiment {
   // Run i's slot in kept_ (repeat 0 of its training scenario); nullopt for the other repeats.
   std::optional<std::size_t> kept_slot(std::size_t i) const;
 
+  TrialConfig config_;
   game::Sim train_;
   std::vector<EvalMap> evals_;
   GeneralizeSettings settings_;

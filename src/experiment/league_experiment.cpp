@@ -19,9 +19,7 @@
 namespace peg3d::experiment {
 namespace {
 
-bool facl_plays(const game::GameConfig& c, game::Role role) {
-  return c.agent(role).policy == game::PolicyKind::kFacl;
-}
+bool facl_plays(const game::GameConfig& c, game::Role role) { return players::learns(c.agent(role)); }
 
 int most_agents(const world::Arena& arena, game::Role role) {
   int n = 0;
@@ -35,14 +33,14 @@ int most_agents(const world::Arena& arena, game::Role role) {
 std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, const LeagueSettings& s, game::Role role) {
   std::vector<Entrant> out;
   for (std::size_t a = 0; a < algorithms.size(); ++a) {
-    if (!facl_plays(algorithms[a].config, role)) continue;
+    if (!facl_plays(algorithms[a].config.game, role)) continue;
     for (int t = 0; t < s.sweep.repeats; ++t) {
-      out.push_back({fmt::format("{}#{}", algorithms[a].name, t), algorithms[a].name, role, game::PolicyKind::kFacl,
+      out.push_back({fmt::format("{}#{}", algorithms[a].name, t), algorithms[a].name, role, std::string(players::kFacl),
                      static_cast<int>(a), t});
     }
   }
-  for (const auto kind : role == game::Role::kPursuer ? s.classic_pursuers : s.classic_evaders) {
-    out.push_back({game::to_string(kind), game::to_string(kind), role, kind, -1, -1});
+  for (const auto& name : role == game::Role::kPursuer ? s.classic_pursuers : s.classic_evaders) {
+    out.push_back({name, name, role, name, -1, -1});
   }
   const auto& saved = role == game::Role::kPursuer ? s.saved_pursuers : s.saved_evaders;
   const char* field = role == game::Role::kPursuer ? "--pursuer-entrant" : "--evader-entrant";
@@ -51,7 +49,7 @@ std::vector<Entrant> league_entrants(const std::vector<Algorithm>& algorithms, c
     for (const Entrant& e : out) {
       if (e.name == saved[k].name) throw InvalidParameter(field, saved[k].name, "names another entrant of the league");
     }
-    out.push_back({saved[k].name, saved[k].name, role, game::PolicyKind::kFacl, -1, -1, static_cast<int>(k)});
+    out.push_back({saved[k].name, saved[k].name, role, std::string(players::kFacl), -1, -1, static_cast<int>(k)});
   }
   return out;
 }
@@ -65,16 +63,16 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
   pursuers_ = league_entrants(algorithms_, settings_, game::Role::kPursuer);
   evaders_ = league_entrants(algorithms_, settings_, game::Role::kEvader);
   for (const Algorithm& a : algorithms_) {
-    game::GameConfig training = a.config;
+    game::GameConfig training = a.config.game;
     if (settings_.train_heading) training.initial_heading = *settings_.train_heading;
     train_sims_.emplace_back(train_, training);
-    pools_.emplace_back(train_, training);
+    pools_.push_back(make_pool(train_, training, a.config.training));
   }
   // Groups: the algorithms, then the classic policies of the role, then its saved policies.
   const int n_alg = static_cast<int>(algorithms_.size());
   pursuer_groups_ = n_alg + static_cast<int>(settings_.classic_pursuers.size() + settings_.saved_pursuers.size());
   evader_groups_ = n_alg + static_cast<int>(settings_.classic_evaders.size() + settings_.saved_evaders.size());
-  const game::GameConfig& rules = algorithms_.front().config;
+  const game::GameConfig& rules = algorithms_.front().config.game;
   const auto side = [&](game::GameConfig& c, game::Role role, int group) {
     const auto& classic = role == game::Role::kPursuer ? settings_.classic_pursuers : settings_.classic_evaders;
     const auto& saved = role == game::Role::kPursuer ? settings_.saved_pursuers : settings_.saved_evaders;
@@ -82,7 +80,7 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
     auto& all = role == game::Role::kPursuer ? c.pursuer : c.evader;
     auto& list = role == game::Role::kPursuer ? c.pursuers : c.evaders;
     if (group < n_alg) {
-      const game::GameConfig& g = algorithms_[std::size_t(group)].config;
+      const game::GameConfig& g = algorithms_[std::size_t(group)].config.game;
       all = role == game::Role::kPursuer ? g.pursuer : g.evader;
       list = role == game::Role::kPursuer ? g.pursuers : g.evaders;
       // Whom a team's agents play against is the team's strategy: its own algorithm's, not the rules'.
@@ -103,7 +101,6 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
       for (int e = 0; e < evader_groups_; ++e) {
         game::GameConfig c = rules;
         c.initial_heading = settings_.eval_heading;
-        c.training = {};  // evaluation games do not train
         side(c, game::Role::kPursuer, p);
         side(c, game::Role::kEvader, e);
         eval_sims_.emplace_back(m.arena, std::move(c));
@@ -129,9 +126,7 @@ std::size_t League::games() const {
 nlohmann::json League::setup() const {
   nlohmann::json maps = nlohmann::json::array();
   for (const LeagueMap& m : maps_) maps.push_back({{"name", m.name}, {"map_hash", results::map_content_hash(*m.arena)}});
-  nlohmann::json pursuers = nlohmann::json::array(), evaders = nlohmann::json::array();
-  for (const auto k : settings_.classic_pursuers) pursuers.push_back(game::to_string(k));
-  for (const auto k : settings_.classic_evaders) evaders.push_back(game::to_string(k));
+  nlohmann::json pursuers = settings_.classic_pursuers, evaders = settings_.classic_evaders;
   nlohmann::json setup = setup_header("league", *train_, settings_.sweep);
   setup["eval_maps"] = std::move(maps);
   setup["train_seeds"] = train_seeds();
@@ -155,7 +150,7 @@ nlohmann::json League::setup() const {
   return setup;
 }
 
-const game::RoleModels& League::models(int a, int t, game::Role role) const {
+const players::RoleModels& League::models(int a, int t, game::Role role) const {
   const std::size_t run = std::size_t(a) * std::size_t(train_seeds()) + std::size_t(t);
   return role == game::Role::kPursuer ? trained_pursuers_[run] : trained_evaders_[run];
 }
@@ -165,18 +160,17 @@ results::LearningCurve League::curve(int a, int t) const {
   return {training_[run].episodes, pool_opponent_names(pools_[std::size_t(a)], training_[run].opponents)};
 }
 
-std::vector<game::PolicyKind> classic_policies(const std::vector<std::string>& names, game::Role role,
-                                               const std::string& flag) {
-  std::vector<game::PolicyKind> kinds;
+std::vector<std::string> classic_policies(const std::vector<std::string>& names, game::Role role, const std::string& flag) {
+  std::vector<std::string> out;
   for (const auto& name : names) {
-    const auto kind = game::policy_named(name, role, flag);
-    if (kind == game::PolicyKind::kFacl) {
-      throw InputError(fmt::format("{}: facl is not a {} (use --algorithms)", flag,
+    const players::PlayerInfo& p = players::player_named(name, role, flag);
+    if (p.learns()) {
+      throw InputError(fmt::format("{}: {} is not a {} (use --algorithms)", flag, p.name,
                                    role == game::Role::kPursuer ? "classic pursuer" : "scripted evader"));
     }
-    kinds.push_back(kind);
+    out.emplace_back(p.name);
   }
-  return kinds;
+  return out;
 }
 
 std::optional<game::InitialHeading> heading_named(const std::string& name, const std::string& flag,
@@ -192,7 +186,7 @@ SavedEntrant saved_entrant(const std::string& spec, game::Role role,
                            const std::function<std::filesystem::path(const std::filesystem::path&)>& resolve) {
   const std::size_t eq = spec.find('=');
   const std::filesystem::path file = eq == std::string::npos ? spec : spec.substr(eq + 1);
-  return {eq == std::string::npos ? file.stem().string() : spec.substr(0, eq), game::load_saved_policy(resolve(file), role)};
+  return {eq == std::string::npos ? file.stem().string() : spec.substr(0, eq), players::load_saved_policy(resolve(file), role)};
 }
 
 std::vector<LeagueMap> league_maps(const std::shared_ptr<const world::Arena>& train,
@@ -220,13 +214,14 @@ void League::run_one(std::size_t i) {
   const std::size_t a = i / seeds, t = i % seeds;
   const std::uint64_t seed = derive_seed(s.sweep.seed, {1, a, t});
   const game::Sim& sim = train_sims_[a];
-  game::Lineup lineup;
-  game::add_configured(lineup, sim.config(), game::Role::kPursuer, max_p, stream_seed(seed, TrialStream::kPursuer),
+  players::Lineup lineup;
+  players::add_configured(lineup, sim.config(), game::Role::kPursuer, max_p, stream_seed(seed, TrialStream::kPursuer),
                        &trained_pursuers_[i]);
-  game::add_configured(lineup, sim.config(), game::Role::kEvader, max_e, stream_seed(seed, TrialStream::kEvader),
+  players::add_configured(lineup, sim.config(), game::Role::kEvader, max_e, stream_seed(seed, TrialStream::kEvader),
                        &trained_evaders_[i]);
   game::SimState state(sim);
   training_[i] = train_lineup({.sim = &sim,
+                               .training = algorithms_[a].config.training,
                                .pool = &pools_[a],
                                .scenarios = train_->map().scenarios,
                                .pursuers = max_p,
@@ -283,20 +278,20 @@ void League::play_start(const Start& st, std::span<Game> games) const {
       const Entrant& P = pursuers_[p];
       const Entrant& E = evaders_[e];
       const game::Sim& sim = sim_of(st.map, group_of(P), group_of(E));
-      game::Lineup lineup;
+      players::Lineup lineup;
       if (P.saved >= 0) {
-        game::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, np, derive_seed(seed, {1}));
+        players::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, np, derive_seed(seed, {1}));
       } else if (P.algorithm >= 0) {
-        game::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
+        players::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
       } else {
-        game::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
+        players::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
       }
       if (E.saved >= 0) {
-        game::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, ne, derive_seed(seed, {2}));
+        players::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, ne, derive_seed(seed, {2}));
       } else if (E.algorithm >= 0) {
-        game::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
+        players::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
       } else {
-        game::add_configured(lineup, sim.config(), game::Role::kEvader, ne, derive_seed(seed, {2}));
+        players::add_configured(lineup, sim.config(), game::Role::kEvader, ne, derive_seed(seed, {2}));
       }
       state.forget_maps();  // persistent maps carry nothing from one pairing to the next
       games[p * evaders_.size() + e] = {maps_[st.map].name, scenario.name, st.seed,

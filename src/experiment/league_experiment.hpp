@@ -29,6 +29,7 @@
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
 #include "players/lineup.hpp"
+#include "players/registry.hpp"
 #include "players/saved_policy.hpp"
 #include "game/sim.hpp"
 #include "results/result_files.hpp"
@@ -39,14 +40,13 @@ namespace peg3d::experiment {
 /// A saved policy entering the league: it plays every game of its role, greedily, and trains nothing.
 struct SavedEntrant {
   std::string name;  ///< its name in the results; unique among the entrants
-  std::shared_ptr<const game::SavedPolicy> policy;
+  std::shared_ptr<const players::SavedPolicy> policy;
 };
 
 struct LeagueSettings {
-  std::vector<game::PolicyKind> classic_pursuers{game::PolicyKind::kPurePursuit, game::PolicyKind::kProportionalNavigation,
-                                                 game::PolicyKind::kApollonius};
-  std::vector<game::PolicyKind> classic_evaders{game::PolicyKind::kFlee, game::PolicyKind::kFleeApollonius,
-                                                game::PolicyKind::kRandom};
+  /// The classic players of each role (players/registry.hpp): by default the role's baselines.
+  std::vector<std::string> classic_pursuers = players::baseline_players(game::Role::kPursuer);
+  std::vector<std::string> classic_evaders = players::baseline_players(game::Role::kEvader);
   /// Root seed, training episodes per run (4000 by default; docs/learning.md: the robust evader needs 4000),
   /// repeats (the training runs, or seeds, per algorithm: --train-seeds, 3 by default), threads and control
   /// (the journal holds the training runs).
@@ -63,10 +63,9 @@ struct LeagueSettings {
   std::vector<SavedEntrant> saved_pursuers, saved_evaders;
 };
 
-/// The classic pursuers or scripted evaders `names` names (game::policy_named); facl is refused, since the
-/// trained entrants come from the algorithms. Errors name `flag`.
-std::vector<game::PolicyKind> classic_policies(const std::vector<std::string>& names, game::Role role,
-                                               const std::string& flag);
+/// The classic pursuers or scripted evaders `names` names (players::player_named); a learning player (facl) is
+/// refused, since the trained entrants come from the algorithms. Errors name `flag`.
+std::vector<std::string> classic_policies(const std::vector<std::string>& names, game::Role role, const std::string& flag);
 
 /// An initial heading by name (random, chase, facing, plus-x), or, when `config_allowed`, "config" (nullopt:
 /// each algorithm's own). InvalidParameter naming `flag` otherwise.
@@ -74,7 +73,7 @@ std::optional<game::InitialHeading> heading_named(const std::string& name, const
                                                   bool config_allowed);
 
 /// A saved entrant from NAME=FILE, or FILE alone (named by its stem): the policy file resolve(FILE), loaded
-/// for `role` (game::load_saved_policy).
+/// for `role` (players::load_saved_policy).
 SavedEntrant saved_entrant(const std::string& spec, game::Role role,
                            const std::function<std::filesystem::path(const std::filesystem::path&)>& resolve);
 
@@ -83,7 +82,7 @@ struct Entrant {
   std::string name;   ///< "ALGORITHM#SEED" for a trained policy, the policy's name for a classic one
   std::string group;  ///< the algorithm's name (its training seeds pooled), or the classic policy's name
   game::Role role = game::Role::kPursuer;
-  game::PolicyKind policy = game::PolicyKind::kFacl;
+  std::string policy{players::kFacl};  ///< its player: facl for trained and saved entrants
   int algorithm = -1;   ///< index of its algorithm (trained entrants), else -1
   int train_seed = -1;  ///< index of its training seed (trained entrants), else -1
   int saved = -1;       ///< index of its saved policy in the settings' list (saved entrants), else -1
@@ -167,7 +166,7 @@ class League : public Experiment {
   std::string plot_script() const override { return "plot_league.py"; }
 
   /// The trained models of run (algorithm a, training seed t), once run() has trained them.
-  const game::RoleModels& models(int a, int t, game::Role role) const;
+  const players::RoleModels& models(int a, int t, game::Role role) const;
   /// The training episodes of run (algorithm a, training seed t) with their pool opponents, once run() has
   /// trained them.
   results::LearningCurve curve(int a, int t) const;
@@ -199,7 +198,7 @@ class League : public Experiment {
   /// policies per role).
   std::vector<game::Sim> eval_sims_;
   int pursuer_groups_ = 0, evader_groups_ = 0;
-  std::vector<game::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
+  std::vector<players::RoleModels> trained_pursuers_, trained_evaders_;  ///< per training run
   std::vector<TrainingResult> training_;  ///< per training run: its episodes and their pool entries
   std::vector<Game> games_;
 };

@@ -173,14 +173,13 @@ nlohmann::ordered_json pursuer_finding(const League& league, GameIndex& games, c
                                        const std::vector<std::string>& mine) {
   const LeagueSettings& s = league.settings();
   nlohmann::ordered_json against = nlohmann::ordered_json::array();
-  for (const auto kind : s.classic_evaders) {
-    const std::string e = game::to_string(kind);
+  for (const std::string& e : s.classic_evaders) {
     const results::ProportionInterval own = games.rate(mine, {e});
     std::string best;
     results::ProportionInterval best_rate{-1.0, 0.0, 0.0};
-    for (const auto c : s.classic_pursuers) {
-      const results::ProportionInterval r = games.rate({game::to_string(c)}, {e});
-      if (r.rate > best_rate.rate) best = game::to_string(c), best_rate = r;
+    for (const std::string& c : s.classic_pursuers) {
+      const results::ProportionInterval r = games.rate({c}, {e});
+      if (r.rate > best_rate.rate) best = c, best_rate = r;
     }
     against.push_back({{"evader", e},
                        {"capture_rate", rate_json(own)},
@@ -204,11 +203,11 @@ nlohmann::ordered_json evader_against(const League& league, GameIndex& games, co
   // The best scripted evader against this pursuer: the longest mean survival.
   std::string best;
   double best_mean = -1.0;
-  for (const auto c : league.settings().classic_evaders) {
+  for (const std::string& c : league.settings().classic_evaders) {
     std::vector<double> v;
-    for (const auto& [key, r] : games.of(p, game::to_string(c))) v.push_back(evader_survival(*r));
+    for (const auto& [key, r] : games.of(p, c)) v.push_back(evader_survival(*r));
     const double m = results::mean_interval(v).mean;
-    if (m > best_mean) best = game::to_string(c), best_mean = m;
+    if (m > best_mean) best = c, best_mean = m;
   }
   std::vector<double> own, theirs;
   std::size_t escapes = 0, games_own = 0, escapes_best = 0;
@@ -256,8 +255,8 @@ nlohmann::ordered_json league_findings(const League& league, const std::vector<L
     const std::vector<std::string> mine = members(league.evaders(), a.name);
     if (mine.empty()) continue;
     nlohmann::ordered_json against = nlohmann::ordered_json::array();
-    for (const auto kind : league.settings().classic_pursuers) {
-      against.push_back(evader_against(league, index, game::to_string(kind), mine));
+    for (const std::string& name : league.settings().classic_pursuers) {
+      against.push_back(evader_against(league, index, name, mine));
     }
     evaders.push_back({{"algorithm", a.name}, {"against_classic_pursuers", std::move(against)}});
   }
@@ -289,7 +288,7 @@ void League::write_results(const std::filesystem::path& out, const SweepTiming&)
         for (std::size_t k = 0; k < trained.size(); ++k) {
           const std::string key = fmt::format("{}_{}_{}{}", algorithms()[a].name, t, game::to_string(role),
                                               k == 0 ? std::string() : fmt::format("_{}", k));
-          game::save_policy(results::output_file(out / "policies", key, ".json"), *trained[k]);
+          players::save_policy(results::output_file(out / "policies", key, ".json"), *trained[k]);
         }
       }
     }

@@ -10,6 +10,7 @@
 #include "core/random.hpp"
 #include "experiment/trial.hpp"
 #include "players/lineup.hpp"
+#include "players/registry.hpp"
 #include "results/codecs.hpp"
 #include "results/csv_writer.hpp"
 #include "results/result_files.hpp"
@@ -20,12 +21,18 @@
 
 namespace peg3d::experiment {
 
-game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,
+std::vector<std::string> default_players(game::Role role) {
+  std::vector<std::string> names{std::string(players::kFacl)};
+  for (std::string& name : players::baseline_players(role)) names.push_back(std::move(name));
+  return names;
+}
+
+game::GameConfig pairing_config(const game::GameConfig& base, const std::string& pursuer, const std::string& evader,
                                 const MatchupSettings& s) {
   game::GameConfig c = base;
-  const auto side = [&c](game::Role role, game::PolicyKind kind, const std::shared_ptr<const game::SavedPolicy>& loaded) {
-    if (kind != game::PolicyKind::kFacl) {
-      c = game::with_role_playing(std::move(c), role, kind);
+  const auto side = [&c](game::Role role, const std::string& player, const std::shared_ptr<const players::SavedPolicy>& loaded) {
+    if (player != players::kFacl) {
+      c = game::with_role_playing(std::move(c), role, player);
     } else if (loaded && loaded->config() != nullptr) {
       (role == game::Role::kPursuer ? c.pursuer : c.evader) = *loaded->config();
       (role == game::Role::kPursuer ? c.pursuers : c.evaders).clear();
@@ -41,8 +48,8 @@ std::vector<game::Sim> make_matchup_sims(const std::shared_ptr<const world::Aren
   std::vector<game::Sim> sims;
   sims.reserve(1 + s.pursuers.size() * s.evaders.size());
   sims.emplace_back(arena, base);
-  for (const auto p : s.pursuers)
-    for (const auto e : s.evaders) sims.emplace_back(arena, pairing_config(base, p, e, s));
+  for (const auto& p : s.pursuers)
+    for (const auto& e : s.evaders) sims.emplace_back(arena, pairing_config(base, p, e, s));
   return sims;
 }
 
@@ -50,11 +57,11 @@ std::size_t matchup_run_count(const world::Arena& arena, const MatchupSettings& 
   return arena.map().scenarios.size() * static_cast<std::size_t>(s.sweep.repeats);
 }
 
-nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& base, const MatchupSettings& s) {
+nlohmann::json matchup_setup(const world::Arena& arena, const TrialConfig& base, const MatchupSettings& s) {
   nlohmann::json pursuers = nlohmann::json::array(), evaders = nlohmann::json::array();
-  for (const auto p : s.pursuers) pursuers.push_back(matchup_policy_name(s, game::Role::kPursuer, p));
-  for (const auto e : s.evaders) evaders.push_back(matchup_policy_name(s, game::Role::kEvader, e));
-  const auto policy_hash = [](const std::shared_ptr<const game::SavedPolicy>& m) {
+  for (const auto& p : s.pursuers) pursuers.push_back(matchup_policy_name(s, game::Role::kPursuer, p));
+  for (const auto& e : s.evaders) evaders.push_back(matchup_policy_name(s, game::Role::kEvader, e));
+  const auto policy_hash = [](const std::shared_ptr<const players::SavedPolicy>& m) {
     return m ? nlohmann::json(m->content_hash) : nlohmann::json(nullptr);
   };
   nlohmann::json setup = setup_header("matchup", arena, s.sweep);
@@ -75,18 +82,18 @@ nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSet
           {"runs", scenario_run_seeds(arena.map().scenarios, s.sweep.repeats, s.sweep.seed)}};
 }
 
-std::string matchup_policy_name(const MatchupSettings& s, game::Role role, game::PolicyKind kind) {
+std::string matchup_policy_name(const MatchupSettings& s, game::Role role, const std::string& player) {
   const auto& saved = role == game::Role::kPursuer ? s.pursuer_policy : s.evader_policy;
-  return kind == game::PolicyKind::kFacl && saved ? saved->kind_name() : game::to_string(kind);
+  return player == players::kFacl && saved ? saved->kind_name() : player;
 }
 
 namespace {
 
 bool needs_training(const MatchupSettings& s) {
-  for (const auto p : s.pursuers)
-    if (p == game::PolicyKind::kFacl && !s.pursuer_policy) return true;
-  for (const auto e : s.evaders)
-    if (e == game::PolicyKind::kFacl && !s.evader_policy) return true;
+  for (const auto& p : s.pursuers)
+    if (p == players::kFacl && !s.pursuer_policy) return true;
+  for (const auto& e : s.evaders)
+    if (e == players::kFacl && !s.evader_policy) return true;
   return false;
 }
 
@@ -95,19 +102,21 @@ bool needs_training(const MatchupSettings& s) {
 // One run of the matchups: the FACL agents of a start (trained or loaded), then every pairing's greedy game.
 class MatchupRun {
  public:
-  MatchupRun(const std::vector<game::Sim>& sims, const MatchupSettings& s) : sims_(sims), s_(s), train_(needs_training(s)) {}
+  MatchupRun(const std::vector<game::Sim>& sims, const MatchupSettings& s, const TrainingConfig& training)
+      : sims_(sims), s_(s), training_(training), train_(needs_training(s)) {}
 
   std::vector<MatchupRecord> play(std::size_t i) const {
     const auto& scenarios = sims_.front().arena().map().scenarios;
     const int sc = static_cast<int>(i / s_.sweep.repeats), rep = static_cast<int>(i % s_.sweep.repeats);
     const world::Scenario& scenario = scenarios[std::size_t(sc)];
     const std::uint64_t seed = run_seed(s_.sweep.seed, sc, rep);
-    game::RoleModels facl_pursuers, facl_evaders;
+    players::RoleModels facl_pursuers, facl_evaders;
     if (train_) {
       TrialResult t = run_trial(sims_.front(), {.scenario = &scenario,
                                                 .seed = seed,
                                                 .episodes = s_.sweep.episodes,
                                                 .stop = s_.sweep.control.stop,
+                                                .training = training_,
                                                 .pool = s_.pool.get(),
                                                 .progress = s_.sweep.control.progress});
       facl_pursuers = std::move(t.pursuer_models);
@@ -129,25 +138,25 @@ class MatchupRun {
   // Pairing (p, e) at one start: its lineup (frozen FACL models or classic policies seeded from the run's
   // seed) and its greedy game.
   MatchupRecord play_pairing(std::size_t p, std::size_t e, const world::Scenario& scenario, int rep, std::uint64_t seed,
-                             const game::RoleModels& facl_pursuers, const game::RoleModels& facl_evaders,
+                             const players::RoleModels& facl_pursuers, const players::RoleModels& facl_evaders,
                              game::SimState& state) const {
     const game::Sim& sim = sims_[1 + p * s_.evaders.size() + e];
     const int pursuers = static_cast<int>(scenario.pursuers.size()), evaders = static_cast<int>(scenario.evaders.size());
     const std::uint64_t pseed = derive_seed(seed, {10, p, e});
-    game::Lineup lineup;
-    if (s_.pursuers[p] == game::PolicyKind::kFacl && s_.pursuer_policy) {
-      game::add_saved(lineup, *s_.pursuer_policy, pursuers, pseed);
-    } else if (s_.pursuers[p] == game::PolicyKind::kFacl) {
-      game::add_frozen(lineup, facl_pursuers, pursuers);
+    players::Lineup lineup;
+    if (s_.pursuers[p] == players::kFacl && s_.pursuer_policy) {
+      players::add_saved(lineup, *s_.pursuer_policy, pursuers, pseed);
+    } else if (s_.pursuers[p] == players::kFacl) {
+      players::add_frozen(lineup, facl_pursuers, pursuers);
     } else {
-      game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
+      players::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
     }
-    if (s_.evaders[e] == game::PolicyKind::kFacl && s_.evader_policy) {
-      game::add_saved(lineup, *s_.evader_policy, evaders, derive_seed(pseed, {1}));
-    } else if (s_.evaders[e] == game::PolicyKind::kFacl) {
-      game::add_frozen(lineup, facl_evaders, evaders);
+    if (s_.evaders[e] == players::kFacl && s_.evader_policy) {
+      players::add_saved(lineup, *s_.evader_policy, evaders, derive_seed(pseed, {1}));
+    } else if (s_.evaders[e] == players::kFacl) {
+      players::add_frozen(lineup, facl_evaders, evaders);
     } else {
-      game::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
+      players::add_configured(lineup, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
     }
     MatchupRecord record{scenario.name, rep, matchup_policy_name(s_, game::Role::kPursuer, s_.pursuers[p]),
                          matchup_policy_name(s_, game::Role::kEvader, s_.evaders[e]), {}, {}, {}};
@@ -173,6 +182,7 @@ class MatchupRun {
 
   const std::vector<game::Sim>& sims_;
   const MatchupSettings& s_;
+  const TrainingConfig& training_;
   bool train_;
 };
 
@@ -211,13 +221,12 @@ std::vector<MatchupRecord> restore_games(const nlohmann::json& data, std::size_t
 
 }  // namespace
 
-MatchupExperiment::MatchupExperiment(std::shared_ptr<const world::Arena> arena, game::GameConfig base,
-                                     MatchupSettings settings)
+MatchupExperiment::MatchupExperiment(std::shared_ptr<const world::Arena> arena, TrialConfig base, MatchupSettings settings)
     : arena_(std::move(arena)),
       base_(std::move(base)),
       settings_(std::move(settings)),
-      sims_(make_matchup_sims(arena_, base_, settings_)) {
-  if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(arena_, base_);
+      sims_(make_matchup_sims(arena_, base_.game, settings_)) {
+  if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(make_pool(arena_, base_.game, base_.training));
 }
 
 MatchupExperiment::~MatchupExperiment() = default;
@@ -228,7 +237,7 @@ std::size_t MatchupExperiment::episodes_per_run() const {
 
 void MatchupExperiment::begin(const sweep::SweepControl& control) {
   settings_.sweep.control = control;
-  play_ = std::make_unique<const MatchupRun>(sims_, settings_);
+  play_ = std::make_unique<const MatchupRun>(sims_, settings_, base_.training);
   per_run_.assign(run_count(), {});
 }
 
@@ -325,8 +334,8 @@ nlohmann::ordered_json summarize_matchups(const std::vector<MatchupRecord>& reco
   const auto rate_json = [&](const results::ProportionInterval& r) {
     return nlohmann::ordered_json{{"rate", num(r.rate)}, {"lo", r.lo}, {"hi", r.hi}};
   };
-  for (const auto p : s.pursuers) {
-    for (const auto e : s.evaders) {
+  for (const auto& p : s.pursuers) {
+    for (const auto& e : s.evaders) {
       const std::string pname = matchup_policy_name(s, game::Role::kPursuer, p);
       const std::string ename = matchup_policy_name(s, game::Role::kEvader, e);
       std::size_t runs = 0, caps = 0, coll = 0, evaders = 0, evaders_captured = 0;

@@ -16,6 +16,7 @@
 #include "experiment/experiment.hpp"
 #include "experiment/sweep_settings.hpp"
 #include "experiment/training.hpp"
+#include "experiment/trial_config.hpp"
 #include "game/episode.hpp"
 #include "players/facl_policy.hpp"
 #include "players/saved_policy.hpp"
@@ -25,18 +26,20 @@
 
 namespace peg3d::experiment {
 
+/// FACL, then the baseline players of `role` (players::baseline_players): the match-ups' default.
+std::vector<std::string> default_players(game::Role role);
+
 struct MatchupSettings {
-  std::vector<game::PolicyKind> pursuers{game::PolicyKind::kFacl, game::PolicyKind::kPurePursuit,
-                                         game::PolicyKind::kProportionalNavigation, game::PolicyKind::kApollonius};
-  std::vector<game::PolicyKind> evaders{game::PolicyKind::kFacl, game::PolicyKind::kFlee,
-                                        game::PolicyKind::kFleeApollonius, game::PolicyKind::kRandom};
+  /// The players of each role (players/registry.hpp): by default FACL and the role's baselines.
+  std::vector<std::string> pursuers = default_players(game::Role::kPursuer);
+  std::vector<std::string> evaders = default_players(game::Role::kEvader);
   /// Seeds, budget (FACL training episodes, ignored for a loaded policy), repeats (seeds per scenario, 10 by
   /// default), threads and control.
   SweepSettings sweep{.repeats = 10};
   /// A saved pursuer (FACL or MLP) playing the "facl" slot instead of a trained one (every pursuer plays it);
   /// results name the slot by its kind ("facl" or "mlp").
-  std::shared_ptr<const game::SavedPolicy> pursuer_policy{};
-  std::shared_ptr<const game::SavedPolicy> evader_policy{};  ///< the same for the evaders
+  std::shared_ptr<const players::SavedPolicy> pursuer_policy{};
+  std::shared_ptr<const players::SavedPolicy> evader_policy{};  ///< the same for the evaders
   /// The classic opponents mixed into FACL training (experiment/training.hpp); null: co-learning.
   std::shared_ptr<const OpponentPool> pool{};
   /// Chooses the games (by matchup_key) whose episode is recorded, for replay viewers; none when empty.
@@ -56,15 +59,15 @@ struct MatchupRecord {
   std::shared_ptr<const game::Trace> trace;  ///< every instant, when settings.keep_trace chose the game
 };
 
-/// The name results give a pairing's policy of `role`: the kind's name, except that the "facl" slot played by a
-/// saved policy is named by that policy's kind ("facl" or "mlp").
-std::string matchup_policy_name(const MatchupSettings& settings, game::Role role, game::PolicyKind kind);
+/// The name results give a pairing's player of `role`: its name, except that the "facl" slot played by a saved
+/// policy is named by that policy's kind ("facl" or "mlp").
+std::string matchup_policy_name(const MatchupSettings& settings, game::Role role, const std::string& player);
 
 /// A game's key: SCENARIO_rREPEAT_PURSUER_vs_EVADER, e.g. S1_r0_pn_vs_flee.
 std::string matchup_key(const MatchupRecord& r);
 
-/// The game configuration of one pairing: `base` with the pursuers' and evaders' policies replaced.
-game::GameConfig pairing_config(const game::GameConfig& base, game::PolicyKind pursuer, game::PolicyKind evader,
+/// The game configuration of one pairing: `base` with the pursuers' and evaders' players replaced.
+game::GameConfig pairing_config(const game::GameConfig& base, const std::string& pursuer, const std::string& evader,
                                 const MatchupSettings& settings);
 
 /// Every Sim the matchups need, built (and the map's scenarios checked) before any run: [0] trains, then
@@ -79,7 +82,7 @@ std::size_t matchup_run_count(const world::Arena& arena, const MatchupSettings& 
 /// Everything the sweep's results depend on, for its journal header and run_info.json: the experiment, the
 /// peg3d build, the map's content hash, seed, episodes, repeats, pursuer and evader policies, the content
 /// hashes of loaded policies, and the base configuration.
-nlohmann::json matchup_setup(const world::Arena& arena, const game::GameConfig& base, const MatchupSettings& settings);
+nlohmann::json matchup_setup(const world::Arena& arena, const TrialConfig& base, const MatchupSettings& settings);
 
 /// The seeds of run_info.json: the root, how seeds derive, and each run's seed.
 nlohmann::ordered_json matchup_seeds(const world::Arena& arena, const MatchupSettings& settings);
@@ -104,7 +107,7 @@ class MatchupExperiment : public Experiment {
  public:
   /// Builds every Sim (make_matchup_sims, each checking the map's starts) and, unless settings.pool is set, the
   /// classic opponents FACL training mixes in.
-  MatchupExperiment(std::shared_ptr<const world::Arena> arena, game::GameConfig base, MatchupSettings settings);
+  MatchupExperiment(std::shared_ptr<const world::Arena> arena, TrialConfig base, MatchupSettings settings);
   ~MatchupExperiment() override;
 
   std::string kind() const override { return "matchup"; }
@@ -130,7 +133,7 @@ class MatchupExperiment : public Experiment {
   std::size_t pairings() const { return settings_.pursuers.size() * settings_.evaders.size(); }
 
   std::shared_ptr<const world::Arena> arena_;
-  game::GameConfig base_;
+  TrialConfig base_;
   MatchupSettings settings_;
   std::vector<game::Sim> sims_;  ///< [0] trains, then one per pairing (make_matchup_sims)
   std::unique_ptr<const MatchupRun> play_;

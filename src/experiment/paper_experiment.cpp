@@ -143,6 +143,7 @@ void PaperExperiment::run_one(std::size_t i) {
                  .episodes = settings_.sweep.episodes,
                  .keep_trace = traced(i),
                  .stop = control_.stop,
+                 .training = algorithms_[at.algorithm].config.training,
                  .pool = &pools_[at.algorithm],
                  .progress = control_.progress};
   trials_[i] = run_trial(sims_[at.algorithm], spec);
@@ -167,7 +168,7 @@ void PaperExperiment::finish(bool root) {
   std::vector<std::string> scenario_names, algorithm_names;
   for (const auto& s : arena_->map().scenarios) scenario_names.push_back(s.name);
   for (const auto& a : algorithms_) algorithm_names.push_back(a.name);
-  summary_ = summarize(results_.runs, scenario_names, algorithm_names, algorithms_.front().config.time_limit);
+  summary_ = summarize(results_.runs, scenario_names, algorithm_names, algorithms_.front().config.game.time_limit);
 }
 
 void PaperExperiment::write_results(const std::filesystem::path& out, const SweepTiming& timing) const {
@@ -189,7 +190,7 @@ void PaperExperiment::write_results(const std::filesystem::path& out, const Swee
     results::write_trajectory_csv(results::output_file(out / "trajectories", key, ".csv"), trace);
   }
   for (const auto& [key, model] : results_.policies) {
-    game::save_policy(results::output_file(out / "policies", key, ".json"), *model);
+    players::save_policy(results::output_file(out / "policies", key, ".json"), *model);
   }
   results::write_json(out / "map.json", results::map_to_json(*arena_));
   results::write_json(out / "apollonius.json",

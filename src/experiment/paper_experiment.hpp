@@ -37,7 +37,7 @@ struct PaperResults {
   std::vector<results::LearningCurve> curves;  ///< training episodes of each run
   std::map<std::string, game::Trace> traces;   ///< "<scenario>_<algorithm>" -> steps
   /// "<scenario>_<algorithm>_<role>" (a second model of a role: "<role>1", ...) -> trained model
-  std::map<std::string, std::shared_ptr<const game::FaclModel>> policies;
+  std::map<std::string, std::shared_ptr<const players::FaclModel>> policies;
   long long steps = 0;  ///< simulated steps, training and evaluation
 };
 

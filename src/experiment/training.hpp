@@ -11,10 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "core/config_fields.hpp"
+#include "experiment/opponent_pool.hpp"
 #include "game/episode.hpp"
 #include "game/game_config.hpp"
-#include "players/lineup.hpp"
 #include "game/sim.hpp"
+#include "players/lineup.hpp"
 #include "sweep/parallel_runner.hpp"
 #include "world/arena.hpp"
 
@@ -23,6 +25,51 @@ class ProgressReporter;
 }
 
 namespace peg3d::experiment {
+
+/// How the FACL agents of a trial train (docs/learning.md). The defaults are the paper's procedure.
+enum class TrainingProcedure {
+  kCoLearning,    ///< the paper: every episode, the FACL pursuers and evaders learn against each other
+  kOpponentPool,  ///< a share of the episodes, one FACL role learns against a classic opponent of the pool
+};
+inline constexpr config::EnumNames<TrainingProcedure, 2> kTrainingProcedureNames{
+    {{TrainingProcedure::kCoLearning, "co-learning"}, {TrainingProcedure::kOpponentPool, "opponent-pool"}}};
+
+struct TrainingConfig {
+  TrainingProcedure procedure = TrainingProcedure::kCoLearning;
+  OpponentPoolConfig pool;  ///< the classic opponents of opponent-pool training (experiment/opponent_pool.hpp)
+  /// Share of training episodes, in [0, 1], whose agents start at random places in the arena (game/random_start.hpp)
+  /// instead of the scenario's; the scenario still gives how many agents play.
+  double random_starts = 0.0;
+  double random_start_gap = 20.0;  ///< m, >= 0: least distance from a pursuer to an evader at a random start
+  /// Share of the training episodes, in (0, 1], in which the pursuers learn: the first ones. Afterwards they
+  /// play their policy greedily without learning, and the opponent pool leaves out their entries.
+  double pursuer_learning = 1.0;
+  double evader_learning = 1.0;  ///< likewise for the evaders
+  bool operator==(const TrainingConfig&) const = default;
+};
+
+template <class V, class C>
+  requires std::same_as<std::remove_const_t<C>, TrainingConfig>
+void visit_fields(V& v, C& c) {
+  using config::Range;
+  v.choice("procedure", c.procedure, kTrainingProcedureNames,
+           "co-learning (the paper) or opponent-pool (co-learning mixed with episodes against classic opponents)");
+  v.section("pool", c.pool, "opponent-pool: the classic opponents and how often they play");
+  v.number("random_starts", c.random_starts, Range::closed(0, 1), "",
+           "share of training episodes that start at random places in the arena instead of the scenario's");
+  v.number("random_start_gap", c.random_start_gap, Range::non_negative(), "m",
+           "least distance from a pursuer to an evader at a random start");
+  v.number("pursuer_learning", c.pursuer_learning, Range::open_closed(0, 1), "",
+           "share of the training episodes (the first ones) in which the pursuers learn");
+  v.number("evader_learning", c.evader_learning, Range::open_closed(0, 1), "",
+           "share of the training episodes (the first ones) in which the evaders learn");
+  v.require(c.procedure != TrainingProcedure::kOpponentPool || !c.pool.pursuers.empty() || !c.pool.evaders.empty(),
+            "procedure", "opponent-pool", "needs at least one player in pool.pursuers or pool.evaders");
+}
+
+/// The opponent pool of `training` for a game configured by `config` (empty for co-learning).
+OpponentPool make_pool(const std::shared_ptr<const world::Arena>& arena, const game::GameConfig& config,
+                       const TrainingConfig& training);
 
 /// Seeds of a trial's streams, derived from its root seed.
 enum class TrialStream : std::uint64_t {
@@ -40,7 +87,8 @@ class OpponentPool;
 
 /// What a training plays besides the learners themselves.
 struct TrainingContext {
-  const game::Sim* sim = nullptr;  ///< the game the lineup learns in; its configuration's `training` settings apply
+  const game::Sim* sim = nullptr;  ///< the game the lineup learns in
+  TrainingConfig training{};       ///< how it learns
   /// The classic opponents mixed in (its Sims share the arena of `sim`); null or empty: co-learning only.
   const OpponentPool* pool = nullptr;
   std::span<const world::Scenario> scenarios{};///< episode e starts from scenarios[e % size], >= 1 of them
@@ -59,48 +107,11 @@ struct TrainingResult {
 
 /// Plays context.episodes learning episodes with `lineup` (at least as many policies of each role as any
 /// scenario has agents; a smaller scenario plays the first ones), in `state` (scratch, reused). Episode e
-/// starts from scenarios[e % size] (or, with training.random_starts, from a random_start() of its agents)
-/// and, with a pool, plays the opponent pool->choose() draws for it (co-learning for -1). A role past its
-/// training.*_learning share of the episodes plays greedily without learning. Every stream derives from
+/// starts from scenarios[e % size] (or, with context.training.random_starts, from a random_start() of its
+/// agents) and, with a pool, plays the opponent pool->choose() draws for it (co-learning for -1). A role past its
+/// context.training.*_learning share of the episodes plays greedily without learning. Every stream derives from
 /// context.seed as TrialStream says. Throws RunCancelled when context.stop asks, std::logic_error when the
-/// configuration trains with an opponent pool and none is given.
-TrainingResult train_lineup(const TrainingContext& context, game::Lineup& lineup, game::SimState& state);
-
-/// The classic opponents of an opponent-pool training, each with the Sim it is played in (the game
-/// configuration with every agent of the opponent's role playing it). Built once per sweep, before any run,
-/// and shared read-only by every trial and thread.
-class OpponentPool {
- public:
-  struct Entry {
-    game::Role learner;         ///< the FACL role that learns in these episodes
-    game::PolicyKind opponent;  ///< what every agent of the other role plays
-    game::Sim sim;
-  };
-
-  /// The pool of config.training for a game configured by `config`: the chosen classic policies of each role
-  /// whose agents are FACL learners. Empty for co-learning. Throws like Sim's constructor.
-  OpponentPool(const std::shared_ptr<const world::Arena>& arena, const game::GameConfig& config);
-
-  const game::TrainingConfig& config() const { return training_; }
-  std::span<const Entry> entries() const { return entries_; }
-  bool empty() const { return entries_.empty(); }
-
-  /// The entry a training episode plays, drawn from `seed` (the episode's own), or -1 for a co-learning
-  /// episode: a pool episode with probability pool_share, its entry uniform over the pool's entries whose
-  /// learner still learns (training.pursuer_learning, evader_learning); -1 when none does.
-  int choose(std::uint64_t seed, bool pursuers_learn = true, bool evaders_learn = true) const;
-
- private:
-  game::TrainingConfig training_;
-  std::vector<Entry> entries_;
-};
-
-/// The policy name of each training episode's opponent-pool opponent, "" for a co-learning episode (-1), as
-/// learning_curves.csv writes them. Throws std::logic_error for an entry that is neither.
-std::vector<std::string> pool_opponent_names(const OpponentPool& pool, std::span<const int> opponents);
-
-/// Checks a run's opponents read back from a journal: one per training episode, each -1 or an entry of `pool`.
-/// Throws InputError (field training_opponent) otherwise.
-void check_journaled_opponents(const OpponentPool& pool, std::span<const int> opponents, std::size_t episodes);
+/// training is by opponent pool and none is given.
+TrainingResult train_lineup(const TrainingContext& context, players::Lineup& lineup, game::SimState& state);
 
 }  // namespace peg3d::experiment

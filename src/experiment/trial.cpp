@@ -17,14 +17,15 @@ TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec) {
   assert(spec.scenario != nullptr);
   const world::Scenario& scenario = *spec.scenario;
   TrialResult r;
-  game::Lineup lineup;
+  players::Lineup lineup;
   const int pursuers = static_cast<int>(scenario.pursuers.size());
-  game::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers,
+  players::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers,
                        stream_seed(spec.seed, TrialStream::kPursuer), &r.pursuer_models);
-  game::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(scenario.evaders.size()),
+  players::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(scenario.evaders.size()),
                        stream_seed(spec.seed, TrialStream::kEvader), &r.evader_models);
   game::SimState state(sim);
   r.training = train_lineup({.sim = &sim,
+                             .training = spec.training,
                              .pool = spec.pool,
                              .scenarios = {&scenario, 1},
                              .pursuers = pursuers,
@@ -42,7 +43,7 @@ TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec) {
 }
 
 game::EpisodeResult evaluate(const game::Sim& sim, game::SimState& state, const world::Scenario& scenario,
-                             const game::Lineup& lineup, std::uint64_t seed, game::Trace* trace) {
+                             const players::Lineup& lineup, std::uint64_t seed, game::Trace* trace) {
   if (trace) trace->reserve(sim.max_steps(), scenario.agents());
   return game::play(sim, state, scenario, lineup.policies(), /*learning=*/false, seed, trace);
 }

@@ -20,7 +20,8 @@ struct TrialSpec {
   int episodes = 200;       ///< training episodes, >= 0
   bool keep_trace = false;  ///< record every step of the evaluation episode
   sweep::StopCheck stop{};  ///< polled before every episode; a stop request throws RunCancelled
-  /// The classic opponents mixed into training (experiment/training.hpp); null or empty: co-learning only.
+  TrainingConfig training{};  ///< how the learners train (co-learning by default)
+  /// The classic opponents mixed into training (experiment/opponent_pool.hpp); null or empty: co-learning only.
   const OpponentPool* pool = nullptr;
   sweep::ProgressReporter* progress = nullptr;  ///< told of every episode; null: none
 };
@@ -29,8 +30,8 @@ struct TrialResult {
   game::EpisodeResult evaluation;  ///< the greedy episode after training
   TrainingResult training;         ///< the training episodes (the learning curve) and their opponents
   game::Trace trace;               ///< the evaluation's steps when keep_trace
-  game::RoleModels pursuer_models;  ///< the trained FACL models of each role (empty when none learns)
-  game::RoleModels evader_models;
+  players::RoleModels pursuer_models;  ///< the trained FACL models of each role (empty when none learns)
+  players::RoleModels evader_models;
 
   int train_captures() const;
 };
@@ -43,6 +44,6 @@ TrialResult run_trial(const game::Sim& sim, const TrialSpec& spec);
 /// Plays one greedy evaluation episode of already-built policies, in a state of the caller's (reused across
 /// calls to spare building its collision world).
 game::EpisodeResult evaluate(const game::Sim& sim, game::SimState& state, const world::Scenario& scenario,
-                             const game::Lineup& lineup, std::uint64_t seed, game::Trace* trace = nullptr);
+                             const players::Lineup& lineup, std::uint64_t seed, game::Trace* trace = nullptr);
 
 }  // namespace peg3d::experiment

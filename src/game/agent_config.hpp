@@ -21,35 +21,6 @@
 
 namespace peg3d::game {
 
-/// Who drives an agent when the game is played by policies (an external caller may instead pass its own
-/// steering commands to step()).
-enum class PolicyKind {
-  kFacl,                    ///< fuzzy actor-critic learning (both roles)
-  kPurePursuit,             ///< head straight at the opponent (pursuer)
-  kProportionalNavigation,  ///< 3D proportional navigation with gain pn_gain (pursuer)
-  kApollonius,              ///< aim at the Apollonius interception point (pursuer)
-  kFlee,                    ///< flee along the line of sight, repelled by walls and obstacles (evader)
-  kFleeApollonius,          ///< head for the far side of the evader's dominance region (evader)
-  kRandom,                  ///< random steering within the bound (both roles)
-  kSearch,                  ///< the partial game: chase in sight, else go to the last sighting and search (pursuer)
-  kHide,                    ///< the partial game: break line of sight behind an occluder when seen, else flee (evader)
-};
-inline constexpr config::EnumNames<PolicyKind, 9> kPolicyNames{{{PolicyKind::kFacl, "facl"},
-                                                                {PolicyKind::kPurePursuit, "pure-pursuit"},
-                                                                {PolicyKind::kProportionalNavigation, "pn"},
-                                                                {PolicyKind::kApollonius, "apollonius"},
-                                                                {PolicyKind::kFlee, "flee"},
-                                                                {PolicyKind::kFleeApollonius, "flee-apollonius"},
-                                                                {PolicyKind::kRandom, "random"},
-                                                                {PolicyKind::kSearch, "search"},
-                                                                {PolicyKind::kHide, "hide"}}};
-const char* to_string(PolicyKind p);
-/// Whether a policy can play `role` (facl and random play both; guidance laws pursue; flee policies evade).
-bool plays(PolicyKind p, Role role);
-/// The policy called `name` for `role`; throws InvalidParameter naming `field` for an unknown name or one
-/// that does not play the role.
-PolicyKind policy_named(const std::string& name, Role role, const std::string& field);
-
 /// How FACL turns observations into the two steering angles.
 enum class FaclStructure {
   kJoint,     ///< one actor-critic over all inputs with two outputs (the paper)
@@ -70,7 +41,10 @@ inline constexpr config::EnumNames<FaclAction, 2> kFaclActionNames{
 
 /// One agent: who drives it and how it moves, senses, is rewarded and learns.
 struct AgentConfig {
-  PolicyKind policy = PolicyKind::kFacl;
+  /// Who drives it when the game is played by policies: a player's name (players/registry.hpp, `--list-players`),
+  /// checked against the registry where players are made. An external caller may instead pass its own steering
+  /// commands to step().
+  std::string policy = "facl";
   double speed = 1.0;    ///< m/s; pursuer > 0, evader >= 0 (0: a motionless target); paper 1.1 and 1.0
   double radius = 0.25;  ///< m, collision sphere, > 0
   SteeringConfig steering;
@@ -107,7 +81,7 @@ template <class V, class C>
   requires std::same_as<std::remove_const_t<C>, AgentConfig>
 void visit_fields(V& v, C& c) {
   using config::Range;
-  v.choice("policy", c.policy, kPolicyNames, "who drives the agent");
+  v.name("policy", c.policy, "a player (--list-players)", "who drives the agent");
   v.number("speed", c.speed, Range::non_negative(), "m/s",
            "constant speed; a pursuer's > 0, an evader may stand still (paper 1.1 and 1.0)");
   v.number("radius", c.radius, Range::positive(), "m", "collision sphere (the paper gives none)");

@@ -9,39 +9,11 @@
 
 namespace peg3d::game {
 
-const char* to_string(PolicyKind p) { return config::enum_name(kPolicyNames, p); }
-
-bool plays(PolicyKind p, Role role) {
-  switch (p) {
-    case PolicyKind::kFacl:
-    case PolicyKind::kRandom: return true;
-    case PolicyKind::kPurePursuit:
-    case PolicyKind::kProportionalNavigation:
-    case PolicyKind::kApollonius:
-    case PolicyKind::kSearch: return role == Role::kPursuer;
-    case PolicyKind::kFlee:
-    case PolicyKind::kFleeApollonius:
-    case PolicyKind::kHide: return role == Role::kEvader;
-  }
-  return false;
-}
-
-PolicyKind policy_named(const std::string& name, Role role, const std::string& field) {
-  std::string valid;
-  for (const auto& n : kPolicyNames)
-    if (plays(n.value, role)) valid += (valid.empty() ? "" : ", ") + std::string(n.name);
-  const PolicyKind* p = config::enum_value(kPolicyNames, name);
-  if (p == nullptr || !plays(*p, role)) {
-    throw InvalidParameter(field, "\"" + name + "\"", std::string("must be a ") + to_string(role) + " policy: " + valid);
-  }
-  return *p;
-}
-
 int GameConfig::max_steps() const { return static_cast<int>(std::lround(time_limit / dt)); }
 
 void GameConfig::validate() const { config::validate(*this); }
 
-AgentConfig scripted_agent(const AgentConfig& base, PolicyKind policy) {
+AgentConfig scripted_agent(const AgentConfig& base, const std::string& policy) {
   AgentConfig a = base;
   a.policy = policy;
   a.motion_space = false;
@@ -54,7 +26,7 @@ void GameConfig::set_agent(Role r, int k, const AgentConfig& a) {
   list[std::size_t(k)] = a;
 }
 
-GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy) {
+GameConfig with_role_playing(GameConfig config, Role role, const std::string& policy) {
   AgentConfig& all = role == Role::kPursuer ? config.pursuer : config.evader;
   all = scripted_agent(all, policy);
   for (AgentConfig& a : role == Role::kPursuer ? config.pursuers : config.evaders) a = scripted_agent(a, policy);
@@ -111,9 +83,7 @@ GameConfig preset(const std::string& name) {
   // The baseline replaces the pursuer's method only; its opponent is peg3d's evader, so the two arms of a
   // comparison differ in one thing.
   c.evader = agent_preset(name == "baseline" ? "peg3d" : name, Role::kEvader);
-  if (name == "robust") {  // co-learning mixed with classic opponents (docs/learning.md)
-    c.training.procedure = TrainingProcedure::kOpponentPool;
-    c.training.pool_share = 0.8;
+  if (name == "robust") {  // trained with classic opponents mixed in (experiment::trial_preset, docs/learning.md)
     // Every pursuer shares each capture, and every free evader each loss: pursuer teams that cooperate (on
     // pack.yaml's selection seeds the pursuer met its goal on 16 of 18 instead of 10). One against one, it is
     // the individual reward, bit for bit.
@@ -122,11 +92,6 @@ GameConfig preset(const std::string& name) {
     // one while the other ran out the clock (docs/learning.md, "Teams: one evader each"). One against one, nothing
     // changes.
     c.team.pursuer_target = OpponentChoice::kAssigned;
-    // Every training episode starts at random places, and the evaders learn for twice as long as the pursuers:
-    // on the selection seeds the evader then outlasted flee-apollonius against the Apollonius interceptor
-    // (docs/learning.md, "Random starts, and a longer training for the evader").
-    c.training.random_starts = 1.0;
-    c.training.pursuer_learning = 0.5;
   }
   return c;
 }

@@ -54,37 +54,6 @@ inline constexpr config::EnumNames<MoverDynamics, 2> kMoverDynamicsNames{
     {{MoverDynamics::kShared, "shared"}, {MoverDynamics::kPush, "push"}}};
 
 
-/// How the FACL agents of a trial train (the experiments carry it out: experiment/training.hpp,
-/// docs/learning.md). The defaults are the paper's procedure.
-enum class TrainingProcedure {
-  kCoLearning,    ///< the paper: every episode, the FACL pursuers and evaders learn against each other
-  kOpponentPool,  ///< a share of the episodes, one FACL role learns against a classic opponent of the pool
-};
-inline constexpr config::EnumNames<TrainingProcedure, 2> kTrainingProcedureNames{
-    {{TrainingProcedure::kCoLearning, "co-learning"}, {TrainingProcedure::kOpponentPool, "opponent-pool"}}};
-
-struct TrainingConfig {
-  TrainingProcedure procedure = TrainingProcedure::kCoLearning;
-  /// Opponent pool: the share of training episodes, in [0, 1], in which one FACL role (drawn uniformly with
-  /// the opponent) plays a classic opponent instead of its co-learning partner.
-  double pool_share = 0.5;
-  bool pool_pure_pursuit = true;     ///< the FACL evaders' pool includes pure pursuit
-  bool pool_pn = true;               ///< ... proportional navigation
-  bool pool_apollonius = true;       ///< ... the Apollonius interceptor
-  bool pool_flee = true;             ///< the FACL pursuers' pool includes flee
-  bool pool_flee_apollonius = true;  ///< ... flee-apollonius
-  bool pool_random = true;           ///< ... the random evader
-  /// Share of training episodes, in [0, 1], whose agents start at random places in the arena (random_start.hpp)
-  /// instead of the scenario's; the scenario still gives how many agents play.
-  double random_starts = 0.0;
-  double random_start_gap = 20.0;  ///< m, >= 0: least distance from a pursuer to an evader at a random start
-  /// Share of the training episodes, in (0, 1], in which the pursuers learn: the first ones. Afterwards they
-  /// play their policy greedily without learning, and the opponent pool leaves out their entries.
-  double pursuer_learning = 1.0;
-  double evader_learning = 1.0;  ///< likewise for the evaders
-  bool operator==(const TrainingConfig&) const = default;
-};
-
 struct GameConfig {
   double dt = 0.1;                ///< s, sample time, > 0 (paper 0.1)
   double time_limit = 100.0;      ///< s, episode limit, >= dt (paper 100)
@@ -100,7 +69,6 @@ struct GameConfig {
   std::vector<AgentConfig> pursuers;
   std::vector<AgentConfig> evaders;  ///< likewise for evaders, starting from `evader`
   TeamConfig team;
-  TrainingConfig training;
 
   int max_steps() const;  ///< time_limit / dt, rounded
   /// The configuration of the k-th agent (k >= 0) of a role.
@@ -118,19 +86,21 @@ struct GameConfig {
   bool operator==(const GameConfig&) const = default;
 };
 
-/// The configuration a scripted policy plays with: the base agent's kinematics and guard, its own policy,
-/// no motion space and no learning.
-AgentConfig scripted_agent(const AgentConfig& base, PolicyKind policy);
+/// The configuration a scripted player plays with: the base agent's kinematics and guard, its own policy (a
+/// player's name), no motion space and no learning.
+AgentConfig scripted_agent(const AgentConfig& base, const std::string& policy);
 /// `config` with every agent of `role` (its default and each per-agent entry) playing the scripted `policy`.
-GameConfig with_role_playing(GameConfig config, Role role, PolicyKind policy);
+GameConfig with_role_playing(GameConfig config, Role role, const std::string& policy);
 
 /// The preset names: "peg3d" (the default), "paper" (as faithful as the text allows), "baseline" (FACL in
-/// the manner of Al-Mahbashi et al. 2020 for the pursuer) and "robust" (peg3d trained with an opponent pool,
+/// the manner of Al-Mahbashi et al. 2020 for the pursuer) and "robust" (peg3d's agents tuned to hold up against
+/// classic opponents; the experiments train it with an opponent pool: experiment/trial_config.hpp,
 /// docs/learning.md).
 inline constexpr const char* kPresetNames[] = {"peg3d", "paper", "baseline", "robust"};
 /// kPresetNames as text for messages and help: "peg3d, paper, baseline, robust".
 std::string preset_list();
-/// A named configuration. Throws InvalidParameter for an unknown name.
+/// A named configuration of the game (how a preset trains is experiment::trial_preset's). Throws InvalidParameter
+/// for an unknown name.
 GameConfig preset(const std::string& name);
 /// The preset's settings for one agent (the pursuer's or the evader's side of that preset).
 AgentConfig agent_preset(const std::string& name, Role role);
@@ -139,40 +109,11 @@ AgentConfig agent_preset(const std::string& name, Role role);
 // ---- Field tables (core/config_fields.hpp) ----
 
 
-template <class V, class C>
-  requires std::same_as<std::remove_const_t<C>, TrainingConfig>
-void visit_fields(V& v, C& c) {
-  using config::Range;
-  v.choice("procedure", c.procedure, kTrainingProcedureNames,
-           "co-learning (the paper) or opponent-pool (co-learning mixed with episodes against classic opponents)");
-  v.number("pool_share", c.pool_share, Range::closed(0, 1), "",
-           "opponent-pool: share of training episodes in which one FACL role plays a classic opponent");
-  v.flag("pool_pure_pursuit", c.pool_pure_pursuit, "opponent-pool: FACL evaders train against pure pursuit");
-  v.flag("pool_pn", c.pool_pn, "opponent-pool: FACL evaders train against proportional navigation");
-  v.flag("pool_apollonius", c.pool_apollonius, "opponent-pool: FACL evaders train against the Apollonius interceptor");
-  v.flag("pool_flee", c.pool_flee, "opponent-pool: FACL pursuers train against flee");
-  v.flag("pool_flee_apollonius", c.pool_flee_apollonius, "opponent-pool: FACL pursuers train against flee-apollonius");
-  v.flag("pool_random", c.pool_random, "opponent-pool: FACL pursuers train against the random evader");
-  v.number("random_starts", c.random_starts, Range::closed(0, 1), "",
-           "share of training episodes that start at random places in the arena instead of the scenario's");
-  v.number("random_start_gap", c.random_start_gap, Range::non_negative(), "m",
-           "least distance from a pursuer to an evader at a random start");
-  v.number("pursuer_learning", c.pursuer_learning, Range::open_closed(0, 1), "",
-           "share of the training episodes (the first ones) in which the pursuers learn");
-  v.number("evader_learning", c.evader_learning, Range::open_closed(0, 1), "",
-           "share of the training episodes (the first ones) in which the evaders learn");
-  v.require(c.procedure != TrainingProcedure::kOpponentPool || c.pool_pure_pursuit || c.pool_pn || c.pool_apollonius ||
-                c.pool_flee || c.pool_flee_apollonius || c.pool_random,
-            "procedure", "opponent-pool", "needs at least one pool_* opponent");
-}
-
 namespace detail {
-/// The role rules of one agent's settings (its policy plays the role; a pursuer moves).
+/// The role rules of one agent's settings: a pursuer moves. (Whether its policy plays the role is the players'
+/// registry's check, players::check_players.)
 template <class V>
 void require_role(V& v, const AgentConfig& a, Role role, const std::string& prefix) {
-  v.require(plays(a.policy, role), prefix + ".policy", to_string(a.policy),
-            role == Role::kPursuer ? "is not a pursuer policy (facl, pure-pursuit, pn, apollonius, random, search)"
-                                   : "is not an evader policy (facl, flee, flee-apollonius, random, hide)");
   if (role == Role::kPursuer) v.require(a.speed > 0.0, prefix + ".speed", a.speed, "must be > 0 for a pursuer");
 }
 }  // namespace detail
@@ -197,7 +138,6 @@ void visit_fields(V& v, C& c) {
   v.sections("pursuers", c.pursuers, c.pursuer, "per-pursuer settings, by index in the scenario");
   v.sections("evaders", c.evaders, c.evader, "per-evader settings, by index in the scenario");
   v.section("team", c.team, "how teams play");
-  v.section("training", c.training, "how FACL agents train (docs/learning.md)");
   v.require(c.time_limit >= c.dt, "time_limit", c.time_limit, "must be >= dt");
   v.require(c.time_limit / c.dt <= 1e8, "time_limit", c.time_limit, "must be at most 1e8 steps of dt");
   detail::require_role(v, c.pursuer, Role::kPursuer, "pursuer");

@@ -7,11 +7,11 @@
 
 namespace peg3d::game {
 
-world::Scenario random_start(const Sim& sim, const world::Scenario& like, std::uint64_t seed) {
+world::Scenario random_start(const Sim& sim, const world::Scenario& like, std::uint64_t seed, double gap_setting) {
   constexpr int kDraws = 1000;
   const GameConfig& g = sim.config();
   const world::Arena& arena = sim.arena();
-  const double gap = std::max(g.training.random_start_gap, g.capture_distance);
+  const double gap = std::max(gap_setting, g.capture_distance);
   const int n = like.agents(), p = static_cast<int>(like.pursuers.size());
   const auto radius = [&](int i) { return g.agent_at(i, p).radius; };
   Rng rng(seed);

@@ -8,10 +8,10 @@
 #include "core/step_profile.hpp"
 #include "geometry/angles.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
 
-fuzzy::TriangularPartition partition_of(int feature, const ObservationConfig& o) {
+fuzzy::TriangularPartition partition_of(int feature, const game::ObservationConfig& o) {
   switch (feature) {
     case 0: return {0.0, o.target_range, o.sets, "observation.target_range"};
     case 3: return {0.0, o.obstacle_range, o.sets, "observation.obstacle_range"};
@@ -19,7 +19,7 @@ fuzzy::TriangularPartition partition_of(int feature, const ObservationConfig& o)
   }
 }
 
-fuzzy::RuleBase rule_base_of(const std::vector<int>& features, const ObservationConfig& o) {
+fuzzy::RuleBase rule_base_of(const std::vector<int>& features, const game::ObservationConfig& o) {
   std::vector<fuzzy::TriangularPartition> parts;
   for (int f : features) parts.push_back(partition_of(f, o));
   return fuzzy::RuleBase(std::move(parts));
@@ -27,22 +27,22 @@ fuzzy::RuleBase rule_base_of(const std::vector<int>& features, const Observation
 
 }  // namespace
 
-Features features_of(const Percept& p) {
+Features features_of(const game::Percept& p) {
   return {p.target_distance,   p.target.azimuth,      p.target.elevation,
           p.obstacle.distance,  p.to_obstacle.azimuth, p.to_obstacle.elevation,
           p.opponent_heading.azimuth, p.opponent_heading.elevation};
 }
 
-FaclModel::FaclModel(const AgentConfig& config, Role role) : config_(config), role_(role) {
+FaclModel::FaclModel(const game::AgentConfig& config, game::Role role) : config_(config), role_(role) {
   struct Spec {
     std::vector<int> features;
     std::array<int, 2> outputs;
     int actions;
   };
   std::vector<Spec> specs;
-  if (config.structure == FaclStructure::kPerAngle) {
+  if (config.structure == game::FaclStructure::kPerAngle) {
     specs = {{{0, 1, 3, 4}, {0, -1}, 1}, {{0, 2, 3, 5}, {1, -1}, 1}};
-  } else if (config.observation.angles == AngleInputs::kAzimuth) {
+  } else if (config.observation.angles == game::AngleInputs::kAzimuth) {
     specs = {{{0, 1, 3, 4}, {0, 1}, 2}};
   } else {
     specs = {{{0, 1, 2, 3, 4, 5}, {0, 1}, 2}};
@@ -70,7 +70,7 @@ void FaclModel::fire(int channel, const Features& f, fuzzy::FiredRules& out) con
   c.tables.fire({x.data(), c.features.size()}, out);
 }
 
-FaclPolicy::FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed)
+FaclPolicy::FaclPolicy(const game::AgentConfig& config, game::Role role, std::uint64_t seed)
     : FaclPolicy(std::make_shared<FaclModel>(config, role), seed) {}
 
 FaclPolicy::FaclPolicy(std::shared_ptr<FaclModel> model, std::uint64_t seed) : model_(model), trainable_(model.get()) {
@@ -88,13 +88,13 @@ void FaclPolicy::init_lanes(std::uint64_t seed) {
   }
 }
 
-void FaclPolicy::begin_episode(const AgentView&, bool learning) {
+void FaclPolicy::begin_episode(const game::AgentView&, bool learning) {
   if (learning && trainable_ == nullptr) throw std::logic_error("a FaclPolicy over a frozen model cannot learn");
   learning_ = learning;
   have_fired_ = false;
 }
 
-Steering FaclPolicy::act(const AgentView& view) {
+Steering FaclPolicy::act(const game::AgentView& view) {
   double steering[2] = {0.0, 0.0};
   const Features f = features_of(view.percept);
   const bool reuse = have_fired_ && f == fired_features_;
@@ -116,14 +116,14 @@ Steering FaclPolicy::act(const AgentView& view) {
   have_fired_ = false;
   // The offset is added outside the learner: the actor's TD update compares explored and greedy outputs of
   // the same state, so the base turn cancels there.
-  if (model_->config().action == FaclAction::kTargetLineOffset) {
+  if (model_->config().action == game::FaclAction::kTargetLineOffset) {
     steering[0] += view.percept.target.azimuth;
     steering[1] += view.percept.target.elevation;
   }
   return {steering[0], steering[1]};
 }
 
-void FaclPolicy::learn(double reward, const AgentView& next, bool terminal) {
+void FaclPolicy::learn(double reward, const game::AgentView& next, bool terminal) {
   assert(learning_ && trainable_ != nullptr);
   const Features f = features_of(next.percept);
   for (Lane& l : lanes_) {
@@ -145,4 +145,4 @@ void FaclPolicy::learn(double reward, const AgentView& next, bool terminal) {
   have_fired_ = !terminal;
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

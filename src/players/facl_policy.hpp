@@ -26,23 +26,23 @@
 #include "fuzzy/facl_learner.hpp"
 #include "game/policy.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 inline constexpr int kFeatureCount = 8;
 using Features = std::array<double, kFeatureCount>;
 
 /// The features of a percept (6 and 7 are 0 unless the percept observed the opponent's heading).
-Features features_of(const Percept& p);
+Features features_of(const game::Percept& p);
 
 /// The learned part of a FACL agent. Acting reads it; only a learning FaclPolicy writes it.
 class FaclModel {
  public:
   /// Fresh tables (every consequent at its configured initial value) for `config`, which must select FACL.
   /// Throws InvalidParameter on a configuration the rule bases cannot be built from.
-  FaclModel(const AgentConfig& config, Role role);
+  FaclModel(const game::AgentConfig& config, game::Role role);
 
-  const AgentConfig& config() const { return config_; }
-  Role role() const { return role_; }
+  const game::AgentConfig& config() const { return config_; }
+  game::Role role() const { return role_; }
   int channels() const { return static_cast<int>(channels_.size()); }
   fuzzy::FaclTables& tables(int channel) { return channels_[std::size_t(channel)].tables; }
   const fuzzy::FaclTables& tables(int channel) const { return channels_[std::size_t(channel)].tables; }
@@ -59,23 +59,23 @@ class FaclModel {
     std::vector<int> features;   ///< indices into Features
     std::array<int, 2> outputs;  ///< steering component of each output: 0 d_alpha, 1 d_theta
   };
-  AgentConfig config_;
-  Role role_;
+  game::AgentConfig config_;
+  game::Role role_;
   std::vector<Channel> channels_;
 };
 
-class FaclPolicy final : public Policy {
+class FaclPolicy final : public game::Policy {
  public:
   /// A new model of its own for `config` (the one-agent-per-model case); `seed` seeds its exploration.
-  FaclPolicy(const AgentConfig& config, Role role, std::uint64_t seed);
+  FaclPolicy(const game::AgentConfig& config, game::Role role, std::uint64_t seed);
   /// An agent driven by a shared model that it may train; `seed` seeds its own exploration.
   FaclPolicy(std::shared_ptr<FaclModel> model, std::uint64_t seed);
   /// An agent driven by a frozen model: greedy only (begin_episode with learning throws std::logic_error).
   explicit FaclPolicy(std::shared_ptr<const FaclModel> model);
 
-  void begin_episode(const AgentView& view, bool learning) override;
-  Steering act(const AgentView& view) override;
-  void learn(double reward, const AgentView& next, bool terminal) override;
+  void begin_episode(const game::AgentView& view, bool learning) override;
+  Steering act(const game::AgentView& view) override;
+  void learn(double reward, const game::AgentView& next, bool terminal) override;
 
   const FaclModel& model() const { return *model_; }
   /// The model, shareable with other agents or threads.
@@ -108,4 +108,4 @@ class FaclPolicy final : public Policy {
   bool have_fired_ = false;
 };
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -4,9 +4,9 @@
 #include <stdexcept>
 
 #include "core/random.hpp"
-#include "players/policy_factory.hpp"
+#include "players/registry.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 std::uint64_t agent_seed(std::uint64_t role_seed, int k) {
   return k == 0 ? role_seed : derive_seed(role_seed, {static_cast<std::uint64_t>(k)});
@@ -18,21 +18,21 @@ std::shared_ptr<const FaclModel> RoleModels::for_agent(int k) const {
   return m >= 0 ? models[std::size_t(m)] : nullptr;
 }
 
-void Lineup::add(std::unique_ptr<Policy> policy) {
+void Lineup::add(std::unique_ptr<game::Policy> policy) {
   pointers_.push_back(policy.get());
   owned_.push_back(std::move(policy));
 }
 
-void add_configured(Lineup& lineup, const GameConfig& config, Role role, int count, std::uint64_t seed,
+void add_configured(Lineup& lineup, const game::GameConfig& config, game::Role role, int count, std::uint64_t seed,
                     RoleModels* models) {
   RoleModels local;
   RoleModels& m = models != nullptr ? *models : local;
   m.models.clear();
   m.of_agent.assign(std::size_t(count), -1);
   for (int k = 0; k < count; ++k) {
-    const AgentConfig& a = config.agent(role, k);
-    if (a.policy != PolicyKind::kFacl) {
-      lineup.add(make_policy(a, role, agent_seed(seed, k)));
+    const game::AgentConfig& a = config.agent(role, k);
+    if (!learns(a)) {
+      lineup.add(make_player(a, role, agent_seed(seed, k)));
       continue;
     }
     int shared = -1;
@@ -55,4 +55,4 @@ void add_frozen(Lineup& lineup, const RoleModels& models, int count) {
   }
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -10,7 +10,7 @@
 #include "players/facl_policy.hpp"
 #include "game/policy.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 /// The seed of agent k of a role whose first agent is seeded with `role_seed` (the first keeps it, so a
 /// one-agent role is seeded exactly as before teams existed).
@@ -29,23 +29,23 @@ struct RoleModels {
 /// Policies for one game, agent by agent.
 class Lineup {
  public:
-  void add(std::unique_ptr<Policy> policy);
-  std::span<Policy* const> policies() const { return pointers_; }
+  void add(std::unique_ptr<game::Policy> policy);
+  std::span<game::Policy* const> policies() const { return pointers_; }
   int size() const { return static_cast<int>(pointers_.size()); }
-  Policy& operator[](int i) const { return *pointers_[std::size_t(i)]; }
+  game::Policy& operator[](int i) const { return *pointers_[std::size_t(i)]; }
 
  private:
-  std::vector<std::unique_ptr<Policy>> owned_;
-  std::vector<Policy*> pointers_;
+  std::vector<std::unique_ptr<game::Policy>> owned_;
+  std::vector<game::Policy*> pointers_;
 };
 
 /// Adds policies for `count` agents of `role` as the configuration says: agent k plays
 /// config.agent(role, k).policy, seeded by agent_seed(seed, k). FACL agents of the role whose settings are
 /// equal share one model and learn together; `models` (when given) receives them.
-void add_configured(Lineup& lineup, const GameConfig& config, Role role, int count, std::uint64_t seed,
+void add_configured(Lineup& lineup, const game::GameConfig& config, game::Role role, int count, std::uint64_t seed,
                     RoleModels* models = nullptr);
 
 /// Adds greedy FACL policies for `count` agents over trained models (agent k plays models.for_agent(k)).
 void add_frozen(Lineup& lineup, const RoleModels& models, int count);
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -8,7 +8,7 @@
 #include "game/observation_vector.hpp"
 #include "players/policy_io.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 namespace {
 
@@ -46,12 +46,12 @@ bool is_mlp_document(const nlohmann::json& doc) {
   return doc.is_object() && doc.contains("format") && doc["format"] == kMlpFormat;
 }
 
-std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, Role role) {
+std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, game::Role role) {
   const PolicyDocument d = read_policy_document(file);
   return mlp_from_json(d.doc, file, role, d.text);
 }
 
-std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const std::filesystem::path& file, Role role,
+std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const std::filesystem::path& file, game::Role role,
                                               std::string_view text) {
   const Reader r{file, text};
   if (!is_mlp_document(doc)) {
@@ -61,11 +61,11 @@ std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const s
   auto m = std::make_shared<MlpModel>();
   const nlohmann::json& role_name = r.at(doc, "role", "role");
   if (role_name != "pursuer" && role_name != "evader") r.fail("role", "expects \"pursuer\" or \"evader\"");
-  m->role = role_name == "pursuer" ? Role::kPursuer : Role::kEvader;
+  m->role = role_name == "pursuer" ? game::Role::kPursuer : game::Role::kEvader;
   if (m->role != role) r.fail("role", fmt::format("saved for the {}, asked to play the {}", to_string(m->role), to_string(role)));
   const double inputs = r.number(r.at(doc, "inputs", "inputs"), "inputs");
-  const double rest = std::fmod(inputs - kObservationBase, 8.0);
-  if (inputs < kObservationBase || inputs > kObservationBase + 2 * 16 * 4 + 2 || (rest != 0.0 && rest != 2.0)) {
+  const double rest = std::fmod(inputs - game::kObservationBase, 8.0);
+  if (inputs < game::kObservationBase || inputs > game::kObservationBase + 2 * 16 * 4 + 2 || (rest != 0.0 && rest != 2.0)) {
     r.fail("inputs", "expects 20 + 8 k entries, k in [0, 16], or 2 more with limited sight");
   }
   m->inputs = static_cast<int>(inputs);
@@ -124,9 +124,9 @@ MlpPolicy::MlpPolicy(std::shared_ptr<const MlpModel> model, std::uint64_t seed) 
   b_.setZero(Eigen::Index(widest));
 }
 
-Steering MlpPolicy::act(const AgentView& view) {
+Steering MlpPolicy::act(const game::AgentView& view) {
   const MlpModel& m = *model_;
-  observation_base(view, obs_.data());  // the neighbour slots stay empty (masks 0): the view has no others
+  game::observation_base(view, obs_.data());  // the neighbour slots stay empty (masks 0): the view has no others
   if (m.sight) {  // the two sight entries close the inputs, as they follow the neighbour slots in the batch's layout
     obs_[std::size_t(m.inputs - 2)] = view.other_visible ? 1.0f : 0.0f;
     obs_[std::size_t(m.inputs - 1)] = float(view.other_age);
@@ -152,4 +152,4 @@ Steering MlpPolicy::act(const AgentView& view) {
   return out;
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

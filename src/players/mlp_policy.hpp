@@ -28,13 +28,13 @@
 
 #include "game/policy.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 inline constexpr const char* kMlpFormat = "peg3d-mlp";
 inline constexpr int kMlpVersion = 1;
 
 struct MlpModel {
-  Role role = Role::kPursuer;
+  game::Role role = game::Role::kPursuer;
   int inputs = 0;
   bool sight = false;  ///< its last two inputs are the sight entries (in sight now, the sighting's age)
   double action_bound = 0.0;  ///< rad, > 0
@@ -47,19 +47,19 @@ struct MlpModel {
 
 /// The MLP model of a policy document (read_policy_document) for `role`; one that does not fit is a
 /// PolicyFormatError (an InputError) naming `file`, the field and, from `text`, its line.
-std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const std::filesystem::path& file, Role role,
+std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const std::filesystem::path& file, game::Role role,
                                               std::string_view text);
 /// Loads an MLP policy file for `role`: read_policy_document, then mlp_from_json.
-std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, Role role);
+std::shared_ptr<const MlpModel> load_mlp_policy(const std::filesystem::path& file, game::Role role);
 
 /// Whether a policy document is an MLP one (its "format"); false for anything else, FACL documents included.
 bool is_mlp_document(const nlohmann::json& doc);
 
-class MlpPolicy final : public Policy {
+class MlpPolicy final : public game::Policy {
  public:
   /// `seed` feeds the draws of a sampling model; a model played by its mean draws nothing.
   MlpPolicy(std::shared_ptr<const MlpModel> model, std::uint64_t seed);
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 
  private:
   std::shared_ptr<const MlpModel> model_;
@@ -69,4 +69,4 @@ class MlpPolicy final : public Policy {
   Eigen::VectorXd a_, b_;
 };
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -8,8 +8,9 @@
 #include "core/config_json.hpp"
 #include "core/input_files.hpp"
 #include "core/validation.hpp"
+#include "players/registry.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 nlohmann::json policy_to_json(const FaclModel& model) {
   nlohmann::json doc{{"format", kPolicyFormat},
@@ -58,7 +59,7 @@ void read_table(const nlohmann::json& channel, const char* key, std::span<double
 namespace {
 
 std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::filesystem::path& file,
-                                       std::optional<Role> expected_role) {
+                                       std::optional<game::Role> expected_role) {
   if (!doc.is_object() || !doc.contains("format") || doc["format"] != kPolicyFormat) {
     throw PolicyFormatError(file, 0, "format", fmt::format("not a peg3d policy (expected \"format\": \"{}\")", kPolicyFormat));
   }
@@ -73,7 +74,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
   if (role_node != "pursuer" && role_node != "evader") {
     throw PolicyFormatError(file, 0, "role", "must be \"pursuer\" or \"evader\", got " + brief(role_node));
   }
-  const Role role = role_node == "pursuer" ? Role::kPursuer : Role::kEvader;
+  const game::Role role = role_node == "pursuer" ? game::Role::kPursuer : game::Role::kEvader;
   if (expected_role && *expected_role != role) {
     throw PolicyFormatError(file, 0, "role",
                             fmt::format("this is a saved {} policy; it cannot play the {}", to_string(role),
@@ -83,7 +84,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
   const auto config_error = [&](const InputError& e) {
     return PolicyFormatError(file, 0, e.field().empty() ? "config" : "config." + e.field(), e.message());
   };
-  AgentConfig config;
+  game::AgentConfig config;
   std::shared_ptr<FaclModel> model;
   try {
     nlohmann::json image = member(doc, "config", file, "config");
@@ -103,13 +104,13 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
       }
     }
     if (image.is_object() && version.get<long long>() < 5 && !image.contains("action")) {
-      image["action"] = config::enum_name(kFaclActionNames, FaclAction::kHeadingChange);
+      image["action"] = config::enum_name(game::kFaclActionNames, game::FaclAction::kHeadingChange);
     }
     if (image.is_object() && version.get<long long>() < 6) {
       if (!image.contains("lidar")) image["lidar"] = config::to_json(sense::LidarConfig{});
       if (!image.contains("map")) image["map"] = config::to_json(sense::ScanMapConfig{});
       if (image.contains("observation") && image["observation"].is_object() && !image["observation"].contains("obstacles")) {
-        image["observation"]["obstacles"] = config::enum_name(kObstacleSourceNames, ObstacleSource::kWorld);
+        image["observation"]["obstacles"] = config::enum_name(game::kObstacleSourceNames, game::ObstacleSource::kWorld);
       }
     }
     if (image.is_object() && version.get<long long>() < 7 && image.contains("map") && image["map"].is_object() &&
@@ -121,7 +122,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);
-    if (config.policy != PolicyKind::kFacl) throw InvalidParameter("policy", to_string(config.policy), "must be facl");
+    if (config.policy != kFacl) throw InvalidParameter("policy", config.policy, "must be facl");
     model = std::make_shared<FaclModel>(config, role);
   } catch (const PolicyFormatError&) {
     throw;
@@ -152,7 +153,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
 }  // namespace
 
 std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& doc, const std::filesystem::path& file,
-                                            std::optional<Role> expected_role, std::string_view text) {
+                                            std::optional<game::Role> expected_role, std::string_view text) {
   try {
     return read_policy(doc, file, expected_role);
   } catch (const PolicyFormatError& e) {
@@ -177,9 +178,9 @@ PolicyDocument read_policy_document(const std::filesystem::path& file) {
   return d;
 }
 
-std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role) {
+std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, game::Role role) {
   const PolicyDocument d = read_policy_document(file);
   return policy_from_json(d.doc, file, role, d.text);
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

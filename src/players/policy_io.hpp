@@ -24,7 +24,7 @@
 #include "core/error.hpp"
 #include "players/facl_policy.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
 inline constexpr int kPolicyVersion = 8;  // 8: AgentConfig::sight
@@ -44,7 +44,7 @@ nlohmann::json policy_to_json(const FaclModel& model);
 /// or with non-finite values, and, when `expected_role` is given, a policy saved for the other role. With the
 /// document's source `text`, errors name the line of the field at fault.
 std::shared_ptr<FaclModel> policy_from_json(const nlohmann::json& document, const std::filesystem::path& file = {},
-                                            std::optional<Role> expected_role = std::nullopt,
+                                            std::optional<game::Role> expected_role = std::nullopt,
                                             std::string_view text = {});
 
 /// Saves a trained FACL model as its document, pretty-printed, atomically (complete or absent).
@@ -60,6 +60,6 @@ PolicyDocument read_policy_document(const std::filesystem::path& file);
 
 /// Loads a policy document for an agent of `role`. Throws PolicyFormatError (an InputError) naming the file
 /// when it cannot be read, is not JSON, does not fit, or was saved for the other role.
-std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, Role role);
+std::shared_ptr<FaclModel> load_policy(const std::filesystem::path& file, game::Role role);
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

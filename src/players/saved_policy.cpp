@@ -5,7 +5,7 @@
 #include "core/hash.hpp"
 #include "players/policy_io.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 namespace {
 
@@ -17,8 +17,8 @@ std::string hash_of(const std::string& canonical) {
 
 }  // namespace
 
-std::unique_ptr<Policy> SavedPolicy::make(std::uint64_t seed) const {
-  std::unique_ptr<Policy> player;
+std::unique_ptr<game::Policy> SavedPolicy::make(std::uint64_t seed) const {
+  std::unique_ptr<game::Policy> player;
   if (facl) {
     player = std::make_unique<FaclPolicy>(facl);
   } else {
@@ -28,7 +28,7 @@ std::unique_ptr<Policy> SavedPolicy::make(std::uint64_t seed) const {
   return player;
 }
 
-std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role) {
+std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, game::Role role) {
   const PolicyDocument d = read_policy_document(file);
   auto p = std::make_shared<SavedPolicy>();
   p->file = file;
@@ -48,4 +48,4 @@ void add_saved(Lineup& lineup, const SavedPolicy& policy, int count, std::uint64
   for (int k = 0; k < count; ++k) lineup.add(policy.make(agent_seed(seed, k)));
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -14,7 +14,7 @@
 #include "players/mlp_policy.hpp"
 #include "game/policy.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 struct SavedPolicy {
   std::shared_ptr<const FaclModel> facl;  ///< set for a FACL file
@@ -27,17 +27,17 @@ struct SavedPolicy {
   const char* kind_name() const { return facl ? "facl" : "mlp"; }
   /// The agent configuration it must play with (its guard, steering, observation): a FACL model's own; null for
   /// an MLP, which plays with the game's agent configuration (the one its observations were made under).
-  const AgentConfig* config() const { return facl ? &facl->config() : nullptr; }
+  const game::AgentConfig* config() const { return facl ? &facl->config() : nullptr; }
   /// A new player of the policy (its per-agent buffers its own, the model shared); `seed` feeds an MLP that
   /// samples its actions ("play": "sample"); every other player is greedy and ignores it.
-  std::unique_ptr<Policy> make(std::uint64_t seed) const;
+  std::unique_ptr<game::Policy> make(std::uint64_t seed) const;
 };
 
 /// Reads a policy file of either kind for an agent of `role`. A file that cannot be read, is not a policy
 /// document, does not fit or was saved for the other role is a PolicyFormatError (an InputError) naming it.
-std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, Role role);
+std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, game::Role role);
 
 /// Adds `count` players of `policy` to a line-up, the k-th seeded by agent_seed(seed, k) (as add_configured).
 void add_saved(Lineup& lineup, const SavedPolicy& policy, int count, std::uint64_t seed);
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -5,9 +5,9 @@
 
 #include "geometry/apollonius.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
-Steering steer_toward(const AgentView& view, const Vec3& direction) {
+Steering steer_toward(const game::AgentView& view, const Vec3& direction) {
   if (direction.squaredNorm() == 0.0) return {};
   const AngleErrors e = angle_errors(view.self.heading, direction);
   return {e.azimuth, e.elevation};
@@ -35,7 +35,7 @@ const std::array<Vec3, kSearchDirections>& search_directions() {
 
 }  // namespace
 
-Vec3 repulsion(const AgentView& view) {
+Vec3 repulsion(const game::AgentView& view) {
   auto push = [](double d) {
     const double k = (kAvoidDistance - d) / kAvoidDistance;
     return d < kAvoidDistance ? 3.0 * k * k : 0.0;
@@ -46,15 +46,15 @@ Vec3 repulsion(const AgentView& view) {
     r[axis] += push(p[axis] - view.arena.lo[axis]);
     r[axis] -= push(view.arena.hi[axis] - p[axis]);
   }
-  const ObstacleSense& o = view.percept.obstacle;
+  const game::ObstacleSense& o = view.percept.obstacle;
   const Vec3 away = p - o.point;
   if (o.found && away.squaredNorm() > 0.0) r += push(o.distance) * away.normalized();
   return r;
 }
 
-Steering PurePursuit::act(const AgentView& view) { return steer_toward(view, view.other.position - view.self.position); }
+Steering PurePursuit::act(const game::AgentView& view) { return steer_toward(view, view.other.position - view.self.position); }
 
-Steering ProportionalNavigation::act(const AgentView& view) {
+Steering ProportionalNavigation::act(const game::AgentView& view) {
   const Vec3 r = view.other.position - view.self.position;
   const Vec3 dir = peg3d::direction(view.self.heading);
   if (r.squaredNorm() == 0.0 || dir.dot(r) <= 0.0) return steer_toward(view, r);
@@ -64,7 +64,7 @@ Steering ProportionalNavigation::act(const AgentView& view) {
   return steer_toward(view, turned);
 }
 
-Steering ApolloniusInterceptor::act(const AgentView& view) {
+Steering ApolloniusInterceptor::act(const game::AgentView& view) {
   const Vec3& p = view.self.position;
   const Vec3& e = view.other.position;
   if (view.other_speed > 0.0) {
@@ -74,12 +74,12 @@ Steering ApolloniusInterceptor::act(const AgentView& view) {
   return steer_toward(view, e - p);
 }
 
-Steering FleeLineOfSight::act(const AgentView& view) {
+Steering FleeLineOfSight::act(const game::AgentView& view) {
   const Vec3 away = (view.self.position - view.other.position).normalized();
   return steer_toward(view, away + repulsion(view));
 }
 
-Steering FleeApollonius::act(const AgentView& view) {
+Steering FleeApollonius::act(const game::AgentView& view) {
   const Vec3& e = view.self.position;
   const Vec3& p = view.other.position;
   const double a = view.other_speed > 0.0 ? view.self_speed / view.other_speed : 2.0;
@@ -103,9 +103,9 @@ Steering FleeApollonius::act(const AgentView& view) {
   return steer_toward(view, (n > 1e-9 ? Vec3(to_goal / n) : Vec3((e - p).normalized())) + repulsion(view));
 }
 
-Steering RandomWalk::act(const AgentView& view) {
+Steering RandomWalk::act(const game::AgentView& view) {
   const double bound = steering_.step_bound(view.dt);
   return {bound * u_(rng_), bound * u_(rng_)};
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -7,21 +7,21 @@
 #include "core/random.hpp"
 #include "game/policy.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 /// Pure pursuit: head straight at the opponent.
-class PurePursuit final : public Policy {
+class PurePursuit final : public game::Policy {
  public:
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 };
 
 /// 3D proportional navigation: the velocity direction turns at N times the rotation rate of the line of
 /// sight, omega = (r x v_rel) / |r|^2. While the target is behind (closing is impossible by PN alone) it
 /// pursues directly.
-class ProportionalNavigation final : public Policy {
+class ProportionalNavigation final : public game::Policy {
  public:
   explicit ProportionalNavigation(double gain) : gain_(gain) {}
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 
  private:
   double gain_;
@@ -30,30 +30,30 @@ class ProportionalNavigation final : public Policy {
 /// Apollonius interceptor: constant bearing to the point where the evader, holding its current heading,
 /// meets the pursuer (the interception point on the Apollonius sphere), clamped into the arena; pure
 /// pursuit when there is none.
-class ApolloniusInterceptor final : public Policy {
+class ApolloniusInterceptor final : public game::Policy {
  public:
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 };
 
 /// Flee along the line of sight, away from the pursuer, pushed off the arena boundary and the nearest
 /// obstacle by a repulsion that grows as they come within `kAvoidDistance`.
-class FleeLineOfSight final : public Policy {
+class FleeLineOfSight final : public game::Policy {
  public:
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 };
 
 /// Head for the farthest point from the pursuer of the evader's Apollonius dominance region (the ball of
 /// points it reaches first) that lies inside the arena, with the same repulsion as FleeLineOfSight.
-class FleeApollonius final : public Policy {
+class FleeApollonius final : public game::Policy {
  public:
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 };
 
 /// Random heading changes, uniform within the steering bound, from the policy's own seeded engine.
-class RandomWalk final : public Policy {
+class RandomWalk final : public game::Policy {
  public:
   RandomWalk(const SteeringConfig& steering, std::uint64_t seed) : steering_(steering), rng_(seed) {}
-  Steering act(const AgentView& view) override;
+  Steering act(const game::AgentView& view) override;
 
  private:
   SteeringConfig steering_;
@@ -62,13 +62,13 @@ class RandomWalk final : public Policy {
 };
 
 /// The heading change that turns the view's agent onto `direction` (any length; none for a zero vector).
-Steering steer_toward(const AgentView& view, const Vec3& direction);
+Steering steer_toward(const game::AgentView& view, const Vec3& direction);
 
 /// Distance (m) within which the scripted evaders feel the boundary and obstacles.
 inline constexpr double kAvoidDistance = 4.0;
 
 /// The scripted evaders' repulsion: the sum over the arena faces and the nearest obstacle within
 /// kAvoidDistance of unit vectors away from them, weighted ((kAvoidDistance - d) / kAvoidDistance)^2 * 3.
-Vec3 repulsion(const AgentView& view);
+Vec3 repulsion(const game::AgentView& view);
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-namespace peg3d::game {
+namespace peg3d::players {
 
-void SearchPursuer::begin_episode(const AgentView& view, bool learning) {
+void SearchPursuer::begin_episode(const game::AgentView& view, bool learning) {
   (void)learning;
   points_.clear();
   const Box& a = view.arena;
@@ -24,7 +24,7 @@ void SearchPursuer::begin_episode(const AgentView& view, bool learning) {
   goal_key_ = -3;
 }
 
-void SearchPursuer::choose(const AgentView& view) {
+void SearchPursuer::choose(const game::AgentView& view) {
   const Vec3& p = view.self.position;
   for (int round = 0; round < 2; ++round) {
     int best = -1;
@@ -48,7 +48,7 @@ void SearchPursuer::choose(const AgentView& view) {
   target_ = -1;
 }
 
-bool SearchPursuer::passable(const AgentView& view, const Vec3& a, const Vec3& b) {
+bool SearchPursuer::passable(const game::AgentView& view, const Vec3& a, const Vec3& b) {
   const Vec3 line = b - a;
   if (!(line.norm() > 0.0)) return true;
   const auto [up, side] = perpendicular_frame(line.normalized());
@@ -59,7 +59,7 @@ bool SearchPursuer::passable(const AgentView& view, const Vec3& a, const Vec3& b
   return true;
 }
 
-bool SearchPursuer::stuck(const AgentView& view, int key, const Vec3& goal) {
+bool SearchPursuer::stuck(const game::AgentView& view, int key, const Vec3& goal) {
   const double d = (goal - view.self.position).norm();
   if (key != goal_key_ || d < goal_best_ - kProgress) {
     goal_key_ = key, goal_best_ = d, goal_since_ = view.time;
@@ -70,7 +70,7 @@ bool SearchPursuer::stuck(const AgentView& view, int key, const Vec3& goal) {
   return view.probe == nullptr || !passable(view, view.self.position, goal);
 }
 
-int SearchPursuer::detour(const AgentView& view, const Vec3& goal) const {
+int SearchPursuer::detour(const game::AgentView& view, const Vec3& goal) const {
   if (view.probe == nullptr) return -1;
   const Vec3& p = view.self.position;
   int best = -1;
@@ -85,7 +85,7 @@ int SearchPursuer::detour(const AgentView& view, const Vec3& goal) const {
   return best;
 }
 
-Steering SearchPursuer::act(const AgentView& view) {
+Steering SearchPursuer::act(const game::AgentView& view) {
   const Vec3& p = view.self.position;
   for (std::size_t k = 0; k < points_.size(); ++k) {
     if ((points_[k] - p).squaredNorm() <= kVisit * kVisit) visited_[k] = view.time;
@@ -115,13 +115,13 @@ Steering SearchPursuer::act(const AgentView& view) {
   return steer_toward(view, goal - p);
 }
 
-void HideEvader::begin_episode(const AgentView& view, bool learning) {
+void HideEvader::begin_episode(const game::AgentView& view, bool learning) {
   (void)view;
   (void)learning;
   has_spot_ = false;
 }
 
-bool HideEvader::find_cover(const AgentView& view) {
+bool HideEvader::find_cover(const game::AgentView& view) {
   const Vec3& e = view.self.position;
   const Vec3& p = view.other.position;
   const Box inside = view.arena.shrunk(kHideMargin);
@@ -146,7 +146,7 @@ bool HideEvader::find_cover(const AgentView& view) {
   return best < std::numeric_limits<double>::infinity();
 }
 
-Steering HideEvader::act(const AgentView& view) {
+Steering HideEvader::act(const game::AgentView& view) {
   const Vec3& e = view.self.position;
   const Vec3& p = view.other.position;
   if (view.probe == nullptr) return flee_.act(view);
@@ -156,4 +156,4 @@ Steering HideEvader::act(const AgentView& view) {
   return flee_.act(view);
 }
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

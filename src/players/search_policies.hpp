@@ -6,7 +6,7 @@
 
 #include "players/scripted_policies.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 
 /// Chases the evader while it sees it (pure pursuit); once it has lost it, flies to where its estimate puts it (the
 /// last sighting, or dead reckoning from it) and, arrived there within kArrive, searches: it visits the points of
@@ -20,7 +20,7 @@ namespace peg3d::game {
 /// point it can pass to straight that is nearest in the sum of the two legs, those whose second leg is not
 /// passable counting kBlockedLeg more; without a probe or a detour, it gives the goal up (a search point counts as
 /// visited; an estimate as arrived at). Allocates in begin_episode() only.
-class SearchPursuer final : public Policy {
+class SearchPursuer final : public game::Policy {
  public:
   static constexpr double kLattice = 5.0;     ///< m between the search points along each axis (at most)
   static constexpr double kArrive = 1.5;      ///< m from the estimate at which the search begins
@@ -30,16 +30,16 @@ class SearchPursuer final : public Policy {
   static constexpr double kBlockedLeg = 10.0; ///< m added to a detour whose second leg is not passable
   static constexpr double kPassage = 0.8;     ///< m each side of a straight way that must be clear (the guard's stop)
 
-  void begin_episode(const AgentView& view, bool learning) override;
-  Steering act(const AgentView& view) override;
+  void begin_episode(const game::AgentView& view, bool learning) override;
+  Steering act(const game::AgentView& view) override;
 
  private:
-  void choose(const AgentView& view);
-  int detour(const AgentView& view, const Vec3& goal) const;
-  static bool passable(const AgentView& view, const Vec3& a, const Vec3& b);
+  void choose(const game::AgentView& view);
+  int detour(const game::AgentView& view, const Vec3& goal) const;
+  static bool passable(const game::AgentView& view, const Vec3& a, const Vec3& b);
   // Whether the agent has come no kProgress nearer to `goal` (known by `key`) for kStuck and cannot fly there
   // straight.
-  bool stuck(const AgentView& view, int key, const Vec3& goal);
+  bool stuck(const game::AgentView& view, int key, const Vec3& goal);
   std::vector<Vec3> points_;
   std::vector<double> visited_;  // s, when each point was last visited (-1: never)
   bool searching_ = false;
@@ -59,21 +59,21 @@ class SearchPursuer final : public Policy {
 /// pursuer as half a metre less. It keeps that place while the pursuer cannot see it there, and flies about it.
 /// With no hiding place (or no probe: full information, or obstacles from its own map) it flees like
 /// FleeLineOfSight. Allocates nothing.
-class HideEvader final : public Policy {
+class HideEvader final : public game::Policy {
  public:
   static constexpr double kAlert = 1.0;  ///< s after the last sighting during which it still looks for cover
   static constexpr int kHideAzimuths = 12;
   static constexpr double kHideDistances[3] = {2.5, 5.0, 8.0};  ///< m
   static constexpr double kHideMargin = 1.0;  ///< m
 
-  void begin_episode(const AgentView& view, bool learning) override;
-  Steering act(const AgentView& view) override;
+  void begin_episode(const game::AgentView& view, bool learning) override;
+  Steering act(const game::AgentView& view) override;
 
  private:
-  bool find_cover(const AgentView& view);
+  bool find_cover(const game::AgentView& view);
   bool has_spot_ = false;
   Vec3 spot_ = Vec3::Zero();
   FleeLineOfSight flee_;  // what it does without cover
 };
 
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -14,7 +14,7 @@
 #include "core/yaml_input.hpp"
 #include "game/config_file.hpp"
 #include "players/lineup.hpp"
-#include "players/policy_factory.hpp"
+#include "players/registry.hpp"
 #include "players/saved_policy.hpp"
 #include "geometry/angles.hpp"
 #include "world/map/map_loader.hpp"
@@ -190,9 +190,9 @@ CollisionCase load_case(const std::filesystem::path& path) {
       } else if (how == "scripted") {
         d.kind = AgentDriver::Kind::kScripted;
         const std::string name = scalar(c.file, value, field + ".scripted");
-        const auto* kind = config::enum_value(game::kPolicyNames, name);
-        if (kind == nullptr || *kind == game::PolicyKind::kFacl) fail(c.file, value, field + ".scripted", "'" + shown(name) + "' is not a scripted policy");
-        d.scripted = *kind;
+        const players::PlayerInfo* player = players::find_player(name);
+        if (player == nullptr || player->learns()) fail(c.file, value, field + ".scripted", "'" + shown(name) + "' is not a scripted policy");
+        d.scripted = std::string(player->name);
       } else {
         fail(c.file, spec.begin()->first, field + "." + how, "unknown driver (allowed: commands, waypoints, policy, scripted)");
       }
@@ -219,7 +219,8 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   world::BuildOptions options;
   if (use_cache) options.cache_dir = world::default_cache_dir();
   const auto arena = world::Arena::build(world::load_map(c.map), options);
-  game::GameConfig config = game::apply_game_overrides(game::load_game_config(c.config), c.overrides);
+  game::GameConfig config =
+      game::apply_game_overrides(game::load_game_config(c.config, players::check_players), c.overrides, players::check_players);
   const auto& scenarios = arena->map().scenarios;
   const world::Scenario* scenario = c.scenario.empty() ? &scenarios.front() : arena->map().find_scenario(c.scenario);
   if (scenario == nullptr) throw InputError(c.file, c.scenario_line, "scenario", "'" + shown(c.scenario) + "' is not a scenario of " + c.map.string());
@@ -245,23 +246,23 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   // A saved FACL policy plays with the agent configuration it was saved with (its guard, steering, observation),
   // as in peg-matchup: its agent's entry in the game configuration becomes that one. An MLP plays with the
   // case's configuration.
-  std::vector<std::shared_ptr<const game::SavedPolicy>> saved(static_cast<std::size_t>(n));
+  std::vector<std::shared_ptr<const players::SavedPolicy>> saved(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr || d->kind != AgentDriver::Kind::kPolicy) continue;
     const game::Role role = game::role_at(i, p);
-    saved[std::size_t(i)] = game::load_saved_policy(d->policy, role);
+    saved[std::size_t(i)] = players::load_saved_policy(d->policy, role);
     if (const game::AgentConfig* own = saved[std::size_t(i)]->config()) config.set_agent(role, game::rank_at(i, p), *own);
   }
   const game::Sim sim(arena, config);
-  game::Lineup lineup;
+  players::Lineup lineup;
   for (int i = 0; i < n; ++i) {
     const game::Role role = game::role_at(i, p);
     const int rank = game::rank_at(i, p);
-    const std::uint64_t seed = game::agent_seed(derive_seed(c.seed, {role == game::Role::kPursuer ? 1u : 2u}), rank);
+    const std::uint64_t seed = players::agent_seed(derive_seed(c.seed, {role == game::Role::kPursuer ? 1u : 2u}), rank);
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr) {
-      lineup.add(game::make_policy(config.agent(role, rank), role, seed));
+      lineup.add(players::make_player(config.agent(role, rank), role, seed));
     } else if (d->kind == AgentDriver::Kind::kCommands) {
       lineup.add(std::make_unique<game::TimedCommands>(d->commands));
     } else if (d->kind == AgentDriver::Kind::kWaypoints) {
@@ -271,11 +272,11 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     } else {
       game::AgentConfig a = config.agent(role, rank);
       a.policy = d->scripted;
-      if (!game::plays(a.policy, role)) {
+      if (!players::find_player(a.policy)->plays(role)) {
         throw InputError(c.file, d->line, "agents." + d->label + ".scripted",
-                         fmt::format("{} does not play the {}", game::to_string(a.policy), game::to_string(role)));
+                         fmt::format("{} does not play the {}", a.policy, game::to_string(role)));
       }
-      lineup.add(game::make_policy(a, role, seed));
+      lineup.add(players::make_player(a, role, seed));
     }
   }
   game::SimState state(sim);

@@ -37,7 +37,7 @@ struct AgentDriver {
   std::vector<game::TimedCommand> commands;
   std::vector<game::Waypoint> waypoints;
   std::filesystem::path policy;  ///< a saved policy file (FACL or MLP)
-  game::PolicyKind scripted = game::PolicyKind::kFlee;
+  std::string scripted = "flee";  ///< a scripted player's name (players/registry.hpp)
 };
 
 struct CollisionCase {

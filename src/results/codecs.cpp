@@ -235,16 +235,16 @@ game::Trace trace_from_json(const nlohmann::json& j) {
   return t;
 }
 
-nlohmann::json role_models_to_json(const game::RoleModels& m) {
+nlohmann::json role_models_to_json(const players::RoleModels& m) {
   nlohmann::json models = nlohmann::json::array();
-  for (const auto& model : m.models) models.push_back(game::policy_to_json(*model));
+  for (const auto& model : m.models) models.push_back(players::policy_to_json(*model));
   return {{"models", std::move(models)}, {"of_agent", m.of_agent}};
 }
 
-game::RoleModels role_models_from_json(const nlohmann::json& j, game::Role role) {
-  game::RoleModels m;
+players::RoleModels role_models_from_json(const nlohmann::json& j, game::Role role) {
+  players::RoleModels m;
   require(j.at("models").is_array(), "a role's models are a list");
-  for (const auto& doc : j.at("models")) m.models.push_back(game::policy_from_json(doc, {}, role));
+  for (const auto& doc : j.at("models")) m.models.push_back(players::policy_from_json(doc, {}, role));
   m.of_agent = j.at("of_agent").get<std::vector<int>>();
   for (const int k : m.of_agent) require(k >= -1 && k < static_cast<int>(m.models.size()), "a model index out of range");
   return m;

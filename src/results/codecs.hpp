@@ -31,7 +31,7 @@ game::Trace trace_from_json(const nlohmann::json& j);
 
 /// A role's trained models (policy documents, players/policy_io.hpp) and which one each agent plays. Decoding
 /// rebuilds each model; a model of the other role is an error.
-nlohmann::json role_models_to_json(const game::RoleModels& m);
-game::RoleModels role_models_from_json(const nlohmann::json& j, game::Role role);
+nlohmann::json role_models_to_json(const players::RoleModels& m);
+players::RoleModels role_models_from_json(const nlohmann::json& j, game::Role role);
 
 }  // namespace peg3d::results

@@ -2,6 +2,7 @@
 // geometry puts them, next-step autoreset, agents played on the C++ side, and results that do not depend on
 // the thread count.
 #include "env/batch.hpp"
+#include "players/registry.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,7 +25,6 @@
 #include "core/validation.hpp"
 #include "game/episode.hpp"
 #include "game/observation_vector.hpp"
-#include "players/policy_factory.hpp"
 #include "players/saved_policy.hpp"
 #include "test_arena.hpp"
 
@@ -509,13 +509,13 @@ TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
   EXPECT_TRUE(batch.controlled(2));
   EXPECT_FALSE(batch.controlled(0) || batch.controlled(1) || batch.controlled(3));
   game::AgentConfig flee_config = batch.sim().config().agent(Role::kEvader, 0);
-  flee_config.policy = game::PolicyKind::kFlee;
+  flee_config.policy = "flee";
   std::vector<std::unique_ptr<game::SimState>> refs;
   std::vector<std::unique_ptr<game::Policy>> flee;
   for (int g = 0; g < 2; ++g) {
     refs.push_back(std::make_unique<game::SimState>(batch.sim()));
     game::reset(batch.sim(), *refs.back(), arena()->map().scenarios[kTimeout], derive_seed(21, {std::uint64_t(g), 0}));
-    flee.push_back(game::make_policy(flee_config, Role::kEvader, 0));
+    flee.push_back(players::make_player(flee_config, Role::kEvader, 0));
     flee.back()->begin_episode(game::observe(*refs.back(), 2), false);
   }
   int turns = 0;
@@ -559,8 +559,8 @@ TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
   s.controllers = {{"pursuer", dir + "ppo_pursuer.json"}, {"evader", dir + "robust_evader.json"}};
   Batch batch(arena(), c, s);
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(batch.controlled(i)) << "agent " << i;
-  const auto mlp = game::load_saved_policy(dir + "ppo_pursuer.json", Role::kPursuer);
-  const auto facl = game::load_saved_policy(dir + "robust_evader.json", Role::kEvader);
+  const auto mlp = players::load_saved_policy(dir + "ppo_pursuer.json", Role::kPursuer);
+  const auto facl = players::load_saved_policy(dir + "robust_evader.json", Role::kEvader);
   ASSERT_TRUE(mlp->mlp && facl->facl);
   // A FACL file brings its agent configuration (speed, guard, observation); an MLP plays with the game's.
   EXPECT_TRUE(batch.sim().config().agent(Role::kEvader, 0) == *facl->config());

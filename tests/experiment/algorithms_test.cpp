@@ -14,7 +14,7 @@ TEST(Algorithms, APresetEntersUnderItsOwnName) {
   ASSERT_EQ(algs.size(), 2u);
   EXPECT_EQ(algs[0].name, "peg3d");
   EXPECT_EQ(algs[1].name, "robust");
-  EXPECT_EQ(config::to_json(algs[1].config), config::to_json(game::preset("robust")));
+  EXPECT_EQ(config::to_json(algs[1].config), config::to_json(trial_preset("robust")));
 }
 
 TEST(Algorithms, ANamedVariantEntersAPresetTwiceAndTakesOnlyItsOwnOverrides) {
@@ -22,13 +22,13 @@ TEST(Algorithms, ANamedVariantEntersAPresetTwiceAndTakesOnlyItsOwnOverrides) {
                                     {"sensing.pursuer.lidar.azimuth_rays=16", "time_limit=50"});
   ASSERT_EQ(algs.size(), 2u);
   EXPECT_EQ(algs[1].name, "sensing");
-  EXPECT_EQ(algs[0].config.pursuer.lidar.azimuth_rays, 0);
-  EXPECT_EQ(algs[1].config.pursuer.lidar.azimuth_rays, 16);
-  EXPECT_EQ(algs[0].config.time_limit, 50.0);
-  EXPECT_EQ(algs[1].config.time_limit, 50.0);
+  EXPECT_EQ(algs[0].config.game.pursuer.lidar.azimuth_rays, 0);
+  EXPECT_EQ(algs[1].config.game.pursuer.lidar.azimuth_rays, 16);
+  EXPECT_EQ(algs[0].config.game.time_limit, 50.0);
+  EXPECT_EQ(algs[1].config.game.time_limit, 50.0);
   // Apart from its own override, the variant is its preset.
-  game::GameConfig back = algs[1].config;
-  back.pursuer.lidar.azimuth_rays = 0;
+  TrialConfig back = algs[1].config;
+  back.game.pursuer.lidar.azimuth_rays = 0;
   EXPECT_EQ(config::to_json(back), config::to_json(algs[0].config));
 }
 

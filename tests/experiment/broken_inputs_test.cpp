@@ -15,7 +15,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "game/config_file.hpp"
+#include "experiment/trial_config.hpp"
 #include "players/facl_policy.hpp"
 #include "game/game_config.hpp"
 #include "players/policy_io.hpp"
@@ -71,7 +71,7 @@ TEST(ExperimentBrokenInputs, EveryBrokenConfigurationIsRefusedAsExpected) {
     const auto want = expectations.find(name);
     ASSERT_NE(want, expectations.end()) << "expect.txt has no line for " << name;
     try {
-      game::load_game_config(entry.path().string());
+      load_trial_config(entry.path().string());
       ADD_FAILURE() << "accepted";
     } catch (const InputError& e) {
       expect_error(e, entry.path(), want->second);
@@ -84,7 +84,7 @@ class ExperimentBrokenPolicy : public ::testing::Test {
  protected:
   void SetUp() override {
     const game::AgentConfig config = game::agent_preset("peg3d", game::Role::kPursuer);
-    good_ = game::policy_to_json(game::FaclModel(config, game::Role::kPursuer));
+    good_ = players::policy_to_json(players::FaclModel(config, game::Role::kPursuer));
   }
 
   // Writes the good policy changed by `edit` (pretty-printed, so fields sit on their own lines) and loads it.
@@ -97,9 +97,9 @@ class ExperimentBrokenPolicy : public ::testing::Test {
     const fs::path file = dir_ / "policy.json";
     std::ofstream(file, std::ios::binary) << text;
     try {
-      game::load_policy(file, game::Role::kPursuer);
+      players::load_policy(file, game::Role::kPursuer);
       ADD_FAILURE() << "accepted";
-    } catch (const game::PolicyFormatError& e) {
+    } catch (const players::PolicyFormatError& e) {
       expect_error(e, file, want);
     }
   }
@@ -120,7 +120,7 @@ class ExperimentBrokenPolicy : public ::testing::Test {
 TEST_F(ExperimentBrokenPolicy, TheUnbrokenPolicyLoads) {
   const fs::path file = dir_ / "good.json";
   std::ofstream(file) << good_.dump(1);
-  EXPECT_NE(game::load_policy(file, game::Role::kPursuer), nullptr);
+  EXPECT_NE(players::load_policy(file, game::Role::kPursuer), nullptr);
 }
 
 TEST_F(ExperimentBrokenPolicy, TablesOfTheWrongShapeAreRefused) {

@@ -202,7 +202,7 @@ def main():
     for args, named in [(["--algorithms", "peg3d,nonsense"], "nonsense"), (["--eval-heading", "sideways"], "--eval-heading"),
                         (["--train-heading", "backwards"], "--train-heading"),
                         (["--evaders", "flee,pn"], "--evaders"), (["--eval-maps", os.path.join(maps, "tight.yaml")], "tight.yaml:6"),
-                        (["--set", "training.pool_share=2"], "training.pool_share"), (["--train-seeds", "0"], "--train-seeds"),
+                        (["--set", "training.pool.share=2"], "training.pool.share"), (["--train-seeds", "0"], "--train-seeds"),
                         (["--evader-entrant", ppo], "ppo_pursuer.json"), (["--pursuer-entrant", "pn=" + ppo], "--pursuer-entrant"),
                         (["--pursuer-entrant", "x=missing.json"], "missing.json")]:
         shutil.rmtree(bad, ignore_errors=True)

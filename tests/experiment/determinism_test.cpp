@@ -48,11 +48,11 @@ void hash_trace(Fnv1a& h, const game::Trace& t) {
 
 // One job: a scenario's agents train for `episodes` episodes; the hash of every step and of the tables.
 std::uint64_t train_and_hash(const game::Sim& sim, const world::Scenario& s, std::uint64_t seed, int episodes) {
-  game::Lineup lineup;
-  game::RoleModels pursuers, evaders;
-  game::add_configured(lineup, sim.config(), game::Role::kPursuer, static_cast<int>(s.pursuers.size()),
+  players::Lineup lineup;
+  players::RoleModels pursuers, evaders;
+  players::add_configured(lineup, sim.config(), game::Role::kPursuer, static_cast<int>(s.pursuers.size()),
                        derive_seed(seed, {1}), &pursuers);
-  game::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(s.evaders.size()),
+  players::add_configured(lineup, sim.config(), game::Role::kEvader, static_cast<int>(s.evaders.size()),
                        derive_seed(seed, {2}), &evaders);
   game::SimState state(sim);
   game::Trace trace;
@@ -65,7 +65,7 @@ std::uint64_t train_and_hash(const game::Sim& sim, const world::Scenario& s, std
     h.add_value(r.steps);
     h.add_value(static_cast<int>(r.outcome));
   }
-  for (const game::RoleModels* models : {&pursuers, &evaders}) {
+  for (const players::RoleModels* models : {&pursuers, &evaders}) {
     for (const auto& m : models->models) {
       for (int c = 0; c < m->channels(); ++c) {
         h.add_span(m->tables(c).actor_table());

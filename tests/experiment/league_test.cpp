@@ -16,7 +16,6 @@
 namespace peg3d::experiment {
 namespace {
 
-using game::PolicyKind;
 using game::Role;
 
 std::shared_ptr<const world::Arena> arena() {
@@ -26,8 +25,8 @@ std::shared_ptr<const world::Arena> arena() {
 }
 
 Algorithm algorithm(const std::string& name, const std::string& preset) {
-  Algorithm a{name, game::preset(preset)};
-  a.config.time_limit = 20.0;
+  Algorithm a{name, trial_preset(preset)};
+  a.config.game.time_limit = 20.0;
   return a;
 }
 
@@ -47,7 +46,7 @@ League league(std::vector<Algorithm> algorithms, LeagueSettings s) {
 
 TEST(League, EntrantsAreTheTrainedPoliciesOfEverySeedThenTheClassicOnes) {
   std::vector<Algorithm> algs{algorithm("a", "peg3d"), algorithm("b", "robust")};
-  algs[1].config.evader = game::scripted_agent(algs[1].config.evader, PolicyKind::kFlee);  // b trains no evader
+  algs[1].config.game.evader = game::scripted_agent(algs[1].config.game.evader, "flee");  // b trains no evader
   const LeagueSettings s = small();
   const auto p = league_entrants(algs, s, Role::kPursuer);
   const auto e = league_entrants(algs, s, Role::kEvader);
@@ -110,8 +109,8 @@ TEST(League, EachTrainedSideChoosesItsOpponentsAsItsAlgorithmDoes) {
   // their assigned targets and a's evaders their assigned threats wherever they play; the classic policies take
   // the rules' choice.
   std::vector<Algorithm> algs{algorithm("a", "peg3d"), algorithm("b", "peg3d")};
-  algs[0].config.team.evader_threat = game::OpponentChoice::kAssigned;
-  algs[1].config.team.pursuer_target = game::OpponentChoice::kAssigned;
+  algs[0].config.game.team.evader_threat = game::OpponentChoice::kAssigned;
+  algs[1].config.game.team.pursuer_target = game::OpponentChoice::kAssigned;
   League l = league(algs, small());
   const int classic = 2;  // the first classic group of either role
   for (const int e : {0, 1, classic}) {
@@ -139,8 +138,8 @@ TEST(League, TrainingStartsWithTheTrainHeadingInsteadOfTheAlgorithms) {
     return std::vector<double>(table.begin(), table.end());
   };
   Algorithm chase = algorithm("a", "peg3d"), random = chase;
-  ASSERT_EQ(chase.config.initial_heading, game::InitialHeading::kChase);
-  random.config.initial_heading = game::InitialHeading::kRandom;
+  ASSERT_EQ(chase.config.game.initial_heading, game::InitialHeading::kChase);
+  random.config.game.initial_heading = game::InitialHeading::kRandom;
   const auto from_chase = pursuer_table(chase, std::nullopt);
   const auto from_random = pursuer_table(chase, game::InitialHeading::kRandom);
   EXPECT_NE(from_chase, from_random);
@@ -208,11 +207,11 @@ TEST(League, ASavedEntrantPlaysAsTheTrainedPolicyItWasSavedFrom) {
   League first = league({algorithm("a", "peg3d")}, small());
   const auto first_games = first.run(true);
   const auto dir = std::filesystem::path(::testing::TempDir());
-  game::save_policy(dir / "league_p.json", *first.models(0, 0, Role::kPursuer).models.at(0));
-  game::save_policy(dir / "league_e.json", *first.models(0, 0, Role::kEvader).models.at(0));
+  players::save_policy(dir / "league_p.json", *first.models(0, 0, Role::kPursuer).models.at(0));
+  players::save_policy(dir / "league_e.json", *first.models(0, 0, Role::kEvader).models.at(0));
   LeagueSettings s = small();
-  s.saved_pursuers = {{"saved_p", game::load_saved_policy(dir / "league_p.json", Role::kPursuer)}};
-  s.saved_evaders = {{"saved_e", game::load_saved_policy(dir / "league_e.json", Role::kEvader)}};
+  s.saved_pursuers = {{"saved_p", players::load_saved_policy(dir / "league_p.json", Role::kPursuer)}};
+  s.saved_evaders = {{"saved_e", players::load_saved_policy(dir / "league_e.json", Role::kEvader)}};
   League second = league({algorithm("a", "peg3d")}, s);
   EXPECT_EQ(second.pursuers().back().name, "saved_p");
   EXPECT_EQ(second.pursuers().back().group, "saved_p");
@@ -242,11 +241,11 @@ TEST(League, ASavedEntrantPlaysAsTheTrainedPolicyItWasSavedFrom) {
 
 TEST(League, ASavedEntrantMustHaveANameOfItsOwn) {
   const auto file = std::filesystem::path(::testing::TempDir()) / "league_clash.json";
-  game::save_policy(file, game::FaclModel(game::agent_preset("peg3d", Role::kPursuer), Role::kPursuer));
+  players::save_policy(file, players::FaclModel(game::agent_preset("peg3d", Role::kPursuer), Role::kPursuer));
   LeagueSettings s = small();
-  s.saved_pursuers = {{"pure-pursuit", game::load_saved_policy(file, Role::kPursuer)}};
+  s.saved_pursuers = {{"pure-pursuit", players::load_saved_policy(file, Role::kPursuer)}};
   EXPECT_THROW(league({algorithm("a", "peg3d")}, s), InvalidParameter);
-  s.saved_pursuers = {{"", game::load_saved_policy(file, Role::kPursuer)}};
+  s.saved_pursuers = {{"", players::load_saved_policy(file, Role::kPursuer)}};
   EXPECT_THROW(league({algorithm("a", "peg3d")}, s), InvalidParameter);
 }
 

@@ -1,5 +1,6 @@
-// Training procedures (experiment/training.hpp): the opponent pool's entries, its episode draw, and trials
-// that mix pool episodes into co-learning.
+// Training procedures (experiment/training.hpp, experiment/opponent_pool.hpp): the opponent pool's entries, its
+// episode draw, and trials that mix pool episodes into co-learning; the trial's configuration and presets
+// (experiment/trial_config.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,15 +8,16 @@
 
 #include "core/hash.hpp"
 #include "core/random.hpp"
+#include "core/config_json.hpp"
 #include "core/validation.hpp"
 #include "experiment/training.hpp"
 #include "experiment/trial.hpp"
+#include "experiment/trial_config.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::experiment {
 namespace {
 
-using game::PolicyKind;
 using game::Role;
 
 std::shared_ptr<const world::Arena> arena() {
@@ -23,15 +25,26 @@ std::shared_ptr<const world::Arena> arena() {
   return a;
 }
 
-game::GameConfig pool_config(double share = 0.5) {
-  game::GameConfig c = game::preset("peg3d");
-  c.time_limit = 10.0;
-  c.training.procedure = game::TrainingProcedure::kOpponentPool;
-  c.training.pool_share = share;
+TrialConfig pool_config(double share = 0.5) {
+  TrialConfig c = trial_preset("peg3d");
+  c.game.time_limit = 10.0;
+  c.training.procedure = TrainingProcedure::kOpponentPool;
+  c.training.pool.share = share;
   return c;
 }
 
-std::uint64_t tables_hash(const game::RoleModels& models) {
+OpponentPool pool_of(const TrialConfig& c) { return make_pool(arena(), c.game, c.training); }
+
+// A trial of `episodes` episodes from the arena's start, seeded `seed`, trained as `c` says with `pool`.
+TrialResult trial(const TrialConfig& c, std::uint64_t seed, int episodes, const OpponentPool* pool) {
+  return run_trial(game::Sim(arena(), c.game), {.scenario = &arena()->map().scenarios[0],
+                                                .seed = seed,
+                                                .episodes = episodes,
+                                                .training = c.training,
+                                                .pool = pool});
+}
+
+std::uint64_t tables_hash(const players::RoleModels& models) {
   Fnv1a h;
   for (const auto& m : models.models) {
     for (int c = 0; c < m->channels(); ++c) {
@@ -42,20 +55,18 @@ std::uint64_t tables_hash(const game::RoleModels& models) {
   return h.value();
 }
 
-TEST(OpponentPool, CoLearningHasNoOpponents) {
-  EXPECT_TRUE(OpponentPool(arena(), game::preset("peg3d")).empty());
-}
+TEST(OpponentPool, CoLearningHasNoOpponents) { EXPECT_TRUE(pool_of(trial_preset("peg3d")).empty()); }
 
 TEST(OpponentPool, HoldsTheChosenClassicOpponentsOfEveryLearningRole) {
-  game::GameConfig c = pool_config();
-  c.training.pool_pn = false;
-  c.training.pool_random = false;
-  const OpponentPool pool(arena(), c);
+  TrialConfig c = pool_config();
+  c.training.pool.pursuers = {"pure-pursuit", "apollonius"};
+  c.training.pool.evaders = {"flee", "flee-apollonius"};
+  const OpponentPool pool = pool_of(c);
   ASSERT_EQ(pool.entries().size(), 4u);
-  const std::pair<Role, PolicyKind> expected[] = {{Role::kPursuer, PolicyKind::kFlee},
-                                                  {Role::kPursuer, PolicyKind::kFleeApollonius},
-                                                  {Role::kEvader, PolicyKind::kPurePursuit},
-                                                  {Role::kEvader, PolicyKind::kApollonius}};
+  const std::pair<Role, std::string> expected[] = {{Role::kPursuer, "flee"},
+                                                  {Role::kPursuer, "flee-apollonius"},
+                                                  {Role::kEvader, "pure-pursuit"},
+                                                  {Role::kEvader, "apollonius"}};
   for (std::size_t k = 0; k < 4; ++k) {
     const auto& e = pool.entries()[k];
     EXPECT_EQ(e.learner, expected[k].first);
@@ -64,21 +75,21 @@ TEST(OpponentPool, HoldsTheChosenClassicOpponentsOfEveryLearningRole) {
     const Role other = e.learner == Role::kPursuer ? Role::kEvader : Role::kPursuer;
     EXPECT_EQ(e.sim.config().agent(other).policy, e.opponent);
     EXPECT_FALSE(e.sim.config().agent(other).motion_space);
-    EXPECT_EQ(e.sim.config().agent(e.learner), c.agent(e.learner));
+    EXPECT_EQ(e.sim.config().agent(e.learner), c.game.agent(e.learner));
   }
 }
 
 TEST(OpponentPool, OnlyARoleThatLearnsGetsOpponents) {
-  game::GameConfig c = pool_config();
-  c.evader = game::scripted_agent(c.evader, PolicyKind::kFlee);
-  const OpponentPool pool(arena(), c);
+  TrialConfig c = pool_config();
+  c.game.evader = game::scripted_agent(c.game.evader, "flee");
+  const OpponentPool pool = pool_of(c);
   ASSERT_EQ(pool.entries().size(), 3u);
   for (const auto& e : pool.entries()) EXPECT_EQ(e.learner, Role::kPursuer);
 }
 
 TEST(OpponentPool, DrawsPoolEpisodesAtTheConfiguredShareAndEntriesUniformly) {
   for (const double share : {0.0, 0.3, 1.0}) {
-    const OpponentPool pool(arena(), pool_config(share));
+    const OpponentPool pool = pool_of(pool_config(share));
     const int n = 20000;
     std::vector<int> per_entry(pool.entries().size(), 0);
     int pooled = 0;
@@ -98,7 +109,7 @@ TEST(OpponentPool, DrawsPoolEpisodesAtTheConfiguredShareAndEntriesUniformly) {
 }
 
 TEST(OpponentPool, LeavesOutTheEntriesOfARoleThatNoLongerLearns) {
-  const OpponentPool pool(arena(), pool_config(1.0));
+  const OpponentPool pool = pool_of(pool_config(1.0));
   int evader_entries = 0;
   for (int e = 0; e < 3000; ++e) {
     const std::uint64_t seed = derive_seed(3, {std::uint64_t(e)});
@@ -116,16 +127,14 @@ TEST(OpponentPool, LeavesOutTheEntriesOfARoleThatNoLongerLearns) {
 TEST(Training, ARoleStopsLearningAfterItsShareOfTheEpisodes) {
   // The pursuers learn in the first 3 of 6 episodes: their tables end as after 3 episodes, while the evaders'
   // go on changing, and no later episode draws a pool entry for the pursuers.
-  game::GameConfig c = pool_config(0.5);
+  TrialConfig c = pool_config(0.5);
   c.training.pursuer_learning = 0.5;
-  const game::Sim sim(arena(), c);
-  const OpponentPool pool(arena(), c);
-  const auto& s = arena()->map().scenarios[0];
-  const TrialResult six = run_trial(sim, {&s, 13, 6, false, {}, &pool});
-  game::GameConfig all = c;
+  const OpponentPool pool = pool_of(c);
+  const TrialResult six = trial(c, 13, 6, &pool);
+  TrialConfig all = c;
   all.training.pursuer_learning = 1.0;
-  const OpponentPool pool_all(arena(), all);
-  const TrialResult three = run_trial(game::Sim(arena(), all), {&s, 13, 3, false, {}, &pool_all});
+  const OpponentPool pool_all = pool_of(all);
+  const TrialResult three = trial(all, 13, 3, &pool_all);
   EXPECT_EQ(tables_hash(six.pursuer_models), tables_hash(three.pursuer_models));
   EXPECT_NE(tables_hash(six.evader_models), tables_hash(three.evader_models));
   for (std::size_t e = 3; e < 6; ++e) {
@@ -139,15 +148,13 @@ TEST(Training, ARoleStopsLearningAfterItsShareOfTheEpisodes) {
 }
 
 TEST(Training, RandomStartsChangeWhereEpisodesStartAndStayAFunctionOfTheSeed) {
-  game::GameConfig c = pool_config(0.0);
-  const game::Sim fixed(arena(), c);
-  c.training.random_starts = 1.0;
-  const game::Sim random(arena(), c);
-  const OpponentPool pool(arena(), c);
-  const auto& s = arena()->map().scenarios[0];
-  const TrialResult a = run_trial(fixed, {&s, 5, 6, false, {}, &pool});
-  const TrialResult b = run_trial(random, {&s, 5, 6, false, {}, &pool});
-  const TrialResult b2 = run_trial(random, {&s, 5, 6, false, {}, &pool});
+  const TrialConfig fixed = pool_config(0.0);
+  TrialConfig random = fixed;
+  random.training.random_starts = 1.0;
+  const OpponentPool pool = pool_of(fixed);
+  const TrialResult a = trial(fixed, 5, 6, &pool);
+  const TrialResult b = trial(random, 5, 6, &pool);
+  const TrialResult b2 = trial(random, 5, 6, &pool);
   int moved = 0;
   for (std::size_t e = 0; e < 6; ++e) {
     moved += a.training.episodes[e].pursuer_return != b.training.episodes[e].pursuer_return;
@@ -158,19 +165,16 @@ TEST(Training, RandomStartsChangeWhereEpisodesStartAndStayAFunctionOfTheSeed) {
 }
 
 TEST(Training, ATrialWithAnOpponentPoolNeedsThePool) {
-  const game::Sim sim(arena(), pool_config());
-  EXPECT_THROW(run_trial(sim, {&arena()->map().scenarios[0], 7, 2, false, {}, nullptr}), std::logic_error);
+  EXPECT_THROW(trial(pool_config(), 7, 2, nullptr), std::logic_error);
 }
 
 TEST(Training, AZeroShareTrainsExactlyAsCoLearning) {
-  game::GameConfig colearning = game::preset("peg3d");
-  colearning.time_limit = 10.0;
-  const game::GameConfig pooled = pool_config(0.0);
-  const game::Sim a(arena(), colearning), b(arena(), pooled);
-  const OpponentPool pool(arena(), pooled);
-  const auto& s = arena()->map().scenarios[0];
-  const TrialResult ra = run_trial(a, {&s, 7, 12, false, {}, nullptr});
-  const TrialResult rb = run_trial(b, {&s, 7, 12, false, {}, &pool});
+  TrialConfig colearning = trial_preset("peg3d");
+  colearning.game.time_limit = 10.0;
+  const TrialConfig pooled = pool_config(0.0);
+  const OpponentPool pool = pool_of(pooled);
+  const TrialResult ra = trial(colearning, 7, 12, nullptr);
+  const TrialResult rb = trial(pooled, 7, 12, &pool);
   ASSERT_EQ(ra.training.episodes.size(), rb.training.episodes.size());
   for (std::size_t e = 0; e < ra.training.episodes.size(); ++e) {
     EXPECT_EQ(ra.training.episodes[e].steps, rb.training.episodes[e].steps);
@@ -184,30 +188,26 @@ TEST(Training, AZeroShareTrainsExactlyAsCoLearning) {
 TEST(Training, APoolEpisodeTeachesOnlyTheLearningRole) {
   // Share 1 with one evader in the pool and none for the pursuers' opponents: every episode the FACL
   // pursuer learns against flee, and the FACL evader never plays, so its tables stay as they started.
-  game::GameConfig c = pool_config(1.0);
-  c.training.pool_flee_apollonius = c.training.pool_random = false;
-  c.training.pool_pure_pursuit = c.training.pool_pn = c.training.pool_apollonius = false;
-  const game::Sim sim(arena(), c);
-  const OpponentPool pool(arena(), c);
+  TrialConfig c = pool_config(1.0);
+  c.training.pool.evaders = {"flee"};
+  c.training.pool.pursuers = {};
+  const OpponentPool pool = pool_of(c);
   ASSERT_EQ(pool.entries().size(), 1u);
-  const auto& s = arena()->map().scenarios[0];
-  const TrialResult r = run_trial(sim, {&s, 7, 6, false, {}, &pool});
+  const TrialResult r = trial(c, 7, 6, &pool);
   for (const int k : r.training.opponents) EXPECT_EQ(k, 0);
 
-  game::GameConfig untrained = c;
-  untrained.training.procedure = game::TrainingProcedure::kCoLearning;
-  const TrialResult fresh = run_trial(game::Sim(arena(), untrained), {&s, 7, 0, false, {}, nullptr});
+  TrialConfig untrained = c;
+  untrained.training.procedure = TrainingProcedure::kCoLearning;
+  const TrialResult fresh = trial(untrained, 7, 0, nullptr);
   EXPECT_EQ(tables_hash(r.evader_models), tables_hash(fresh.evader_models));
   EXPECT_NE(tables_hash(r.pursuer_models), tables_hash(fresh.pursuer_models));
 }
 
 TEST(Training, APooledTrialIsAFunctionOfItsSeed) {
-  const game::GameConfig c = pool_config(0.5);
-  const game::Sim sim(arena(), c);
-  const OpponentPool pool(arena(), c);
-  const auto& s = arena()->map().scenarios[0];
-  const TrialResult a = run_trial(sim, {&s, 11, 16, false, {}, &pool});
-  const TrialResult b = run_trial(sim, {&s, 11, 16, false, {}, &pool});
+  const TrialConfig c = pool_config(0.5);
+  const OpponentPool pool = pool_of(c);
+  const TrialResult a = trial(c, 11, 16, &pool);
+  const TrialResult b = trial(c, 11, 16, &pool);
   EXPECT_EQ(a.training.opponents, b.training.opponents);
   EXPECT_EQ(tables_hash(a.pursuer_models), tables_hash(b.pursuer_models));
   EXPECT_EQ(tables_hash(a.evader_models), tables_hash(b.evader_models));
@@ -218,22 +218,95 @@ TEST(Training, APooledTrialIsAFunctionOfItsSeed) {
 }
 
 TEST(TrainingConfig, AnOpponentPoolWithoutOpponentsIsRejected) {
-  game::GameConfig c = pool_config();
-  c.training.pool_pure_pursuit = c.training.pool_pn = c.training.pool_apollonius = false;
-  c.training.pool_flee = c.training.pool_flee_apollonius = c.training.pool_random = false;
+  TrialConfig c = pool_config();
+  c.training.pool.pursuers = {};
+  c.training.pool.evaders = {};
   try {
     c.validate();
     FAIL() << "accepted an empty pool";
   } catch (const InvalidParameter& e) {
     EXPECT_EQ(e.parameter(), "training.procedure");
   }
-  c.training.pool_share = 1.5;
-  c.training.pool_flee = true;
+  c.training.pool.share = 1.5;
+  c.training.pool.evaders = {"flee"};
   try {
     c.validate();
-    FAIL() << "accepted pool_share 1.5";
+    FAIL() << "accepted pool.share 1.5";
   } catch (const InvalidParameter& e) {
-    EXPECT_EQ(e.parameter(), "training.pool_share");
+    EXPECT_EQ(e.parameter(), "training.pool.share");
+  }
+}
+
+TEST(TrainingConfig, ThePoolNamesClassicPlayersOfTheRightRoleOnly) {
+  // Each case: the pool's lists, and the field the refusal names.
+  const std::vector<std::tuple<std::vector<std::string>, std::vector<std::string>, std::string>> bad{
+      {{"pn", "flee"}, {"flee"}, "training.pool.pursuers.1"},     // an evader among the pursuers
+      {{"pn"}, {"facl"}, "training.pool.evaders.0"},              // a learner is no classic opponent
+      {{"pn"}, {"flee", "teleport"}, "training.pool.evaders.1"},  // no such player
+      {{"Pn"}, {"flee"}, "training.pool.pursuers.0"},             // not a name
+  };
+  for (const auto& [pursuers, evaders, field] : bad) {
+    TrialConfig c = pool_config();
+    c.training.pool.pursuers = pursuers;
+    c.training.pool.evaders = evaders;
+    try {
+      c.validate();
+      ADD_FAILURE() << field << " accepted";
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.parameter(), field) << e.what();
+    }
+  }
+}
+
+TEST(TrainingConfig, ThePoolsPlayersTravelThroughJsonAndSetAsCommaLists) {
+  // --set takes a list of names as commas (or JSON); the JSON image lists them.
+  const TrialConfig c = load_trial_config("peg3d", {"training.procedure=opponent-pool", "training.pool.evaders=flee,random",
+                                                    "training.pool.pursuers=[\"pn\"]"});
+  EXPECT_EQ(c.training.pool.evaders, (std::vector<std::string>{"flee", "random"}));
+  EXPECT_EQ(c.training.pool.pursuers, std::vector<std::string>{"pn"});
+  TrialConfig back = trial_preset("peg3d");
+  config::from_json(config::to_json(c), back);
+  EXPECT_EQ(back, c);
+  EXPECT_EQ(load_trial_config("peg3d", {"training.pool.evaders="}).training.pool.evaders, std::vector<std::string>{});
+}
+
+TEST(TrialConfig, PresetsTrainAsDocumented) {
+  // robust trains with the opponent pool (share 0.8, the baselines of each role), random starts and pursuers that
+  // learn in the first half of the training only (docs/learning.md); the other presets co-learn.
+  TrainingConfig robust;
+  robust.procedure = TrainingProcedure::kOpponentPool;
+  robust.pool.share = 0.8;
+  robust.random_starts = 1.0;
+  robust.pursuer_learning = 0.5;
+  EXPECT_EQ(trial_preset("robust").training, robust);
+  EXPECT_EQ(robust.pool.pursuers, (std::vector<std::string>{"pure-pursuit", "pn", "apollonius"}));
+  EXPECT_EQ(robust.pool.evaders, (std::vector<std::string>{"flee", "flee-apollonius", "random"}));
+  for (const char* name : game::kPresetNames) {
+    EXPECT_EQ(trial_preset(name).game, game::preset(name)) << name;
+    if (std::string(name) != "robust") {
+      EXPECT_EQ(trial_preset(name).training, TrainingConfig{}) << name;
+    }
+  }
+}
+
+TEST(TrialConfig, ItsImageIsTheGamesFieldsWithTheTrainingBeside) {
+  const TrialConfig c = trial_preset("robust");
+  nlohmann::json game = config::to_json(c.game);
+  game["training"] = config::to_json(c.training);
+  EXPECT_EQ(config::to_json(c), game);
+  EXPECT_EQ(config::table_field_count<TrainingConfig>(), static_cast<int>(config::member_count<TrainingConfig>()));
+  EXPECT_EQ(config::table_field_count<OpponentPoolConfig>(), static_cast<int>(config::member_count<OpponentPoolConfig>()));
+}
+
+TEST(TrialConfig, APolicyThatIsNoPlayerOfItsRoleIsRefusedNamingTheField) {
+  for (const auto& [set, field] : std::vector<std::pair<std::string, std::string>>{
+           {"pursuer.policy=flee", "pursuer.policy"}, {"evader.policy=teleport", "evader.policy"}}) {
+    try {
+      load_trial_config("peg3d", {set});
+      ADD_FAILURE() << set;
+    } catch (const InvalidParameter& e) {
+      EXPECT_EQ(e.parameter(), field) << e.what();
+    }
   }
 }
 

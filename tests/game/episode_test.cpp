@@ -12,16 +12,18 @@
 namespace peg3d::game {
 namespace {
 
+using namespace peg3d::players;
+
 using testing::make_arena;
 using testing::play_once;
 using testing::scenario;
 
 const Vec3 kSize(35, 35, 20);
 
-GameConfig pursuit_config(PolicyKind pursuer_policy, double evader_speed) {
+GameConfig pursuit_config(const std::string& pursuer_policy, double evader_speed) {
   GameConfig c = preset("peg3d");
   c.pursuer.policy = pursuer_policy;
-  c.evader.policy = PolicyKind::kFlee;
+  c.evader.policy = "flee";
   c.evader.speed = evader_speed;
   return c;
 }
@@ -29,7 +31,7 @@ GameConfig pursuit_config(PolicyKind pursuer_policy, double evader_speed) {
 TEST(Episode, PurePursuitCapturesAMotionlessEvaderInTheAnalyticTime) {
   // 20 m apart, the pursuer facing the evader: d(k) = 20 - 0.11 k <= 1 first at k = ceil(19 / 0.11) = 173.
   const auto s = scenario("line", {5, 17.5, 10}, {25, 17.5, 10});
-  const Sim sim(make_arena(kSize, {}, {s}), pursuit_config(PolicyKind::kPurePursuit, 0.0));
+  const Sim sim(make_arena(kSize, {}, {s}), pursuit_config("pure-pursuit", 0.0));
   const EpisodeResult r = play_once(sim, s, 3);
   EXPECT_EQ(r.outcome, Outcome::kCapture);
   EXPECT_EQ(r.steps, 173);
@@ -45,7 +47,7 @@ TEST(Episode, PurePursuitCapturesAMotionlessEvaderInTheAnalyticTime) {
 TEST(Episode, CollisionEndsTheEpisodeAtTheTimeOfImpact) {
   // A sphere of radius 1 centred 10 m ahead: the pursuer's 0.25 m sphere touches it after 8.75 m, at 8.75 / 1.1 s.
   const auto s = scenario("wall", {5, 17.5, 10}, {30, 17.5, 10});
-  GameConfig c = pursuit_config(PolicyKind::kPurePursuit, 0.0);
+  GameConfig c = pursuit_config("pure-pursuit", 0.0);
   c.pursuer.guard.enabled = false;
   const Sim sim(make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s}), c);
   const EpisodeResult r = play_once(sim, s, 3);
@@ -62,7 +64,7 @@ TEST(Episode, CollisionEndsTheEpisodeAtTheTimeOfImpact) {
 
 TEST(Episode, GuardSteersAroundTheObstacleWithoutCollision) {
   const auto s = scenario("wall", {5, 17.5, 10}, {30, 17.5, 10});
-  const Sim sim(make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s}), pursuit_config(PolicyKind::kPurePursuit, 0.0));
+  const Sim sim(make_arena(kSize, {{{15, 17.5, 10}, 1.0}}, {s}), pursuit_config("pure-pursuit", 0.0));
   const EpisodeResult r = play_once(sim, s, 3);  // guard on by default
   EXPECT_EQ(r.collisions, 0);
   EXPECT_EQ(r.outcome, Outcome::kCapture);
@@ -72,8 +74,8 @@ TEST(Episode, GuardSteersAroundTheObstacleWithoutCollision) {
 TEST(Episode, PursuerHeadingStaysInTheApolloniusCone) {
   const auto s = scenario("open", {5, 17.5, 10}, {20, 17.5, 10});
   GameConfig c = preset("peg3d");
-  c.pursuer.policy = PolicyKind::kRandom;  // the motion space has to do all the work
-  c.evader.policy = PolicyKind::kFlee;
+  c.pursuer.policy = "random";  // the motion space has to do all the work
+  c.evader.policy = "flee";
   const Sim sim(make_arena(kSize, {}, {s}), c);
   Trace trace;
   play_once(sim, s, 3, &trace);
@@ -89,8 +91,8 @@ TEST(Episode, EvaderMotionSpaceKeepsAlpha1AtLeastARightAngle) {
   const auto s = scenario("open", {5, 17.5, 10}, {20, 17.5, 10});
   GameConfig c = preset("paper");  // the paper turns the evader's motion space on
   c.evader.steering.polar_margin = kPi / 3;  // away from the poles every heading change is within reach
-  c.pursuer.policy = PolicyKind::kPurePursuit;
-  c.evader.policy = PolicyKind::kRandom;
+  c.pursuer.policy = "pure-pursuit";
+  c.evader.policy = "random";
   const Sim sim(make_arena(kSize, {}, {s}), c);
   Trace trace;
   play_once(sim, s, 3, &trace);
@@ -120,7 +122,7 @@ TEST(Episode, SameSeedSameEpisodeDifferentSeedDifferentEpisode) {
 
 TEST(Episode, TraceRecordsEveryInstantAndTheEvents) {
   const auto s = scenario("line", {5, 17.5, 10}, {25, 17.5, 10});
-  const Sim sim(make_arena(kSize, {}, {s}), pursuit_config(PolicyKind::kPurePursuit, 0.0));
+  const Sim sim(make_arena(kSize, {}, {s}), pursuit_config("pure-pursuit", 0.0));
   Trace trace;
   const EpisodeResult r = play_once(sim, s, 3, &trace);
   EXPECT_EQ(trace.agents, 2);

@@ -21,6 +21,8 @@
 namespace peg3d::game {
 namespace {
 
+using namespace peg3d::players;
+
 void expect_no_allocation(const char* map, const char* preset_name, AgentCollisions collisions, bool lidar = false,
                           bool own_map = false, bool sight = false) {
   const auto arena = world::Arena::build(world::load_map(std::string(PEG3D_SOURCE_DIR) + "/" + map));

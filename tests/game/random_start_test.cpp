@@ -23,19 +23,18 @@ std::shared_ptr<const world::Arena> arena() {
   return a;
 }
 
-GameConfig config(double gap) {
+GameConfig config() {
   GameConfig c = preset("peg3d");
   c.pursuer.radius = c.evader.radius = kRadius;
-  c.training.random_start_gap = gap;
   return c;
 }
 
 TEST(RandomStart, PlacesEveryAgentInsideTheArenaClearOfObstaclesAndApart) {
-  const Sim sim(arena(), config(8.0));
+  const Sim sim(arena(), config());
   const world::Scenario& like = arena()->map().scenarios[0];
   const Box box = arena()->bounds().shrunk(kRadius + kRandomStartClearance);
   for (std::uint64_t seed = 0; seed < 200; ++seed) {
-    const world::Scenario s = random_start(sim, like, seed);
+    const world::Scenario s = random_start(sim, like, seed, 8.0);
     ASSERT_EQ(s.name, like.name);
     ASSERT_EQ(s.pursuers.size(), 2u);
     ASSERT_EQ(s.evaders.size(), 3u);
@@ -67,13 +66,13 @@ TEST(RandomStart, PlacesEveryAgentInsideTheArenaClearOfObstaclesAndApart) {
 TEST(RandomStart, DrawsPlacesOverTheWholeArena) {
   // Uniform over the free box: the mean of many draws lies near the box's centre (the spheres shift it a
   // little), and draws reach every octant.
-  const Sim sim(arena(), config(0.0));
+  const Sim sim(arena(), config());
   const world::Scenario& like = arena()->map().scenarios[0];
   Vec3 sum = Vec3::Zero();
   int octants[8] = {};
   const int n = 2000;
   for (int k = 0; k < n; ++k) {
-    const Vec3 p = random_start(sim, like, derive_seed(5, {std::uint64_t(k)})).evaders[2].position;
+    const Vec3 p = random_start(sim, like, derive_seed(5, {std::uint64_t(k)}), 0.0).evaders[2].position;
     sum += p;
     ++octants[(p.x() > 10) + 2 * (p.y() > 10) + 4 * (p.z() > 5)];
   }
@@ -84,30 +83,31 @@ TEST(RandomStart, DrawsPlacesOverTheWholeArena) {
 }
 
 TEST(RandomStart, IsAFunctionOfItsSeed) {
-  const Sim sim(arena(), config(8.0));
+  const Sim sim(arena(), config());
   const world::Scenario& like = arena()->map().scenarios[0];
-  const world::Scenario a = random_start(sim, like, 42), b = random_start(sim, like, 42), c = random_start(sim, like, 43);
+  const world::Scenario a = random_start(sim, like, 42, 8.0), b = random_start(sim, like, 42, 8.0),
+                        c = random_start(sim, like, 43, 8.0);
   for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(a.evaders[i].position, b.evaders[i].position);
   EXPECT_NE(a.evaders[0].position, c.evaders[0].position);
 }
 
 TEST(RandomStart, KeepsTheScenarioWhenNoPlaceFits) {
   // No two points of a 20 x 20 x 10 box lie 40 m apart.
-  const Sim sim(arena(), config(40.0));
+  const Sim sim(arena(), config());
   const world::Scenario& like = arena()->map().scenarios[0];
-  const world::Scenario s = random_start(sim, like, 1);
+  const world::Scenario s = random_start(sim, like, 1, 40.0);
   EXPECT_EQ(s.pursuers[0].position, like.pursuers[0].position);
   EXPECT_EQ(s.evaders[2].position, like.evaders[2].position);
 }
 
 TEST(RandomStart, NeverStartsWithinCaptureDistance) {
   // A gap of 0 still keeps each pursuer beyond capture distance of each evader.
-  GameConfig c = config(0.0);
+  GameConfig c = config();
   c.capture_distance = 6.0;
   const Sim sim(arena(), c);
   const world::Scenario& like = arena()->map().scenarios[0];
   for (std::uint64_t seed = 0; seed < 100; ++seed) {
-    const world::Scenario s = random_start(sim, like, seed);
+    const world::Scenario s = random_start(sim, like, seed, 0.0);
     for (const auto& p : s.pursuers)
       for (const auto& e : s.evaders) EXPECT_GT((p.position - e.position).norm(), 6.0) << seed;
   }

@@ -418,8 +418,8 @@ TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {
     GameConfig c = preset("peg3d");
     c.collision = CollisionMode::kPenalize;
     c.time_limit = 20.0;
-    c.pursuer.policy = PolicyKind::kPurePursuit;
-    c.evader.policy = PolicyKind::kFlee;
+    c.pursuer.policy = "pure-pursuit";
+    c.evader.policy = "flee";
     c.evader.speed = 0.0;
     if (own_map) {
       c.pursuer.lidar = lidar(12, 3, 30.0, 8.0);

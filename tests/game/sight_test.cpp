@@ -147,7 +147,7 @@ TEST(GameSight, OnAnOpenArenaSightOnPlaysExactlyAsFullInformation) {
   // Nothing to hide behind and sight all round: every sighting is of now, so every input, move and reward is the
   // same, FACL agents learning and guidance laws alike.
   const auto arena = pillar_room(false);
-  for (const PolicyKind pursuer : {PolicyKind::kFacl, PolicyKind::kApollonius}) {
+  for (const std::string pursuer : {"facl", "apollonius"}) {
     std::vector<EpisodeResult> results;
     std::vector<Trace> traces(2);
     for (const bool sight : {false, true}) {

@@ -21,16 +21,18 @@
 namespace peg3d::game {
 namespace {
 
+using namespace peg3d::players;
+
 using testing::make_arena;
 using testing::scenario;
 using testing::team;
 
 const Vec3 kSize(35, 35, 20);
 
-GameConfig stationary_evaders(PolicyKind pursuer = PolicyKind::kPurePursuit) {
+GameConfig stationary_evaders(const std::string& pursuer = "pure-pursuit") {
   GameConfig c = preset("peg3d");
   c.pursuer.policy = pursuer;
-  c.evader.policy = PolicyKind::kFlee;
+  c.evader.policy = "flee";
   c.evader.speed = 0.0;
   return c;
 }
@@ -40,8 +42,8 @@ TEST(Sim, ExternalCommandsReproduceThePolicysEpisode) {
   // every instant and every reward is the same, bit for bit.
   const auto s = scenario("chase", {5, 5, 5}, {20, 25, 12});
   GameConfig c = preset("peg3d");
-  c.pursuer.policy = PolicyKind::kPurePursuit;
-  c.evader.policy = PolicyKind::kFlee;
+  c.pursuer.policy = "pure-pursuit";
+  c.evader.policy = "flee";
   const Sim sim(make_arena(kSize, {{{12, 15, 8}, 1.5}}, {s}), c);
   Trace recorded;
   const EpisodeResult original = testing::play_once(sim, s, 7, &recorded);
@@ -400,9 +402,9 @@ std::shared_ptr<const world::Arena> crossing_arena(double evader_y) {
 
 GameConfig standing_evader() {
   GameConfig c = preset("peg3d");
-  c.pursuer.policy = PolicyKind::kPurePursuit;
+  c.pursuer.policy = "pure-pursuit";
   c.pursuer.speed = 0.01;  // far away and slow: the game lasts until the mover arrives
-  c.evader.policy = PolicyKind::kFlee;
+  c.evader.policy = "flee";
   c.evader.speed = 0.0;
   c.evader.guard.enabled = false;
   return c;
@@ -471,8 +473,8 @@ TEST(Sim, AContactSearchThatGivesUpIsACollisionCountedInTheStepsEvents) {
 struct PatrolChase {
   static GameConfig chase() {
     GameConfig c = preset("peg3d");
-    c.pursuer.policy = PolicyKind::kPurePursuit;
-    c.evader.policy = PolicyKind::kFlee;
+    c.pursuer.policy = "pure-pursuit";
+    c.evader.policy = "flee";
     c.collision = CollisionMode::kPenalize;
     return c;
   }
@@ -585,8 +587,8 @@ TEST(Sim, TheGuardHoldsInTheForest) {
   const world::MapSpec spec = world::load_map(std::filesystem::path(PEG3D_SOURCE_DIR) / "maps" / "forest.yaml");
   GameConfig c = preset("peg3d");
   c.initial_heading = InitialHeading::kRandom;
-  c.pursuer.policy = PolicyKind::kApollonius;
-  c.evader.policy = PolicyKind::kFlee;
+  c.pursuer.policy = "apollonius";
+  c.evader.policy = "flee";
   const Sim sim(world::Arena::build(spec), c);
   SimState state(sim);
   ApolloniusInterceptor pursuer;

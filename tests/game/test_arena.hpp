@@ -48,11 +48,11 @@ inline std::shared_ptr<const world::Arena> pillar_room(bool pillar = true) {
 }
 
 /// The configuration's policies for every agent of `scenario` (pursuers seeded from 1, evaders from 2).
-inline game::Lineup lineup_for(const game::GameConfig& c, const world::Scenario& s, std::uint64_t pursuer_seed = 1,
+inline players::Lineup lineup_for(const game::GameConfig& c, const world::Scenario& s, std::uint64_t pursuer_seed = 1,
                                std::uint64_t evader_seed = 2) {
-  game::Lineup l;
-  game::add_configured(l, c, game::Role::kPursuer, static_cast<int>(s.pursuers.size()), pursuer_seed);
-  game::add_configured(l, c, game::Role::kEvader, static_cast<int>(s.evaders.size()), evader_seed);
+  players::Lineup l;
+  players::add_configured(l, c, game::Role::kPursuer, static_cast<int>(s.pursuers.size()), pursuer_seed);
+  players::add_configured(l, c, game::Role::kEvader, static_cast<int>(s.evaders.size()), evader_seed);
   return l;
 }
 
@@ -60,7 +60,7 @@ inline game::Lineup lineup_for(const game::GameConfig& c, const world::Scenario&
 inline game::EpisodeResult play_once(const game::Sim& sim, const world::Scenario& s, std::uint64_t seed,
                                      game::Trace* trace = nullptr) {
   game::SimState state(sim);
-  game::Lineup l = lineup_for(sim.config(), s);
+  players::Lineup l = lineup_for(sim.config(), s);
   if (trace) trace->reserve(sim.max_steps(), s.agents());
   return game::play(sim, state, s, l.policies(), false, seed, trace);
 }

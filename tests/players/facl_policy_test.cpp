@@ -11,8 +11,10 @@
 #include "players/policy_io.hpp"
 #include "game/test_arena.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
+
+using namespace peg3d::game;
 
 AgentView random_view(Rng& rng) {
   std::uniform_real_distribution<double> d(0.0, 40.0), a(-kPi, kPi), z(0.0, kPi);
@@ -279,7 +281,7 @@ TEST(FaclPolicy, ShortTrainingCapturesMoreOftenThanBefore) {
   GameConfig c = preset("peg3d");
   c.initial_heading = InitialHeading::kPlusX;
   c.pursuer.motion_space = false;
-  c.evader.policy = PolicyKind::kFlee;
+  c.evader.policy = "flee";
   c.time_limit = 40.0;
   const Sim sim(arena, c);
   SimState state(sim);
@@ -300,4 +302,4 @@ TEST(FaclPolicy, ShortTrainingCapturesMoreOftenThanBefore) {
 }
 
 }  // namespace
-}  // namespace peg3d::game
+}  // namespace peg3d::players

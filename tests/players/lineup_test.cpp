@@ -4,8 +4,10 @@
 
 #include "core/random.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
+
+using namespace peg3d::game;
 
 TEST(Lineup, TheFirstAgentOfARoleKeepsTheRoleSeed) {
   EXPECT_EQ(agent_seed(77, 0), 77u);
@@ -18,7 +20,7 @@ TEST(Lineup, AgentsWithEqualSettingsShareOneModel) {
   c.pursuers = {c.pursuer, c.pursuer, c.pursuer};
   c.pursuers[2].facl.actor_rate = 0.01;  // a different learner
   c.pursuers.push_back(c.pursuer);
-  c.pursuers[3].policy = PolicyKind::kPurePursuit;
+  c.pursuers[3].policy = "pure-pursuit";
   Lineup l;
   RoleModels models;
   add_configured(l, c, Role::kPursuer, 4, 5, &models);
@@ -47,4 +49,4 @@ TEST(Lineup, FrozenAgentsPastTheTrainedOnesPlayTheLastModel) {
 }
 
 }  // namespace
-}  // namespace peg3d::game
+}  // namespace peg3d::players

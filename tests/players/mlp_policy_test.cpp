@@ -14,8 +14,10 @@
 #include "game/observation_vector.hpp"
 #include "players/policy_io.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
+
+using namespace peg3d::game;
 
 // A one-layer network 20 -> 2 that reads the target's azimuth and elevation errors (entries 1 and 2).
 nlohmann::json steer_at_target(double gain) {
@@ -181,4 +183,4 @@ TEST(MlpPolicy, FilesThatDoNotFitNameTheField) {
 }
 
 }  // namespace
-}  // namespace peg3d::game
+}  // namespace peg3d::players

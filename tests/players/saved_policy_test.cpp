@@ -17,8 +17,10 @@
 #include "game/sim.hpp"
 #include "game/test_arena.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
+
+using namespace peg3d::game;
 
 std::filesystem::path temp(const std::string& name) { return std::filesystem::path(::testing::TempDir()) / name; }
 
@@ -159,7 +161,7 @@ TEST(SavedPolicy, AnOverflowingNetworkIsStoppedAtItsFirstStepNamingItsFile) {
   const auto saved = load_saved_policy(file, Role::kPursuer);
   const auto s = testing::scenario("chase", {5, 5, 5}, {20, 25, 12});
   GameConfig c = preset("peg3d");
-  c.evader.policy = PolicyKind::kFlee;
+  c.evader.policy = "flee";
   const Sim sim(testing::make_arena(Vec3(35, 35, 20), {}, {s}), c);
   Lineup lineup;
   add_saved(lineup, *saved, 1, 0);
@@ -179,4 +181,4 @@ TEST(SavedPolicy, AnOverflowingNetworkIsStoppedAtItsFirstStepNamingItsFile) {
 }
 
 }  // namespace
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -4,8 +4,10 @@
 
 #include "geometry/apollonius.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
+
+using namespace peg3d::game;
 
 AgentView view_of(const KinematicState& self, const KinematicState& other, double vs, double vo) {
   AgentView v;
@@ -72,4 +74,4 @@ TEST(ScriptedPolicies, RandomWalkStaysWithinTheBoundAndIsSeeded) {
 }
 
 }  // namespace
-}  // namespace peg3d::game
+}  // namespace peg3d::players

@@ -11,11 +11,13 @@
 
 #include "core/random.hpp"
 #include "game/episode.hpp"
-#include "players/policy_factory.hpp"
 #include "game/test_arena.hpp"
+#include "players/registry.hpp"
 
-namespace peg3d::game {
+namespace peg3d::players {
 namespace {
+
+using namespace peg3d::game;
 
 AgentView random_view(Rng& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -124,7 +126,7 @@ TEST(GameSearchPolicies, WithAMapTheSearcherVisitsTheUnknownSpaceFirst) {
 
 // The hider or flee against a pursuer flying along y = 5 past the pillar room's pillar; the share of steps in which
 // the pursuer saw the evader.
-double seen_share(PolicyKind evader) {
+double seen_share(const std::string& evader) {
   GameConfig c = preset("peg3d");
   c.initial_heading = InitialHeading::kPlusX;
   c.pursuer.motion_space = false;
@@ -134,7 +136,7 @@ double seen_share(PolicyKind evader) {
   const Sim sim(testing::pillar_room(), c);
   SimState st(sim);
   reset(sim, st, testing::scenario("s", {3, 5, 5}, {15, 10, 5}), 1);
-  auto e = make_policy(c.evader, Role::kEvader, 1);
+  auto e = make_player(c.evader, Role::kEvader, 1);
   e->begin_episode(observe(st, 1), false);
   int seen = 0, steps = 0;
   std::vector<Steering> u(2);
@@ -147,10 +149,10 @@ double seen_share(PolicyKind evader) {
 }
 
 TEST(GameSearchPolicies, TheHiderGetsOutOfSightBehindThePillarWhereFleeStaysInIt) {
-  const double hide = seen_share(PolicyKind::kHide), flee = seen_share(PolicyKind::kFlee);
+  const double hide = seen_share("hide"), flee = seen_share("flee");
   EXPECT_LT(hide, 0.3) << "flee " << flee;  // 0.185 on 2026-12-04
   EXPECT_GT(flee, 0.8) << "hide " << hide;
 }
 
 }  // namespace
-}  // namespace peg3d::game
+}  // namespace peg3d::players

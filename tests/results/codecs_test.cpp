@@ -142,15 +142,15 @@ TEST(ResultsCodecs, TracesSummariesAndModelsRoundTrip) {
   EXPECT_EQ(s2.path, s.path);
   EXPECT_EQ(s2.captured_at, s.captured_at);
 
-  game::Lineup lineup;
-  game::RoleModels models;
-  game::add_configured(lineup, game::preset("peg3d"), game::Role::kPursuer, 1, 5, &models);
+  players::Lineup lineup;
+  players::RoleModels models;
+  players::add_configured(lineup, game::preset("peg3d"), game::Role::kPursuer, 1, 5, &models);
   ASSERT_FALSE(models.empty());
-  const game::RoleModels back =
+  const players::RoleModels back =
       role_models_from_json(nlohmann::json::parse(role_models_to_json(models).dump()), game::Role::kPursuer);
   ASSERT_EQ(back.models.size(), models.models.size());
   EXPECT_EQ(back.of_agent, models.of_agent);
-  EXPECT_EQ(game::policy_to_json(*back.models[0]), game::policy_to_json(*models.models[0]));
+  EXPECT_EQ(players::policy_to_json(*back.models[0]), players::policy_to_json(*models.models[0]));
   EXPECT_THROW(role_models_from_json(role_models_to_json(models), game::Role::kEvader), InputError);
 }
 

@@ -21,8 +21,8 @@ game::Trace team_chase() {
   const world::Scenario s = peg3d::testing::team("T", {{5, 5, 10}, {5, 12, 10}}, {{12, 5, 10}});
   const auto arena = peg3d::testing::make_arena(Vec3(35, 35, 20), {{Vec3(12, 8, 10), 1.5}}, {s});
   game::GameConfig c = game::preset("peg3d");
-  c.pursuer.policy = game::PolicyKind::kPurePursuit;
-  c.evader.policy = game::PolicyKind::kFlee;
+  c.pursuer.policy = "pure-pursuit";
+  c.evader.policy = "flee";
   c.pursuer.speed = 2.0;
   c.evader.speed = 0.5;
   const game::Sim sim(arena, c);

@@ -126,8 +126,8 @@ Episode chase() {
   Episode e;
   e.arena = world::Arena::build(m);
   e.config = game::preset("peg3d");
-  e.config.pursuer.policy = game::PolicyKind::kPurePursuit;
-  e.config.evader.policy = game::PolicyKind::kFlee;
+  e.config.pursuer.policy = "pure-pursuit";
+  e.config.evader.policy = "flee";
   e.config.pursuer.speed = 2.0;
   e.config.evader.speed = 1.0;
   e.sim = std::make_unique<game::Sim>(e.arena, e.config);
@@ -178,8 +178,8 @@ TEST(ViewReplay, SightCarriesEachFramesOpponentVisibilityAndEstimate) {
   m.scenarios = {peg3d::testing::scenario("S", {5, 5, 10}, {15, 5, 10})};
   const auto arena = world::Arena::build(m);
   game::GameConfig c = game::preset("peg3d");
-  c.pursuer.policy = game::PolicyKind::kSearch;
-  c.evader.policy = game::PolicyKind::kFlee;
+  c.pursuer.policy = "search";
+  c.evader.policy = "flee";
   c.pursuer.sight.enabled = true;
   c.pursuer.sight.fov = 120.0;
   c.time_limit = 30.0;
