@@ -3,6 +3,7 @@
 // and scripted) on held-out evaluation seeds and maps, and write the cross-play matrix (docs/learning.md).
 #include "experiment/league_experiment.hpp"
 #include "experiment_main.hpp"
+#include "players/registry.hpp"
 
 using namespace peg3d;
 using experiment::saved_entrant, experiment::league_maps;
@@ -14,8 +15,8 @@ int main(int argc, char** argv) {
   o.out = "results/league";
   o.sweep = experiment::LeagueSettings{}.sweep;
   experiment::LeagueSettings s;
-  std::vector<std::string> algorithms{"peg3d", "robust"}, pursuers{"pure-pursuit", "pn", "apollonius"},
-      evaders{"flee", "flee-apollonius", "random"}, pursuer_entrants, evader_entrants;
+  std::vector<std::string> algorithms{"peg3d", "robust"}, pursuers = s.classic_pursuers, evaders = s.classic_evaders,
+                           pursuer_entrants, evader_entrants;
   std::vector<std::filesystem::path> eval_maps;
   std::string eval_heading = "random", train_heading = "random";
   const std::string headings = "random, chase, facing, plus-x";
@@ -27,8 +28,10 @@ int main(int argc, char** argv) {
     return app.add_option(flag, value, what)->capture_default_str();
   };
   option("--algorithms", algorithms, "algorithms that train policies: presets (" + game::preset_list() + ")")->delimiter(',');
-  option("--pursuers", pursuers, "classic pursuers in the league: pure-pursuit, pn, apollonius, random, search")->delimiter(',');
-  option("--evaders", evaders, "scripted evaders in the league: flee, flee-apollonius, random, hide")->delimiter(',');
+  option("--pursuers", pursuers,
+         "classic pursuers in the league: " + players::player_names(game::Role::kPursuer, players::kNeedsTraining))->delimiter(',');
+  option("--evaders", evaders,
+         "scripted evaders in the league: " + players::player_names(game::Role::kEvader, players::kNeedsTraining))->delimiter(',');
   option("--eval-maps", eval_maps, "maps the games are played on (default: the training map)")->delimiter(',');
   option("--train-seeds", o.sweep.repeats, "training runs (seeds) per algorithm")->check(CLI::PositiveNumber);
   option("--eval-seeds", s.eval_seeds, "evaluation games per start and pairing (held-out seeds)")->check(CLI::PositiveNumber);

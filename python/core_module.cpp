@@ -21,7 +21,7 @@
 #include "env/batch.hpp"
 #include "game/config_file.hpp"
 #include "players/registry.hpp"
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 #include "sense/scan_map.hpp"
 #include "view/frame_renderer.hpp"
 #include "view/replay.hpp"
@@ -90,6 +90,26 @@ PYBIND11_MODULE(_core, m) {
   }
   m.attr("OBSERVATION_ENTRIES") = entries;
 
+  // The players' registry (players/registry.hpp), the one list of players: (name, roles, needs, help) each, and
+  // each role's baselines (the default line-ups).
+  py::list players;
+  for (const players::PlayerInfo& p : players::registry()) {
+    py::list roles;
+    for (const game::Role r : {game::Role::kPursuer, game::Role::kEvader}) {
+      if (p.plays(r)) roles.append(game::to_string(r));
+    }
+    py::list needs;
+    if (p.learns()) needs.append("training");
+    if ((p.needs & players::kNeedsSight) != 0) needs.append("sight");
+    players.append(py::make_tuple(std::string(p.name), py::tuple(roles), py::tuple(needs), std::string(p.help)));
+  }
+  m.attr("PLAYERS") = py::tuple(players);
+  py::dict baselines;
+  for (const game::Role r : {game::Role::kPursuer, game::Role::kEvader}) {
+    baselines[game::to_string(r)] = py::tuple(py::cast(players::baseline_players(r)));
+  }
+  m.attr("BASELINE_PLAYERS") = baselines;
+
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
                        const std::vector<std::string>& scenarios, int games, int threads, std::uint64_t seed, int neighbours,
@@ -119,7 +139,28 @@ PYBIND11_MODULE(_core, m) {
         if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
         return b.controlled(i);
       })
-      .def("observation_bounds", [](const env::Batch& b) { return bounds_arrays(b.observation_bounds()); })
+      .def("observation_bounds", [](const env::Batch& b, int i) {
+        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
+        return bounds_arrays(b.observation_bounds(i));
+      })
+      .def("observation_segments", [](const env::Batch& b, int i) {
+        // Agent i's observation as the library lays it out (game::observation_table): one dict per segment.
+        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
+        py::list out;
+        for (const sense::Segment& s : b.observation_table(i).segments) {
+          py::dict d;
+          d["name"] = s.name;
+          d["offset"] = s.offset;
+          d["size"] = s.size;
+          d["unit"] = s.unit;
+          d["low"] = py::array_t<float>(py::ssize_t(s.low.size()), s.low.data());
+          d["high"] = py::array_t<float>(py::ssize_t(s.high.size()), s.high.data());
+          d["meaning"] = s.meaning;
+          d["shape"] = py::tuple(py::cast(s.shape));
+          out.append(d);
+        }
+        return out;
+      })
       .def("state_bounds", [](const env::Batch& b) { return bounds_arrays(b.state_bounds()); })
       .def("action_bound", [](const env::Batch& b, bool pursuer) {
         return b.action_bound(pursuer ? game::Role::kPursuer : game::Role::kEvader);
@@ -147,16 +188,28 @@ PYBIND11_MODULE(_core, m) {
         env::Batch& b = self.cast<env::Batch&>();
         return numpy_view(self, b.observations(), {b.games(), b.agents(), b.observation_size()});
       })
-      .def_property_readonly("rays", [](const env::Batch& b) { return b.rays(); })
-      .def_property_readonly("ranges_offset", [](const env::Batch& b) { return b.ranges_offset(); })
-      .def_property_readonly("sight_offset", [](const env::Batch& b) { return b.sight() ? b.sight_offset() : -1; })
-      .def_property_readonly("ranges", [](py::object self) {
-        // The range readings inside the observations: (games, agents, rays), the same memory.
+      .def("segment_view", [](py::object self, int offset, std::vector<py::ssize_t> shape, int first, int count) {
+        // Agents first .. first + count - 1's entries [offset, offset + prod(shape)) of every game's observations,
+        // shaped (games, count, *shape): the same memory, read-only. The caller gives a segment's offset and shape
+        // from observation_segments (the agents must share them).
         env::Batch& b = self.cast<env::Batch&>();
-        const py::ssize_t f = sizeof(float), size = b.observation_size();
-        return numpy_view(self, b.observations() + b.ranges_offset(), {b.games(), b.agents(), b.rays()}, nullptr,
-                          {size * b.agents() * f, size * f, f});
-      })
+        py::ssize_t size = 1;
+        for (const py::ssize_t d : shape) {
+          if (d < 1) throw py::value_error("a segment's shape has positive dimensions");
+          size *= d;
+        }
+        if (first < 0 || count < 1 || first + count > b.agents()) throw py::index_error("no such agents");
+        if (offset < 0 || offset + size > b.observation_size()) throw py::index_error("not within an observation");
+        const py::ssize_t f = sizeof(float), stride = b.observation_size();
+        std::vector<py::ssize_t> dims{b.games(), count}, strides{stride * b.agents() * f, stride * f};
+        std::vector<py::ssize_t> inner(shape.size());
+        py::ssize_t step = f;
+        for (std::size_t k = shape.size(); k-- > 0;) inner[k] = step, step *= shape[k];
+        dims.insert(dims.end(), shape.begin(), shape.end());
+        strides.insert(strides.end(), inner.begin(), inner.end());
+        return numpy_view(self, b.observations() + std::size_t(first) * std::size_t(stride) + std::size_t(offset), dims, nullptr,
+                          strides);
+      }, py::arg("offset"), py::arg("shape"), py::arg("first"), py::arg("count"))
       .def_property_readonly("rewards", [](py::object self) {
         env::Batch& b = self.cast<env::Batch&>();
         return numpy_view(self, b.rewards(), {b.games(), b.agents()});

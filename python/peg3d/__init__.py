@@ -7,13 +7,18 @@
     gymnasium.make_vec("peg3d/Pursuer-v0", num_envs=N)   N of them as a gymnasium.vector.VectorEnv
     InputError                              a bad map, configuration, policy or keyword (a ValueError)
     PRESETS                                 the configuration presets `config` may name
+    PLAYERS                                 the C++ players `opponents` may name: (name, roles, needs, help) each
+    save_policy(path, role=, observation=, layers=, ...)   a network as a policy file the C++ side plays
+    upgrade_policy(path, env, agent)        a version 1 policy file re-saved with the observation it reads
 """
 
-from ._core import OBSERVATION_ENTRIES, PRESETS, InputError
+from ._core import OBSERVATION_ENTRIES, PLAYERS, PRESETS, InputError
 from gymnasium.spaces import Box
 
+from ._loading import Segment
 from .learner import LearnerEnv, LearnerVectorEnv, register
 from .parallel import ParallelEnv, aec_env
+from .policy import read_policy, save_policy, upgrade_policy
 from .vector import VectorEnv
 
 register()
@@ -38,5 +43,6 @@ def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
     return VectorEnv(map=map, num_envs=num_envs, threads=threads, **kwargs)
 
 
-__all__ = ["Box", "InputError", "LearnerEnv", "LearnerVectorEnv", "OBSERVATION", "OBSERVATION_ENTRIES", "PRESETS",
-           "ParallelEnv", "VectorEnv", "env", "parallel_env", "vector_env"]
+__all__ = ["Box", "InputError", "LearnerEnv", "LearnerVectorEnv", "OBSERVATION", "OBSERVATION_ENTRIES", "PLAYERS", "PRESETS",
+           "ParallelEnv", "Segment", "VectorEnv", "env", "parallel_env", "read_policy", "save_policy", "upgrade_policy",
+           "vector_env"]

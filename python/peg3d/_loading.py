@@ -3,6 +3,7 @@ keyword arguments as the C++ batch takes them, and the spaces."""
 
 import os
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -100,12 +101,81 @@ def frame_renderer(batch):
     return _core.FrameRenderer(batch, 640, 480)
 
 
-def role_spaces(batch, pursuer):
-    low, high = batch.observation_bounds()
-    bound = np.float32(batch.action_bound(pursuer))
+class Segment(NamedTuple):
+    """A named part of an agent's observation, as the C++ library lays it out (src/game/observation.hpp): entries
+    [offset, offset + size) of the observation, in `unit`, each within [low, high], laid out as `shape` (row-major:
+    (size,) for a list, (rows, columns) for an image)."""
+    name: str
+    offset: int
+    size: int
+    unit: str
+    low: np.ndarray
+    high: np.ndarray
+    meaning: str
+    shape: tuple
+
+    @property
+    def slice(self):
+        """Where its entries lie in an observation: observation[segment.slice]."""
+        return slice(self.offset, self.offset + self.size)
+
+    def space(self):
+        """A gymnasium Box of its entries, shaped as the segment is."""
+        return Box(self.low.reshape(self.shape), self.high.reshape(self.shape), dtype=np.float32)
+
+
+def segments_of(batch, i):
+    """Agent i's observation segments, from the C++ batch."""
+    return tuple(Segment(d["name"], d["offset"], d["size"], d["unit"], np.asarray(d["low"]), np.asarray(d["high"]),
+                         d["meaning"], tuple(d["shape"])) for d in batch.observation_segments(i))
+
+
+def agent_spaces(batch, i):
+    """Agent i's observation space (its own observation's length and bounds) and action space."""
+    low, high = batch.observation_bounds(i)
+    bound = np.float32(batch.action_bound(i < batch.pursuers))
     obs = Box(low, high, dtype=np.float32)
     act = Box(np.full(2, -bound, dtype=np.float32), np.full(2, bound, dtype=np.float32), dtype=np.float32)
     return obs, act
+
+
+def segment_named(segments, name):
+    """The segment called `name` of a list; KeyError naming the ones there are."""
+    for s in segments:
+        if s.name == name:
+            return s
+    raise KeyError(f"{name}: no such segment (this observation has {', '.join(s.name for s in segments)})")
+
+
+def segment_view(batch, segments_by_index, name):
+    """The segment `name` of the agents that have it, as one read-only view of the batch's observations:
+    (games, agents with it, *shape), the same memory. Those agents must be consecutive and share its offset and
+    shape (ValueError otherwise). Returns (view, Box of one game's view: each agent's bounds)."""
+    having = [(i, s) for i, segs in segments_by_index for s in segs if s.name == name]
+    if not having:
+        raise KeyError(f"{name}: no agent's observation has this segment")
+    indices = [i for i, _ in having]
+    first = having[0][1]
+    if indices != list(range(indices[0], indices[-1] + 1)) or any(
+            s.offset != first.offset or s.shape != first.shape for _, s in having):
+        raise ValueError(f"{name}: the agents that have it are not consecutive, or lay it out differently; "
+                         "read it per agent with observation[segment.slice]")
+    view = batch.segment_view(first.offset, list(first.shape), indices[0], len(indices))
+    low = np.stack([seg.low.reshape(seg.shape) for _, seg in having])
+    high = np.stack([seg.high.reshape(seg.shape) for _, seg in having])
+    return view, Box(low, high, dtype=np.float32)
+
+
+def compat_offset(segments_by_agent, name):
+    """The offset of segment `name` shared by every agent that has it (-1 when none has it): the old attributes
+    `ranges_offset` and `sight_offset` as the segments give them."""
+    offsets = {s.offset for segs in segments_by_agent for s in segs if s.name == name}
+    return offsets.pop() if len(offsets) == 1 else -1
+
+
+def largest_size(segments_by_agent, name):
+    """The most entries segment `name` has among the agents (0 when none has it)."""
+    return max((s.size for segs in segments_by_agent for s in segs if s.name == name), default=0)
 
 
 def check_seed(seed):

@@ -8,11 +8,13 @@ from gymnasium.spaces import Box
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from . import _loading
+from . import _core, _loading
 
 ROLES = ("pursuer", "evader")
-# What plays the other agents unless told: the learner's opponents and its teammates.
-DEFAULT_PLAYERS = {"pursuer": ("flee", "pure-pursuit"), "evader": ("pure-pursuit", "flee")}
+# What plays the other agents unless told: each role's first baseline player of the C++ registry (flee for the
+# evaders, pure-pursuit for the pursuers): the learner's opponents and its teammates.
+DEFAULT_PLAYERS = {learner: (_core.BASELINE_PLAYERS[ROLES[1 - k]][0], _core.BASELINE_PLAYERS[learner][0])
+                   for k, learner in enumerate(ROLES)}
 
 
 def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads, seed, neighbours, cache):
@@ -35,8 +37,14 @@ def _check_render_mode(mode):
         raise ValueError(f"render_mode: None or 'rgb_array', not {mode!r} (parallel_env also writes replays)")
 
 
-def _spaces(batch, learner):
-    return _loading.role_spaces(batch, learner == "pursuer")
+def _spaces(batch, agent):
+    return _loading.agent_spaces(batch, agent)
+
+
+def _segment_view(env, name, games):
+    """The learner's segment `name` in place: (games, *shape) of the batch's observations."""
+    seg = _loading.segment_named(env.observation_segments, name)
+    return env._batch.segment_view(seg.offset, list(seg.shape), env._agent, 1)[:games, 0]
 
 
 class LearnerEnv(gymnasium.Env):
@@ -55,7 +63,10 @@ class LearnerEnv(gymnasium.Env):
         self.learner = learner
         self.scenarios = list(self._batch.scenario_names)
         self.metadata = {**self.metadata, "render_fps": 1.0 / self._batch.dt}  # one frame a step
-        self.observation_space, self.action_space = _spaces(self._batch, learner)
+        self.observation_space, self.action_space = _spaces(self._batch, self._agent)
+        # The learner's observation as the C++ library lays it out (docs/python.md, "Observations").
+        self.observation_segments = _loading.segments_of(self._batch, self._agent)
+        self._size = self.observation_space.shape[0]
         self._actions = np.zeros((1, self._batch.agents, 2))
         self._done = True
         self._frames = _loading.frame_renderer(self._batch) if render_mode else None
@@ -68,7 +79,7 @@ class LearnerEnv(gymnasium.Env):
         super().reset(seed=seed)
         self._batch.reset(_loading.check_seed(seed))
         self._done = False
-        return self._batch.observations[0, self._agent].copy(), {}
+        return self._batch.observations[0, self._agent, :self._size].copy(), {}
 
     def step(self, action):
         if self._done:
@@ -83,7 +94,12 @@ class LearnerEnv(gymnasium.Env):
         game = b.game_info(0)
         if game["done"]:
             info["outcome"] = game["outcome"]
-        return b.observations[0, i].copy(), float(b.rewards[0, i]), terminated, truncated, info
+        return b.observations[0, i, :self._size].copy(), float(b.rewards[0, i]), terminated, truncated, info
+
+    def observation_view(self, name):
+        """The learner's segment `name` (observation_segments) in place, shaped as the segment is (a depth
+        camera's "camera.depth" is (H, W)): read-only, overwritten by the next step."""
+        return _segment_view(self, name, 1)[0]
 
     def state(self):
         """The global state of parallel_env.state(): the truth for every agent, for centralised critics."""
@@ -111,13 +127,15 @@ class LearnerVectorEnv(VectorEnv):
         self.learner = learner
         self.scenarios = list(b.scenario_names)
         self.metadata = {**self.metadata, "render_fps": 1.0 / b.dt}  # one frame a step
-        self.single_observation_space, self.single_action_space = _spaces(b, learner)
+        self.single_observation_space, self.single_action_space = _spaces(b, self._agent)
+        # The learner's observation as the C++ library lays it out (docs/python.md, "Observations").
+        self.observation_segments = _loading.segments_of(b, self._agent)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._actions = np.zeros((self.num_envs, b.agents, 2))
         i = self._agent
         # Views of the learner's column of the C++ buffers, made once; step() returns copies.
-        self._obs, self._rew = b.observations[:, i], b.rewards[:, i]
+        self._obs, self._rew = b.observations[:, i, :self.single_observation_space.shape[0]], b.rewards[:, i]
         self._term, self._trunc = b.terminated[:, i], b.truncated[:, i]
         self._captured, self._collided, self._reset = b.captured[:, i], b.collided[:, i], b.reset_flags
         self._frames = _loading.frame_renderer(b) if render_mode else None
@@ -162,6 +180,10 @@ class LearnerVectorEnv(VectorEnv):
     def state(self, env):
         """The global state of game `env` (parallel_env.state())."""
         return self._batch.global_state(env)
+
+    def observation_view(self, name):
+        """The learner's segment `name` in every game, in place: (num_envs, *the segment's shape)."""
+        return _segment_view(self, name, self.num_envs)
 
 
 def register():

@@ -45,18 +45,23 @@ class ParallelEnv(_ParallelEnv):
         self.possible_agents = list(self._index)
         if not self.possible_agents:
             raise ValueError("opponents: every agent is left to the C++ side; none is left to act")
-        spaces = {True: _loading.role_spaces(b, True), False: _loading.role_spaces(b, False)}
-        self.observation_spaces = {n: spaces[i < b.pursuers][0] for n, i in self._index.items()}
-        self.action_spaces = {n: spaces[i < b.pursuers][1] for n, i in self._index.items()}
+        spaces = {n: _loading.agent_spaces(b, i) for n, i in self._index.items()}
+        self.observation_spaces = {n: spaces[n][0] for n in self._index}
+        self.action_spaces = {n: spaces[n][1] for n in self._index}
+        self._sizes = {n: spaces[n][0].shape[0] for n in self._index}
         low, high = b.state_bounds()
         self.state_space = Box(low, high, dtype=np.float32)
-        # Each agent's latest lidar readings (m) are the last `rays` entries of its observation, from
-        # `ranges_offset` (zeros after an agent's own rays; no entries without a lidar).
-        self.rays, self.ranges_offset = b.rays, b.ranges_offset
-        # With limited sight (docs/sight.md): entries sight_offset and sight_offset + 1 say whether the agent sees
-        # the opponent of its first entries now (1 or 0) and how old (s) the sighting they come from is; -1: no
-        # agent's sight is limited, no such entries.
-        self.sight_offset = b.sight_offset
+        # Each agent's observation as the C++ library lays it out (docs/python.md, "Observations"): its segments
+        # (name, offset, size, unit, bounds, meaning, shape), in order. An agent's segment is
+        # obs[agent][segment.slice]; observation_view(name) shows one segment of every agent that has it in place.
+        self.observation_segments = {n: _loading.segments_of(b, i) for n, i in self._index.items()}
+        # Read from the segments, as before issue 50: the lidar's readings ("lidar.ranges": `rays` entries from
+        # `ranges_offset`) and the sight entries ("sight.visible" at `sight_offset`, "sight.age" after it); -1 and 0
+        # when no agent has them.
+        segs = list(self.observation_segments.values())
+        self.rays = _loading.largest_size(segs, "lidar.ranges")
+        self.ranges_offset = _loading.compat_offset(segs, "lidar.ranges")
+        self.sight_offset = _loading.compat_offset(segs, "sight.visible")
         self.agents = []
         self._cycles = 0
         self._started = False
@@ -71,6 +76,20 @@ class ParallelEnv(_ParallelEnv):
 
     def observation_space(self, agent):
         return self.observation_spaces[agent]
+
+    def observation_view(self, name):
+        """Segment `name` (observation_segments) of every agent that has it, in place: a read-only array of shape
+        (agents that have it, *the segment's shape), the C++ buffer that the next step overwrites (a depth camera's
+        "camera.depth" is (agents, H, W)). Those agents must be consecutive and lay it out alike."""
+        self._check_open()
+        return _loading.segment_view(self._batch, self._by_index(), name)[0][0]
+
+    def observation_view_space(self, name):
+        """A gymnasium Box of observation_view(name): each agent's bounds of the segment."""
+        return _loading.segment_view(self._batch, self._by_index(), name)[1]
+
+    def _by_index(self):
+        return [(self._index[n], segs) for n, segs in self.observation_segments.items()]
 
     def action_space(self, agent):
         return self.action_spaces[agent]
@@ -98,7 +117,7 @@ class ParallelEnv(_ParallelEnv):
         active = self._batch.active[0]
         self.agents = [n for n in self.possible_agents if active[self._index[n]]]
         obs = self._batch.observations[0]
-        observations = {n: obs[self._index[n]].copy() for n in self.agents}
+        observations = {n: obs[self._index[n], :self._sizes[n]].copy() for n in self.agents}
         infos = {n: {} for n in self.agents}
         return observations, infos
 
@@ -129,7 +148,7 @@ class ParallelEnv(_ParallelEnv):
         game = b.game_info(0)
         for n in acted:
             i = self._index[n]
-            observations[n] = obs[i].copy()
+            observations[n] = obs[i, :self._sizes[n]].copy()
             rewards[n] = float(rew[i])
             terminations[n] = bool(term[i])
             truncations[n] = bool(trunc[i])

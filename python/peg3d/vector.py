@@ -29,13 +29,24 @@ class VectorEnv:
         self.agent_counts = {"pursuer": p, "evader": b.agents - p}
         self.controlled = {r: np.array([b.controlled(i) for i in range(b.agents)][s], dtype=bool)
                            for r, s in self._slices.items()}
-        # A gymnasium Dict per role: each role's agents as the rows of its Box.
+        # Each agent's observation as the C++ library lays it out (docs/python.md, "Observations"), by agent name.
+        names = b.agent_names
+        self.observation_segments = {names[i]: _loading.segments_of(b, i) for i in range(b.agents)}
+        # A gymnasium Dict per role: each role's agents as the rows of its Box, as long as the role's longest
+        # observation (a shorter one's row ends in zeros, bounds [0, 0]).
         single_obs, single_act = {}, {}
+        self._sizes = {}
         for r in ROLES:
-            obs, act = _loading.role_spaces(b, r == "pursuer")
-            n = self.agent_counts[r]
-            single_obs[r] = Box(np.tile(obs.low, (n, 1)), np.tile(obs.high, (n, 1)), dtype=np.float32)
-            single_act[r] = Box(np.tile(act.low, (n, 1)), np.tile(act.high, (n, 1)), dtype=np.float32)
+            rows = [_loading.agent_spaces(b, i) for i in range(b.agents)[self._slices[r]]]
+            size = max(o.shape[0] for o, _ in rows)
+            self._sizes[r] = size
+            low = np.zeros((len(rows), size), np.float32)
+            high = np.zeros((len(rows), size), np.float32)
+            for k, (o, _) in enumerate(rows):
+                low[k, :o.shape[0]], high[k, :o.shape[0]] = o.low, o.high
+            single_obs[r] = Box(low, high, dtype=np.float32)
+            act = rows[0][1]
+            single_act[r] = Box(np.tile(act.low, (len(rows), 1)), np.tile(act.high, (len(rows), 1)), dtype=np.float32)
         self.single_observation_space, self.single_action_space = Dict(single_obs), Dict(single_act)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
@@ -43,15 +54,22 @@ class VectorEnv:
         self.single_state_space = Box(low, high, dtype=np.float32)  # state(env), states() rows
         self._actions = np.zeros((self.num_envs, b.agents, 2))
         # The C++ buffers never move: their per-role views are made once and returned by every call.
-        self._obs = self._split(b.observations)
+        self._obs = {r: b.observations[:, s, :self._sizes[r]] for r, s in self._slices.items()}
         self._rew, self._term, self._trunc = self._split(b.rewards), self._split(b.terminated), self._split(b.truncated)
-        # Each agent's latest lidar readings (m): the last `rays` entries of its observation, the same memory.
-        self.rays, self.ranges_offset = b.rays, b.ranges_offset
-        # With limited sight (docs/sight.md): entries sight_offset and sight_offset + 1 say whether the agent sees
-        # the opponent of its first entries now (1 or 0) and how old (s) the sighting they come from is; -1: no
-        # agent's sight is limited, no such entries.
-        self.sight_offset = b.sight_offset
-        self.ranges = self._split(b.ranges)
+        # Read from the segments, as before issue 50: each role's agents' latest lidar readings (m), "lidar.ranges"
+        # as a flat list, in place (zero entries for a role without a lidar); `rays` and `ranges_offset`, and the
+        # sight entries' `sight_offset` ("sight.visible", then "sight.age"); -1 when no agent has them.
+        segs = list(self.observation_segments.values())
+        self.rays = _loading.largest_size(segs, "lidar.ranges")
+        self.ranges_offset = _loading.compat_offset(segs, "lidar.ranges")
+        self.sight_offset = _loading.compat_offset(segs, "sight.visible")
+        self.ranges = {}
+        for r in ROLES:
+            try:
+                view = self.observation_view("lidar.ranges")[r]
+                self.ranges[r] = view.reshape(view.shape[:2] + (-1,))
+            except KeyError:
+                self.ranges[r] = np.zeros((self.num_envs, self.agent_counts[r], 0), np.float32)
         terms = self._split(b.reward_terms)
         self._info = {"reset": b.reset_flags, "acted": self._split(b.acted), "active": self._split(b.active),
                       "collided": self._split(b.collided), "captured": self._split(b.captured),
@@ -61,6 +79,27 @@ class VectorEnv:
 
     def _split(self, a):
         return {r: a[:, s] for r, s in self._slices.items()}
+
+    def _role_segments(self, r):
+        names = self._batch.agent_names
+        return [(i, self.observation_segments[names[i]]) for i in range(self._batch.agents)[self._slices[r]]]
+
+    def observation_view(self, name):
+        """Segment `name` (observation_segments) in place, per role whose agents have it: {role: read-only array of
+        shape (num_envs, the role's agents, *the segment's shape)}, the C++ buffer the next step overwrites (a depth
+        camera's "camera.depth" is (num_envs, agents, H, W)). KeyError when no agent has it."""
+        out = {}
+        for r in ROLES:
+            if any(s.name == name for _, segs in self._role_segments(r) for s in segs):
+                out[r] = _loading.segment_view(self._batch, self._role_segments(r), name)[0]
+        if not out:
+            raise KeyError(f"{name}: no agent's observation has this segment")
+        return out
+
+    def observation_view_space(self, name):
+        """{role: gymnasium Box of one game's observation_view(name)[role]} (each agent's bounds)."""
+        return {r: _loading.segment_view(self._batch, self._role_segments(r), name)[1]
+                for r in ROLES if any(s.name == name for _, segs in self._role_segments(r) for s in segs)}
 
     def _check_open(self):
         if self._closed:

@@ -16,8 +16,9 @@
 // `--list-config`, and a field count that tests compare with the struct's member count, so a member the
 // table forgets is a failing test rather than a silently unsaved setting.
 //
-// A visitor provides number, integer, flag, choice, name, names, section, sections and require with the
-// signatures the Validator below shows. A name is a word a table elsewhere gives the meaning of (a player's name,
+// A visitor provides number, integer, flag, choice, name, names, section, sections, embed and require with the
+// signatures the Validator below shows. `embed` lists another struct's fields at this level, as if they were the
+// struct's own (an agent's sensors' sections sit beside its other sections). A name is a word a table elsewhere gives the meaning of (a player's name,
 // from players/registry.hpp): the table here checks only that it is a word; its user checks that it is known. Keys are plain words; nested fields are addressed "section.key" and list
 // elements "list.3.key", the same paths `--set` takes.
 
@@ -112,6 +113,10 @@ class Validator {
   void section(const char* key, const S& value, const char* doc);
   template <class S>
   void sections(const char* key, const std::vector<S>& values, const S& element_default, const char* doc);
+  template <class S>
+  void embed(const S& value) {
+    visit_fields(*this, value);
+  }
   void require(bool ok, std::string_view key, double value, const char* requirement) const;
   void require(bool ok, std::string_view key, std::string_view value, const char* requirement) const;
 
@@ -148,6 +153,8 @@ struct FieldCounter {
   void section(A&&...) { ++count; }
   template <class... A>
   void sections(A&&...) { ++count; }
+  template <class... A>
+  void embed(A&&...) { ++count; }  // one member, whose own table is counted by its own test
   template <class... A>
   void require(A&&...) {}
 };

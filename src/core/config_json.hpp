@@ -66,6 +66,10 @@ class JsonWriter {
       list.push_back(std::move(item));
     }
   }
+  template <class S>
+  void embed(const S& v) {
+    visit_fields(*this, v);
+  }
   template <class... A>
   void require(A&&...) {}
 
@@ -121,6 +125,10 @@ class JsonReader {
       out.push_back(std::move(item));
     }
     v = std::move(out);
+  }
+  template <class S>
+  void embed(S& v) {
+    visit_fields(*this, v);
   }
   template <class... A>
   void require(A&&...) {}
@@ -209,6 +217,10 @@ class FieldLister {
       FieldLister sub(out_, prefix_ + key + "." + std::to_string(i) + ".");
       visit_fields(sub, v[i]);
     }
+  }
+  template <class S>
+  void embed(const S& v) {
+    visit_fields(*this, v);
   }
   template <class... A>
   void require(A&&...) {}

@@ -24,10 +24,10 @@ class StepProfile {
     kConstraints,  ///< bounded steering, motion space, obstacle guard
     kCollisions,   ///< swept collisions with the map's obstacles and between agents (Bullet)
     kMovers,       ///< moving obstacles: contacts on their timeline, the octree that follows them
-    kSensing,      ///< range sensors: casting their rays, noise and dropout
+    kSensing,      ///< sensors reading the world: casting their rays, noise and dropout
     kMapInsert,    ///< agents' own maps: inserting each scan
     kMapQuery,     ///< agents' own maps: their nearest occupied cells (inputs, guard, rewards)
-    kSight,        ///< limited sight: sight tests of the opponents, sightings pooled
+    kSight,        ///< limited sight: sight tests of the opponents
     kObservation,  ///< percepts: opponents, distance-field queries, angle errors
     kRewards,      ///< the reward terms
     kFiring,       ///< fuzzy rule firing of the learners

@@ -13,7 +13,7 @@
 
 #include "core/random.hpp"
 #include "core/validation.hpp"
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 #include "players/registry.hpp"
 
 namespace peg3d::env {
@@ -96,7 +96,6 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   require_in_range("threads", settings_.threads, 1, 256);
   require_in_range("neighbours", settings_.neighbours, 0, 16);
   settings_.threads = std::min(settings_.threads, settings_.games);
-  layout_.neighbours = settings_.neighbours;
   const auto& all = arena->map().scenarios;
   if (all.empty()) throw InvalidParameter("scenario", "(none)", "the map has no scenario");
   const auto same_teams = [](const world::Scenario& a, const world::Scenario& b) {
@@ -150,8 +149,14 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     }
   }
   sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
-  for (int i = 0; i < agents_; ++i) layout_.rays = std::max(layout_.rays, rays(i));
-  layout_.sight = sim_->limits_sight();
+  for (int i = 0; i < agents_; ++i) {
+    const game::Role role = game::role_at(i, pursuers_);
+    const int rank = game::rank_at(i, pursuers_);
+    tables_.push_back(game::observation_table(*sim_, role, rank, settings_.neighbours));
+    stride_ = std::max(stride_, tables_.back().size());
+    // A C++-played network reads what this batch would give its agent: refused before any game when it cannot.
+    if (const auto& c = controllers_[std::size_t(i)]; c && c->saved) c->saved->check_fits(*sim_, role, rank);
+  }
   games_.reserve(std::size_t(settings_.games));
   for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
   if (settings_.record) {
@@ -159,7 +164,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     games_.front().trace->reserve(sim_->max_steps(), agents_);
   }
   const std::size_t n = std::size_t(settings_.games) * std::size_t(agents_);
-  observations_.assign(n * std::size_t(layout_.size()), 0.0f);
+  observations_.assign(n * std::size_t(stride_), 0.0f);
   rewards_.assign(n, 0.0f);
   terms_.assign(n * 3, 0.0f);
   terminated_.assign(n, 0);
@@ -350,90 +355,24 @@ void Batch::step(const double* actions) {
 
 void Batch::write_outputs(int g) {
   const game::SimState& st = games_[std::size_t(g)].state;
-  const int size = layout_.size();
   for (int i = 0; i < agents_; ++i) {
     const game::AgentState& a = st.agents[std::size_t(i)];
-    const game::AgentView& v = a.view;
-    float* o = observations_.data() + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * std::size_t(size);
-    game::observation_base(v, o);
-    const Vec3& self = v.self.position;
-    float* slot = o + ObservationLayout::kBase;
-    // Where agent i takes agent j to be: an opponent as its sight knows it, a teammate as it is.
-    const auto known = [&](int j) {
-      return st.agents[std::size_t(j)].role != a.role ? st.known_state(i, j).position : st.agents[std::size_t(j)].kinematics.position;
-    };
-    // The k nearest other opponents, then the k nearest teammates, still in the game.
-    for (const bool opponents : {true, false}) {
-      std::array<std::pair<double, int>, 2 * world::kMaxAgentsPerRole> near{};
-      int count = 0;
-      for (int j = 0; j < agents_; ++j) {
-        const game::AgentState& b = st.agents[std::size_t(j)];
-        if (j == i || !b.active || (b.role != a.role) != opponents || (opponents && j == a.opponent)) continue;
-        near[std::size_t(count++)] = {(known(j) - self).squaredNorm(), j};
-      }
-      std::sort(near.begin(), near.begin() + count);  // by distance, then index: deterministic
-      for (int k = 0; k < layout_.neighbours; ++k, slot += ObservationLayout::kPerNeighbour) {
-        if (k < count) {
-          const Vec3 d = known(near[std::size_t(k)].second) - self;
-          slot[0] = float(d.x()), slot[1] = float(d.y()), slot[2] = float(d.z()), slot[3] = 1.0f;
-        } else {
-          slot[0] = slot[1] = slot[2] = slot[3] = 0.0f;
-        }
-      }
-    }
-    if (layout_.sight) {
-      slot[0] = v.other_visible ? 1.0f : 0.0f;
-      slot[1] = float(v.other_age);
-      slot += ObservationLayout::kSightEntries;
-    }
-    const std::span<const double> ranges = st.ranges(i);
-    for (int k = 0; k < layout_.rays; ++k) slot[k] = k < int(ranges.size()) ? float(ranges[std::size_t(k)]) : 0.0f;
+    const auto row = std::span<float>(observations_).subspan((std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * std::size_t(stride_),
+                                                             std::size_t(stride_));
+    const game::ObservationTable& table = tables_[std::size_t(i)];
+    game::write_observation(*sim_, st, i, table, row);
+    std::fill(row.begin() + table.size(), row.end(), 0.0f);  // a smaller observation's row ends in zeros
     active_[std::size_t(g) * std::size_t(agents_) + std::size_t(i)] = a.active && !st.done;
   }
 }
 
-ObservationBounds Batch::observation_bounds() const {
-  const Box& box = sim_->arena().bounds();
-  const Vec3 extent = box.hi - box.lo;
-  const double reach = std::max(extent.norm(), sim_->arena().max_distance());
-  double speed = std::max(sim_->config().pursuer.speed, sim_->config().evader.speed);
-  for (const auto& c : sim_->config().pursuers) speed = std::max(speed, c.speed);
-  for (const auto& c : sim_->config().evaders) speed = std::max(speed, c.speed);
+ObservationBounds Batch::observation_bounds(int i) const {
   ObservationBounds b;
-  const auto add = [&](double lo, double hi) {
-    b.low.push_back(float(lo));
-    b.high.push_back(float(hi));
-  };
-  for (const game::ObservationEntry& e : game::kObservationEntries) {
-    const auto [lo, hi] = game::entry_bounds(e.range, box, reach, speed);
-    add(lo, hi);
-  }
-  for (int k = 0; k < 2 * layout_.neighbours; ++k) {
-    for (int a = 0; a < 3; ++a) add(-extent[a], extent[a]);
-    add(0, 1);
-  }
-  if (layout_.sight) {
-    add(0, 1);
-    add(0, sim_->config().time_limit);
-  }
-  double range = 0.0;  // the farthest any agent's lidar reads
-  for (int i = 0; i < agents_; ++i) {
-    if (const sense::Lidar* lidar = lidar_of(i)) range = std::max(range, lidar->config().range);
-  }
-  for (int k = 0; k < layout_.rays; ++k) add(0, range);
-  // float rounding of the bounds must not exclude a value rounded the other way
-  for (std::size_t k = 0; k < b.low.size(); ++k) {
-    b.low[k] = std::nextafter(b.low[k], -INFINITY);
-    b.high[k] = std::nextafter(b.high[k], INFINITY);
+  for (const sense::Segment& s : tables_[std::size_t(i)].segments) {
+    b.low.insert(b.low.end(), s.low.begin(), s.low.end());
+    b.high.insert(b.high.end(), s.high.begin(), s.high.end());
   }
   return b;
-}
-
-const sense::Lidar* Batch::lidar_of(int i) const { return sim_->lidar(game::role_at(i, pursuers_), game::rank_at(i, pursuers_)); }
-
-int Batch::rays(int i) const {
-  const sense::Lidar* lidar = lidar_of(i);
-  return lidar != nullptr ? lidar->rays() : 0;
 }
 
 double Batch::action_bound(game::Role role) const {

@@ -23,40 +23,19 @@
 #include <vector>
 
 #include "game/episode.hpp"
-#include "players/lineup.hpp"
-#include "game/observation_vector.hpp"
-#include "players/saved_policy.hpp"
+#include "game/observation.hpp"
 #include "game/sim.hpp"
+#include "players/lineup.hpp"
+#include "players/saved_policy.hpp"
 
 namespace peg3d::env {
-
-/// The observation vector of one agent, float32, every entry with finite bounds (ObservationBounds): the 20
-/// entries of game::observation_base (game/observation_vector.hpp), then `neighbours` nearest other opponents
-/// and `neighbours` nearest teammates still in the game, nearest first, each as (relative position m, mask 1)
-/// and zeros with mask 0 where there are fewer (with limited sight, an opponent where the agent takes it to be,
-/// SimState::known_state); then, when some agent's sight is limited (AgentConfig::sight), kSightEntries entries
-/// about the opponent of the base entries: whether the agent sees it now (1 or 0) and the age of the sighting
-/// those entries come from (s; 1 and 0 for an agent with full information); then, when some agent has a lidar,
-/// the agent's latest range readings in its lidar's order (SimState::ranges), zeros after them for an agent with
-/// fewer rays.
-struct ObservationLayout {
-  static constexpr int kBase = game::kObservationBase;
-  static constexpr int kPerNeighbour = 4;
-  static constexpr int kSightEntries = 2;
-  int neighbours = 2;  ///< k, in [0, 16]
-  bool sight = false;  ///< some agent's sight is limited: the sight entries are there
-  int rays = 0;        ///< the most rays any agent's lidar has (0: no lidar), in [0, sense::kMaxLidarRays]
-  int sight_offset() const { return kBase + 2 * neighbours * kPerNeighbour; }
-  int ranges_offset() const { return sight_offset() + (sight ? kSightEntries : 0); }
-  int size() const { return ranges_offset() + rays; }
-};
 
 /// How a batch is built. Every field a user sets is validated by Batch (InvalidParameter naming it).
 struct BatchSettings {
   int games = 1;                ///< N, in [1, 65536]
   int threads = 1;              ///< T, in [1, 256]; capped at games
   std::uint64_t seed = 0;       ///< root seed
-  int neighbours = 2;           ///< ObservationLayout::neighbours
+  int neighbours = 2;           ///< k, in [0, 16]: the neighbour slots of each kind in every observation (game/observation.hpp)
   /// The map's scenarios the episodes start from, by name, taking turns: episode e of game g plays the
   /// (g + e) mod count-th, so that the games spread over the starts from their first episode. A name may come
   /// more than once, to play that start more often (for training). They must have the same numbers of pursuers
@@ -86,20 +65,16 @@ class Batch {
   int games() const { return settings_.games; }
   int agents() const { return agents_; }
   int pursuers() const { return pursuers_; }
-  int observation_size() const { return layout_.size(); }
-  /// Where in an observation an agent's range readings start, and how many slots they have (ObservationLayout).
-  int ranges_offset() const { return layout_.ranges_offset(); }
-  /// Where the sight entries start (ObservationLayout), and whether they are there.
-  int sight_offset() const { return layout_.sight_offset(); }
-  bool sight() const { return layout_.sight; }
-  int rays() const { return layout_.rays; }
-  /// How many of those slots agent i's lidar fills (0 without a lidar).
-  int rays(int i) const;
+  /// The length of every agent's row of observations(): the largest agent's observation (game/observation.hpp);
+  /// a smaller one's row holds its observation first, then zeros.
+  int observation_size() const { return stride_; }
+  /// Agent i's observation: its segments (name, offset, size, unit, bounds, meaning), game::observation_table's.
+  const game::ObservationTable& observation_table(int i) const { return tables_[std::size_t(i)]; }
   const std::vector<std::string>& agent_names() const { return names_; }
   /// Whether agent i is played on the C++ side (its actions are ignored).
   bool controlled(int i) const { return controllers_[std::size_t(i)].has_value(); }
-  /// The same for every agent: both roles share the layout and the arena.
-  ObservationBounds observation_bounds() const;
+  /// Agent i's bounds, its observation's size long.
+  ObservationBounds observation_bounds(int i) const;
   /// rad: the steering bound per step, the action space's bound on both components.
   double action_bound(game::Role role) const;
   const game::Sim& sim() const { return *sim_; }
@@ -159,8 +134,6 @@ class Batch {
     std::unique_ptr<game::Trace> trace;  // settings.record, game 0 only
   };
   const world::Scenario& scenario_for(int game, long long episode) const;
-  /// Agent i's lidar (null without one).
-  const sense::Lidar* lidar_of(int i) const;
   void start_episode(int g);
   void step_game(int g, const double* actions);
   /// game::step of game g, a refused command's error naming the game (and a C++-played policy's file).
@@ -171,7 +144,8 @@ class Batch {
 
   std::shared_ptr<const game::Sim> sim_;
   BatchSettings settings_;
-  ObservationLayout layout_;
+  std::vector<game::ObservationTable> tables_;  // per agent
+  int stride_ = 0;                              // the largest table's size
   std::vector<int> scenarios_;  // indices into the map's scenarios
   int agents_ = 0, pursuers_ = 0;
   std::vector<std::string> names_;

@@ -104,6 +104,12 @@ League::League(std::shared_ptr<const world::Arena> train, std::vector<LeagueMap>
         side(c, game::Role::kPursuer, p);
         side(c, game::Role::kEvader, e);
         eval_sims_.emplace_back(m.arena, std::move(c));
+        // A saved network reads what its agents observe in the games it plays: refused before any run when not.
+        const int n_alg = static_cast<int>(algorithms_.size());
+        const int p_saved = p - n_alg - static_cast<int>(settings_.classic_pursuers.size());
+        const int e_saved = e - n_alg - static_cast<int>(settings_.classic_evaders.size());
+        if (p_saved >= 0) settings_.saved_pursuers[std::size_t(p_saved)].policy->check_fits(eval_sims_.back(), game::Role::kPursuer);
+        if (e_saved >= 0) settings_.saved_evaders[std::size_t(e_saved)].policy->check_fits(eval_sims_.back(), game::Role::kEvader);
       }
     }
   }

@@ -227,6 +227,18 @@ MatchupExperiment::MatchupExperiment(std::shared_ptr<const world::Arena> arena, 
       settings_(std::move(settings)),
       sims_(make_matchup_sims(arena_, base_.game, settings_)) {
   if (!settings_.pool) settings_.pool = std::make_shared<const OpponentPool>(make_pool(arena_, base_.game, base_.training));
+  // A saved network reads what its agents observe in every pairing it plays: refused before any run when not.
+  for (std::size_t p = 0; p < settings_.pursuers.size(); ++p) {
+    for (std::size_t e = 0; e < settings_.evaders.size(); ++e) {
+      const game::Sim& sim = sims_[1 + p * settings_.evaders.size() + e];
+      if (settings_.pursuers[p] == players::kFacl && settings_.pursuer_policy) {
+        settings_.pursuer_policy->check_fits(sim, game::Role::kPursuer);
+      }
+      if (settings_.evaders[e] == players::kFacl && settings_.evader_policy) {
+        settings_.evader_policy->check_fits(sim, game::Role::kEvader);
+      }
+    }
+  }
 }
 
 MatchupExperiment::~MatchupExperiment() = default;

@@ -24,7 +24,7 @@ struct TrialConfig {
 template <class V, class C>
   requires std::same_as<std::remove_const_t<C>, TrialConfig>
 void visit_fields(V& v, C& c) {
-  visit_fields(v, c.game);  // the game's fields at the top level, as configuration files have them
+  v.embed(c.game);  // the game's fields at the top level, as configuration files have them
   v.section("training", c.training, "how FACL agents train (docs/learning.md)");
 }
 

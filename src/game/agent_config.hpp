@@ -15,9 +15,8 @@
 #include "game/reward.hpp"
 #include "game/role.hpp"
 #include "geometry/kinematics.hpp"
-#include "sense/lidar.hpp"
 #include "sense/scan_map.hpp"
-#include "sense/sight.hpp"
+#include "sense/sensors.hpp"
 
 namespace peg3d::game {
 
@@ -56,9 +55,10 @@ struct AgentConfig {
   FaclStructure structure = FaclStructure::kPerAngle;
   FaclAction action = FaclAction::kHeadingChange;
   double pn_gain = 3.0;  ///< proportional-navigation constant N, > 0
-  sense::LidarConfig lidar;  ///< its range sensor (none by default)
-  sense::ScanMapConfig map;  ///< its own occupancy map, built from its lidar's scans (none by default)
-  sense::SightConfig sight;         ///< opponents seen only in line of sight (off by default: full information)
+  /// Its sensors' settings (sense/sensors.hpp), each a section of its own beside the others ("sight", "lidar", ...):
+  /// none by default, the paper's full information.
+  sense::SensorSettings sensors;
+  sense::ScanMapConfig map;  ///< its own occupancy map, built from its sensors' scans (none by default)
   bool operator==(const AgentConfig&) const = default;
 };
 
@@ -95,10 +95,10 @@ void visit_fields(V& v, C& c) {
   v.choice("action", c.action, kFaclActionNames,
            "the actor's outputs: the heading change (the paper) or an offset to the turn onto the target line");
   v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
-  v.section("lidar", c.lidar, "the agent's range sensor (sense/lidar.hpp); none by default");
+  v.embed(c.sensors);
   v.section("map", c.map, "the agent's occupancy map from its own scans (sense/scan_map.hpp); none by default");
-  v.section("sight", c.sight, "opponents seen only in line of sight (docs/sight.md); off by default");
-  v.require(!c.map.enabled || c.lidar.enabled(), "map.enabled", "true", "needs a lidar (lidar.azimuth_rays > 0)");
+  v.require(!c.map.enabled || sense::feeds_map(c.sensors), "map.enabled", "true",
+            "needs a sensor that feeds it (a lidar: lidar.azimuth_rays > 0)");
   v.require(c.observation.obstacles != ObstacleSource::kOwnMap || c.map.enabled, "observation.obstacles", "own-map",
             "needs map.enabled");
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,

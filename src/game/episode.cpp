@@ -58,20 +58,33 @@ std::vector<AgentSummary> agent_summaries(const SimState& st) {
   return out;
 }
 
-void Trace::reserve(int max_steps, int agent_count, int rays, std::size_t map_flip_count) {
+void Trace::reserve(int max_steps, int agent_count, int values, std::size_t map_flip_count) {
   const std::size_t frames_needed = std::size_t(max_steps) + 1;
   roles.reserve(std::size_t(agent_count));
   times.reserve(frames_needed);
   frames.reserve(frames_needed * std::size_t(agent_count));
   collisions.reserve(frames_needed * std::size_t(agent_count) * 3);
   captures.reserve(std::size_t(agent_count));
-  if (rays > 0) {
-    ray_first.reserve(std::size_t(agent_count) + 1);
-    ranges.reserve(frames_needed * std::size_t(rays));
-    echoes.reserve(frames_needed * std::size_t(rays));
+  if (values > 0) {
+    slot_first.reserve(std::size_t(agent_count) + 1);
+    readings.reserve(frames_needed * std::size_t(values));
+    echoes.reserve(frames_needed * std::size_t(values));
     scan_frames.reserve(frames_needed * std::size_t(agent_count));
   }
   map_flips.reserve(map_flip_count);
+}
+
+void Trace::reserve(const Sim& sim, const world::Scenario& scenario, std::size_t map_flip_count) {
+  const int n = scenario.agents(), p = static_cast<int>(scenario.pursuers.size());
+  int values = 0;
+  std::size_t slots = 0;
+  for (int i = 0; i < n; ++i) {
+    for (const sense::Sensor* s : sim.sensors(role_at(i, p), rank_at(i, p))) values += s->values(n), ++slots;
+  }
+  reserve(sim.max_steps(), n, values, map_flip_count);
+  const std::size_t frames_needed = std::size_t(sim.max_steps()) + 1;
+  value_first.reserve(slots + 1);
+  scan_frames.reserve(frames_needed * slots);
 }
 
 std::string agent_label(const Trace& trace, int i) {
@@ -91,8 +104,9 @@ void Trace::clear() {
   pushes.clear();
   body_poses.clear();
   movers = 0;
-  ray_first.clear();
-  ranges.clear();
+  slot_first.clear();
+  value_first.clear();
+  readings.clear();
   echoes.clear();
   scan_frames.clear();
   map_flips.clear();
@@ -103,7 +117,12 @@ void Trace::record(const SimState& st, bool after_step) {
     clear();
     agents = st.agent_count();
     for (const AgentState& a : st.agents) roles.push_back(a.role);
-    ray_first.assign(st.scans.first.begin(), st.scans.first.end());
+    slot_first.assign(st.sensing.first.begin(), st.sensing.first.end());
+    value_first.clear();
+    if (!slot_first.empty()) {
+      for (int k = 0; k < slot_first.back(); ++k) value_first.push_back(st.sensing.slots[std::size_t(k)].begin);
+      value_first.push_back(int(st.sensing.values.size()));
+    }
   }
   assert(agents == st.agent_count());
   times.push_back(st.time);
@@ -126,7 +145,7 @@ void Trace::record(const SimState& st, bool after_step) {
     }
     frames.push_back(f);
   }
-  if (!ray_first.empty()) record_sensing(st, after_step);
+  if (!slot_first.empty()) record_sensing(st, after_step);
   if (st.push) {
     movers = st.push->movers();
     for (int m = 0; m < movers; ++m) body_poses.push_back(st.push->pose(m));
@@ -140,9 +159,9 @@ void Trace::record(const SimState& st, bool after_step) {
 
 void Trace::record_sensing(const SimState& st, bool after_step) {
   const int frame = frame_count() - 1;
-  for (const double r : st.scans.ranges) ranges.push_back(float(r));
-  echoes.insert(echoes.end(), st.scans.echo.begin(), st.scans.echo.end());
-  scan_frames.insert(scan_frames.end(), st.scans.step.begin(), st.scans.step.end());
+  for (const double r : st.sensing.values) readings.push_back(float(r));
+  echoes.insert(echoes.end(), st.sensing.echo.begin(), st.sensing.echo.end());
+  for (int k = 0; k < slot_first.back(); ++k) scan_frames.push_back(st.sensing.readings[std::size_t(k)].step);
   for (int i = 0; i < agents; ++i) {
     const sense::ScanMap* map = st.map(i);
     if (map == nullptr) continue;
@@ -150,12 +169,27 @@ void Trace::record_sensing(const SimState& st, bool after_step) {
       map->for_each_known([&](const sense::CellKey& key, float log_odds) {
         if (log_odds > 0.0f) map_flips.push_back({frame, i, map->centre(key), true});
       });
-    } else if (st.scans.step[std::size_t(i)] == st.step) {  // it scanned in this step
+    } else if (st.sensing.map_step[std::size_t(i)] == st.step) {  // a scan went into it in this step
       map->for_each_flip([&](const sense::CellKey& key, bool occupied) {
         map_flips.push_back({frame, i, map->centre(key), occupied});
       });
     }
   }
+}
+
+Trace::SlotReadings Trace::slot_readings(int i, int k) const {
+  SlotReadings r;
+  const auto slot = std::size_t(slot_first[std::size_t(i)] + k);
+  const auto b = std::size_t(value_first[slot]), e = std::size_t(value_first[slot + 1]);
+  r.size = int(e - b);
+  const auto per_frame = std::size_t(values()), slots = std::size_t(slot_first.back());
+  for (int f = 0; f < frame_count(); ++f) {
+    const std::size_t at = std::size_t(f) * per_frame;
+    r.values.insert(r.values.end(), readings.begin() + long(at + b), readings.begin() + long(at + e));
+    r.echo.insert(r.echo.end(), echoes.begin() + long(at + b), echoes.begin() + long(at + e));
+    r.scan_frames.push_back(scan_frames[std::size_t(f) * slots + slot]);
+  }
+  return r;
 }
 
 const StepEvents& step_naming_file(const Sim& sim, SimState& st, std::span<const Steering> commands,

@@ -105,21 +105,36 @@ struct Trace {
   /// (the shared timeline has them).
   std::vector<Pose> body_poses;
   int movers = 0;                          ///< movers per frame of body_poses
-  /// Sensing (all empty when no agent has a lidar): agent i's rays are [ray_first[i], ray_first[i + 1]) of a
-  /// frame's readings, as SimState::ranges gives them.
-  std::vector<int> ray_first;
-  std::vector<float> ranges;          ///< m, frame-major: reading r of frame k at k * ray_first.back() + r
-  std::vector<std::uint8_t> echoes;   ///< 1 where that reading is an echo
-  std::vector<int> scan_frames;       ///< frame-major, per agent: the frame whose pose its readings were taken at
+  /// Sensing (all empty when no agent carries a sensor), laid out as SimState::sensing lays it out: agent i carries
+  /// slots [slot_first[i], slot_first[i + 1]) (one per sensor, in order); slot s's values are [value_first[s],
+  /// value_first[s + 1]) of a frame's readings.
+  std::vector<int> slot_first;
+  std::vector<int> value_first;
+  std::vector<float> readings;        ///< frame-major: value v of frame k at k * values() + v (m for ranges)
+  std::vector<std::uint8_t> echoes;   ///< 1 where that value is an echo
+  std::vector<int> scan_frames;       ///< frame-major, per slot: the frame whose pose its reading was taken at
   /// The agents' own maps: every cell occupied at frame 0, then every change of a cell's occupancy, in order.
   std::vector<MapFlip> map_flips;
 
-  /// Makes recording an episode of at most max_steps steps allocation-free: its frames, `rays` readings a frame
-  /// (every agent's lidar together), and `map_flips` changes of the agents' maps (beyond that they grow).
-  void reserve(int max_steps, int agent_count, int rays = 0, std::size_t map_flip_count = 0);
+  /// Makes recording an episode of at most max_steps steps allocation-free: its frames, `values` readings a frame
+  /// (every agent's sensors together), and `map_flips` changes of the agents' maps (beyond that they grow).
+  void reserve(int max_steps, int agent_count, int values = 0, std::size_t map_flip_count = 0);
+  /// reserve() for an episode of `scenario` in `sim`: its frames and every reading its agents' sensors take.
+  void reserve(const Sim& sim, const world::Scenario& scenario, std::size_t map_flip_count = 0);
   void clear();
   int frame_count() const { return static_cast<int>(times.size()); }
-  int rays() const { return ray_first.empty() ? 0 : ray_first.back(); }  ///< readings per frame
+  int values() const { return value_first.empty() ? 0 : value_first.back(); }  ///< readings per frame
+  /// Sensors agent i carries (slots).
+  int sensors(int i) const { return slot_first.empty() ? 0 : slot_first[std::size_t(i) + 1] - slot_first[std::size_t(i)]; }
+  /// Agent i's k-th sensor's readings over the episode, frame-major, as a sensor's replay takes them.
+  struct SlotReadings {
+    int size = 0;
+    std::vector<float> values;
+    std::vector<std::uint8_t> echo;
+    std::vector<int> scan_frames;
+    sense::RecordedReadings view(int frames) const { return {frames, size, values, echo, scan_frames}; }
+  };
+  SlotReadings slot_readings(int i, int k) const;
   const AgentFrame& at(int frame, int agent) const { return frames[std::size_t(frame) * std::size_t(agents) + std::size_t(agent)]; }
   /// Appends the state's current instant (after reset(): the start; after step(): with the step's events).
   void record(const SimState& state, bool after_step);

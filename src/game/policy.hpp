@@ -4,10 +4,13 @@
 // world or the other agent's state beyond the view they are given.
 
 #include <filesystem>
+#include <span>
 
 #include "game/game_config.hpp"
 #include "game/percept.hpp"
 #include "geometry/kinematics.hpp"
+#include "sense/segment.hpp"
+#include "sense/sensor.hpp"
 
 namespace peg3d::game {
 
@@ -25,6 +28,21 @@ class SightProbe {
     (void)p;
     return false;
   }
+};
+
+struct ObservationTable;
+
+/// An agent's observation as learners outside the C++ side see it (game/observation.hpp), written on request: the
+/// one function the batch of the Python front and the C++ players of networks trained there share.
+class ObservationWriter {
+ public:
+  virtual ~ObservationWriter() = default;
+  /// Agent `agent`'s observation now, as `table` (bound to that agent: bind) lays it out, into `out`.
+  virtual void write(int agent, const ObservationTable& table, std::span<float> out) const = 0;
+  /// The table of agent `agent` that reads what `recorded` lists (game::bind_observation).
+  virtual ObservationTable bind(int agent, std::span<const sense::Segment> recorded) const = 0;
+  /// The model the agents play in (its game::Sim): a table bound in one stays good while it is the same.
+  virtual const void* model() const = 0;
 };
 
 /// Everything an agent may use to decide, at one instant.
@@ -48,6 +66,11 @@ struct AgentView {
   Percept percept;
   ObstacleSense field;       ///< the map's nearest obstacle as the distance field reports it (no boundary)
   Box arena;                 ///< the arena box (the agent's centre stays radius inside it)
+  /// Its own sensors' latest readings, in the order it carries them (sense/sensor.hpp; each names its sensor):
+  /// valid until the state's next step or reset.
+  std::span<const sense::Reading> sensors;
+  /// Writes its observation as the Python front's batch does (game/observation.hpp); valid like `sensors`.
+  const ObservationWriter* observation = nullptr;
 };
 
 class Policy {

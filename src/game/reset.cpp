@@ -3,7 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include "game/scans.hpp"
+#include "game/observation.hpp"
+#include "game/sensing.hpp"
 #include "game/sight.hpp"
 #include "game/sim.hpp"
 #include "game/starts.hpp"
@@ -114,10 +115,9 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
     st.moving_field = std::make_unique<world::MovingOccupancyField>(sim.arena());
     st.moving_field->set_time(*sim.movers(), 0.0);
   }
-  prepare_scans(sim, st, seed);
-  for (int i = 0; i < n; ++i) {
-    if (!st.scans.first.empty() && st.scans.lidar[std::size_t(i)] != nullptr) scan(sim, st, i);
-  }
+  attach_observation_writer(sim, st);
+  prepare_sensing(sim, st, seed);
+  for (int i = 0; i < n; ++i) scan_all(sim, st, i);
   prepare_sight(sim, st);
   look(sim, st);
   for (int i = 0; i < n; ++i) {

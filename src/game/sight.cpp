@@ -5,7 +5,7 @@
 
 #include "core/step_profile.hpp"
 #include "geometry/angles.hpp"
-#include "sense/line_of_sight.hpp"
+#include "sense/sensor.hpp"
 
 namespace peg3d::game {
 namespace {
@@ -58,41 +58,35 @@ void prepare_sight(const Sim& sim, SimState& st) {
   }
 }
 
-bool in_sight(const Sim& sim, const SimState& st, const sense::SightConfig& c, const KinematicState& self, const Vec3& centre,
-              double radius) {
-  const Vec3 line = centre - self.position;
-  const double d2 = line.squaredNorm();
-  if (d2 > c.range * c.range) return false;
-  if (c.fov < 360.0 && d2 > 0.0) {
-    // Within the cone: the angle to the heading at most fov / 2, compared as cosines.
-    const double cos_half = std::cos(0.5 * c.fov * kPi / 180.0);
-    if (direction(self.heading).dot(line) < cos_half * std::sqrt(d2)) return false;
-  }
-  return sense::line_of_sight(world_now(sim, st), self.position, centre, radius, c.points);
-}
-
 void look(const Sim& sim, SimState& st) {
+  (void)sim;
   SimState::Sight& s = st.sight;
   if (s.memory.empty()) return;
-  const StepProfile::Scope profiled(StepProfile::kSight);
   const int n = st.agent_count();
   for (int i = 0; i < n; ++i) {
     const AgentState& a = st.agents[std::size_t(i)];
-    const bool limited = a.config->sight.enabled && a.active;
+    // Its detector's latest reading: per agent, 1 when it saw that one (game/sensing.hpp read it this step, as every
+    // agent in the game reads every step; one out of the game sees nothing).
+    const sense::Reading* seen = nullptr;
+    if (st.sight_limited(i)) {
+      for (const sense::Reading& r : st.readings(i)) {
+        if (r.sensor->detection() != nullptr) seen = &r;
+      }
+    }
+    const bool limited = seen != nullptr && a.active;
     const int lo = a.role == Role::kPursuer ? st.pursuers : 0, hi = a.role == Role::kPursuer ? n : st.pursuers;
     for (int j = lo; j < hi; ++j) {
       const AgentState& o = st.agents[std::size_t(j)];
       const auto k = std::size_t(i * n + j);
-      s.visible[k] = limited && o.active &&
-                     in_sight(sim, st, a.config->sight, a.kinematics, o.kinematics.position, o.config->radius);
+      s.visible[k] = limited && o.active && seen->echo[std::size_t(j)] != 0;
       if (s.visible[k]) s.memory[k] = sighting_of(o, st.time);
     }
   }
   // Pooling, per team: for each opponent, the newest sighting among the sharers (the lower index among equally
   // new ones), then given to all of them: read before written, so the order of the agents does not matter.
   const auto shares = [&](int m) {
-    const sense::SightConfig& c = st.agents[std::size_t(m)].config->sight;
-    return c.enabled && c.share;
+    const sense::Detection* d = st.sensing.detection[std::size_t(m)];
+    return d != nullptr && d->share;
   };
   const int p = st.pursuers;
   for (const auto& [team_lo, team_hi, lo, hi] : {std::array{0, p, p, n}, std::array{p, n, 0, p}}) {

@@ -100,11 +100,10 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
   for (const auto& [name, list] : {std::pair{"pursuers", &config_->pursuers}, std::pair{"evaders", &config_->evaders}}) {
     for (std::size_t k = 0; k < list->size(); ++k) agents.emplace_back(fmt::format("{}.{}", name, k), &(*list)[k]);
   }
-  std::vector<const AgentConfig*> sensing;
+  std::vector<std::pair<std::string, const AgentConfig*>> carrying;
   for (const auto& [name, a] : agents) {
-    sight_ = sight_ || a->sight.enabled;
-    if (!a->lidar.enabled()) continue;
-    sensing.push_back(a);
+    if (sense::make_sensors(a->sensors).empty()) continue;
+    carrying.emplace_back(name, a);
     // An agent's map covers the arena: refused here, before any run, when it would not fit.
     const long long cells = a->map.enabled ? sense::ScanMap::cells(a->map, arena_->bounds().lo, arena_->bounds().hi) : 0;
     if (cells > sense::kMaxMapCells) {
@@ -112,9 +111,16 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
                              fmt::format("gives this arena's map {} cells, more than 2^26 (256 MB): choose a coarser one", cells));
     }
   }
-  if (!sensing.empty() || sight_) {  // sight rays meet what lidar rays meet
+  if (!carrying.empty()) {
     auto s = std::make_shared<Sensing>(*arena_);
-    for (const AgentConfig* a : sensing) s->lidars.emplace_back(a, sense::Lidar(a->lidar));
+    for (const auto& [name, a] : carrying) {
+      Sensing::Carried c{a, sense::make_sensors(a->sensors), {}};
+      for (const auto& sensor : c.owned) {
+        c.sensors.push_back(sensor.get());
+        sight_ = sight_ || sensor->detection() != nullptr;
+      }
+      s->carried.push_back(std::move(c));
+    }
     sensing_ = std::move(s);
   }
   if (arena_->map().scenarios.empty()) return;
@@ -146,11 +152,18 @@ void Sim::check_scenario(const world::Scenario& s) const {
   check_start(*arena_, *config_, movers_.get(), world, s, positions);
 }
 
-const sense::Lidar* Sim::lidar(Role role, int rank) const {
-  if (!sensing_) return nullptr;
+std::span<const sense::Sensor* const> Sim::sensors(Role role, int rank) const {
+  if (!sensing_) return {};
   const AgentConfig* a = &config_->agent(role, rank);
-  for (const auto& [config, lidar] : sensing_->lidars) {
-    if (config == a) return &lidar;
+  for (const Sensing::Carried& c : sensing_->carried) {
+    if (c.config == a) return c.sensors;
+  }
+  return {};
+}
+
+const sense::Sensor* Sim::sensor(Role role, int rank, std::string_view name) const {
+  for (const sense::Sensor* s : sensors(role, rank)) {
+    if (s->name() == name) return s;
   }
   return nullptr;
 }
@@ -171,25 +184,24 @@ KinematicState SimState::known_state(int i, int j) const {
   const AgentState& o = agents[std::size_t(j)];
   if (!sight_limited(i)) return o.kinematics;
   const Sight::Sighting& m = sight.memory[std::size_t(i * agent_count() + j)];
-  if (agents[std::size_t(i)].config->sight.estimate == sense::SightEstimate::kLastSeen || m.time == time) return m.state;
+  if (sensing.detection[std::size_t(i)]->estimate == sense::SightEstimate::kLastSeen || m.time == time) return m.state;
   // Dead reckoning: on at the velocity it had, within the arena (which the agent knows).
   KinematicState k = m.state;
   k.position = o.bounds.clamp(m.state.position + (time - m.time) * m.velocity);
   return k;
 }
 
-namespace {
-// Agent i's rays in one of the scans' per-ray buffers (empty without a lidar).
-template <class T>
-std::span<const T> agent_rays(const SimState::Scans& s, const std::vector<T>& buffer, int i) {
-  if (s.first.empty()) return {};
-  const auto b = std::size_t(s.first[std::size_t(i)]), e = std::size_t(s.first[std::size_t(i) + 1]);
-  return std::span<const T>(buffer).subspan(b, e - b);
+std::span<const sense::Reading> SimState::readings(int i) const {
+  if (sensing.first.empty()) return {};
+  const auto b = std::size_t(sensing.first[std::size_t(i)]), e = std::size_t(sensing.first[std::size_t(i) + 1]);
+  return std::span<const sense::Reading>(sensing.readings).subspan(b, e - b);
 }
-}  // namespace
 
-std::span<const double> SimState::ranges(int i) const { return agent_rays(scans, scans.ranges, i); }
-
-std::span<const std::uint8_t> SimState::echoes(int i) const { return agent_rays(scans, scans.echo, i); }
+const sense::Reading* SimState::reading(int i, std::string_view name) const {
+  for (const sense::Reading& r : readings(i)) {
+    if (r.sensor->name() == name) return &r;
+  }
+  return nullptr;
+}
 
 }  // namespace peg3d::game

@@ -11,7 +11,7 @@
 // Agents are indexed pursuers first, then evaders, each in the scenario's order. Each step:
 //   every active agent's command -> bounded steering -> motion space -> obstacle guard   (constraints.hpp)
 //   -> move along the heading, clamped to the arena -> swept collision with the map's obstacles
-//   -> (optionally) swept collision between agents -> captures -> lidar scans due -> new observations -> rewards.
+//   -> (optionally) swept collision between agents -> captures -> sensors' readings due -> new observations -> rewards.
 
 #include <array>
 #include <cmath>
@@ -20,6 +20,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/error.hpp"
@@ -30,8 +31,8 @@
 #include "game/policy.hpp"
 #include "game/reward.hpp"
 #include "game/starts.hpp"
-#include "sense/lidar.hpp"
 #include "sense/scan_map.hpp"
+#include "sense/sensor.hpp"
 #include "sense/world_rays.hpp"
 #include "world/arena.hpp"
 #include "world/collision/collision_world.hpp"
@@ -162,41 +163,61 @@ class SimState {
   std::unique_ptr<world::PushWorld> push;
   StepEvents events;               ///< what the last step did
 
-  /// Range sensors (AgentConfig::lidar): each agent's latest scan. reset() scans with every lidar; a step scans
-  /// with those whose period has come (the step number a multiple of it), agents in the game, after the move.
-  /// Empty when no agent has a lidar.
-  struct Scans {
-    std::vector<int> first;                  ///< agent i's rays are [first[i], first[i + 1]) of ranges and echo
-    std::vector<double> ranges;              ///< m, each ray's reading (sense::read_out): the range without an echo
-    std::vector<std::uint8_t> echo;          ///< 1 where the ray returned an echo
-    std::vector<int> step;                   ///< the step of agent i's latest scan (-1: none; 0: the reset's)
-    std::vector<Rng> rng;                    ///< agent i's sensor stream, from the reset's seed
-    std::vector<const sense::Lidar*> lidar;  ///< agent i's lidar (null: none)
-    /// Agent i's own map, built from its scans (AgentConfig::map; null: none). Made by the first reset that
+  /// Each agent's sensors in this run (AgentConfig::sensors, sense/sensor.hpp): their latest readings, random
+  /// streams, scratch, and each agent's own map. reset() reads with every sensor; a step reads with those whose
+  /// period has come (the step number a multiple of it), agents that took part in it, after the move
+  /// (game/sensing.hpp). Empty when no agent carries a sensor.
+  struct Sensing {
+    /// One sensor an agent carries, in the order of its configuration (sense::make_sensors).
+    struct Slot {
+      const sense::Sensor* sensor = nullptr;
+      int begin = 0;  ///< its values are [begin, begin + size) of `values` and `echo`
+      int size = 0;
+      Rng rng;        ///< its stream, derive_seed(the reset's seed, {sensor->stream(), agent}) when it draws
+      sense::SensorScratch* scratch = nullptr;  ///< one of `scratch` below, its sensor's
+    };
+    /// Every scratch a sensor of this state has made (never freed, so that a later scenario that carries the same
+    /// sensors in other slots makes none): the sensor, the reset that last used it, and the scratch.
+    struct Scratch {
+      const sense::Sensor* sensor = nullptr;
+      std::uint64_t used = 0;
+      std::unique_ptr<sense::SensorScratch> scratch;
+    };
+    std::vector<Scratch> scratch;
+    std::uint64_t resets = 0;                 ///< resets so far (the scratch pool's stamp)
+    std::vector<int> first;                   ///< agent i carries slots [first[i], first[i + 1])
+    std::vector<Slot> slots;                  ///< never shrunk
+    std::vector<sense::Reading> readings;     ///< per slot: its latest reading (spans into values and echo)
+    std::vector<double> values;               ///< every slot's latest values
+    std::vector<std::uint8_t> echo;           ///< ... and echoes
+    /// Agent i's own map, built from its sensors' scans (AgentConfig::map; null: none). Made by the first reset that
     /// needs it, cleared by every reset: a map lives for one episode, or with map.persist for as long as this
     /// state plays (a run), until forget_maps(). A map belongs to the agent's index in the scenario.
     std::vector<std::unique_ptr<sense::ScanMap>> maps;
-    std::vector<Vec3> points;                ///< scratch: one scan's endpoints for its map
-    std::vector<Ray> rays;                   ///< scratch: one scan's rays
-    std::vector<sense::RayHit> hits;         ///< scratch: what they met (exact, before noise and dropout)
-    std::vector<sense::Ball> balls;          ///< scratch: the agents' spheres (radius 0 out of the game)
-  } scans;
-  /// Agent i's latest readings and echoes (empty without a lidar).
-  std::span<const double> ranges(int i) const;
-  std::span<const std::uint8_t> echoes(int i) const;
+    std::vector<int> map_step;                ///< the step agent i's map last took a scan in (-1: none)
+    std::vector<const sense::Detection*> detection;  ///< agent i's detector's rules (null: full information)
+    std::vector<Vec3> points;                 ///< scratch: one scan's points for a map
+    std::vector<sense::Ball> balls;           ///< scratch: the agents' spheres (radius 0 out of the game)
+    std::vector<std::uint8_t> targets;        ///< scratch: per agent, 1 for an opponent in the game
+  } sensing;
+  /// Agent i's sensors' latest readings, in the order it carries them (empty without sensors).
+  std::span<const sense::Reading> readings(int i) const;
+  /// Agent i's latest reading of its sensor called `name` ("lidar"); null when it carries none such.
+  const sense::Reading* reading(int i, std::string_view name) const;
   /// Clears every agent's map (map.persist: a new run on this state, e.g. the next pairing of a match-up).
   void forget_maps() {
-    for (auto& m : scans.maps) {
+    for (auto& m : sensing.maps) {
       if (m) m->clear();
     }
   }
   /// Agent i's own map (null: none).
   const sense::ScanMap* map(int i) const {
-    return !scans.first.empty() && agents[std::size_t(i)].config->map.enabled ? scans.maps[std::size_t(i)].get() : nullptr;
+    return std::size_t(i) < sensing.maps.size() && agents[std::size_t(i)].config->map.enabled ? sensing.maps[std::size_t(i)].get()
+                                                                                              : nullptr;
   }
 
-  /// Limited sight (AgentConfig::sight; game/sight.hpp): what each agent knows of each opponent. Entries [i * n + j]
-  /// for n agents; those of pairs of one role are unused. Empty when no agent's sight is limited.
+  /// What each agent knows of each opponent when a detector limits it (the sight sensor; game/sight.hpp). Entries
+  /// [i * n + j] for n agents; those of pairs of one role are unused. Empty when no agent carries a detector.
   struct Sight {
     /// An agent's latest sighting of an opponent: its state then and when.
     struct Sighting {
@@ -208,10 +229,13 @@ class SimState {
     std::vector<std::uint8_t> visible;   ///< 1: i sees j now (itself, or a teammate it shares with)
     std::vector<std::unique_ptr<SightProbe>> probes;  ///< agent i's probe of the world now (game/sight.hpp)
   } sight;
-  /// Whether agent i's sight is limited (its opponent inputs come from sight.memory).
-  bool sight_limited(int i) const { return !sight.memory.empty() && agents[std::size_t(i)].config->sight.enabled; }
+  /// Whether agent i's knowledge of its opponents is limited to what its detector sees (its opponent inputs come
+  /// from sight.memory).
+  bool sight_limited(int i) const {
+    return !sight.memory.empty() && std::size_t(i) < sensing.detection.size() && sensing.detection[std::size_t(i)] != nullptr;
+  }
   /// What agent i takes agent j (an opponent) to be doing now: the truth with full information, else the estimate
-  /// its sighting gives (sense::SightConfig::estimate).
+  /// its sighting gives (sense::Detection::estimate).
   KinematicState known_state(int i, int j) const;
   /// How old (s) agent i's knowledge of opponent j is: 0 with full information or while it sees j.
   double sighting_age(int i, int j) const {
@@ -219,6 +243,9 @@ class SimState {
   }
   /// Whether agent i sees opponent j now (always with full information).
   bool sees(int i, int j) const { return !sight_limited(i) || sight.visible[std::size_t(i * agent_count() + j)] != 0; }
+
+  /// What every agent's view writes its observation with (game/observation.hpp), made by the first reset.
+  std::unique_ptr<ObservationWriter> observation_writer;
 
   /// Per-step working storage, sized by reset().
   struct Scratch {
@@ -263,15 +290,16 @@ class Sim {
   bool pushes() const { return pushes_; }
   /// Physics substeps per game step (maps with movers).
   int substeps() const { return substeps_; }
-  /// Whether some agent has a lidar.
-  bool has_lidars() const { return sensing_ && !sensing_->lidars.empty(); }
-  /// Whether some agent's sight is limited (AgentConfig::sight).
+  /// Whether some agent carries a sensor (AgentConfig::sensors).
+  bool senses() const { return sensing_ != nullptr; }
+  /// Whether some agent's knowledge of its opponents is limited to what a detector of its sees (limited sight).
   bool limits_sight() const { return sight_; }
-  /// What range sensors' and sight's rays meet among the map's static solids (null when no agent has a lidar or
-  /// limited sight).
+  /// What sensors' rays meet among the map's static solids (null when no agent carries a sensor).
   const sense::StaticRayScene* ray_scene() const { return sensing_ ? &sensing_->scene : nullptr; }
-  /// The lidar of agent `rank` of `role` (null: none).
-  const sense::Lidar* lidar(Role role, int rank) const;
+  /// The sensors agent `rank` of `role` carries, in order (empty: none).
+  std::span<const sense::Sensor* const> sensors(Role role, int rank) const;
+  /// Its sensor called `name` ("lidar"); null when it carries none such.
+  const sense::Sensor* sensor(Role role, int rank, std::string_view name) const;
 
   /// Throws StartError when an agent of `scenario`, with its configured radius and kept inside the arena,
   /// starts overlapping an obstacle or (when agents collide) another agent; InvalidParameter when the
@@ -289,7 +317,13 @@ class Sim {
   struct Sensing {
     explicit Sensing(const world::Arena& arena) : scene(arena) {}
     sense::StaticRayScene scene;
-    std::vector<std::pair<const AgentConfig*, sense::Lidar>> lidars;  // one per configuration with a lidar
+    // The sensors of each agent configuration that carries some (its sensors owned, their pointers in order).
+    struct Carried {
+      const AgentConfig* config = nullptr;
+      std::vector<std::unique_ptr<const sense::Sensor>> owned;
+      std::vector<const sense::Sensor*> sensors;
+    };
+    std::vector<Carried> carried;
   };
   std::shared_ptr<const Sensing> sensing_;
 };

@@ -7,7 +7,7 @@
 
 #include "core/step_profile.hpp"
 #include "game/constraints.hpp"
-#include "game/scans.hpp"
+#include "game/sensing.hpp"
 #include "game/sight.hpp"
 #include "game/sim.hpp"
 #include "game/views.hpp"
@@ -347,7 +347,7 @@ void reward_all(const Sim& sim, SimState& st) {
       // is now, so that the repulsion term (exponential in the change of d_O) rewards the move, not what the scan
       // revealed.
       const bool rescanned = a.config->observation.obstacles == ObstacleSource::kOwnMap &&
-                             st.scans.step[std::size_t(i)] == st.step &&
+                             st.sensing.map_step[std::size_t(i)] == st.step &&
                              st.map(i)->last_insert_moved_obstacles_within(st.scratch.position_before[std::size_t(i)],
                                                                            st.scratch.obstacle_before[std::size_t(i)]);
       const double obstacle_before = rescanned ? own_map_obstacle_distance(sim, st, i, st.scratch.position_before[std::size_t(i)])

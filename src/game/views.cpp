@@ -56,6 +56,8 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.dt = sim.config().dt;
   v.time = st.time;
   v.arena = sim.arena().bounds();
+  v.sensors = st.readings(i);
+  v.observation = st.observation_writer.get();
   const bool own_map = a.config->observation.obstacles == ObstacleSource::kOwnMap;
   v.field = own_map ? sense_own_map(sim, st, i, a.kinematics.position)
                     : sense_obstacle(sim, st, a.kinematics.position, std::numeric_limits<double>::infinity(), &a.nearest_mover);

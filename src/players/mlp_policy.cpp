@@ -1,12 +1,15 @@
 #include "players/mlp_policy.hpp"
 
 #include <cmath>
+#include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/input_files.hpp"  // json_line_of
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 #include "players/policy_io.hpp"
+#include "sense/sight.hpp"
 
 namespace peg3d::players {
 
@@ -40,6 +43,17 @@ struct Reader {
   }
 };
 
+// The observation a version 1 file's input count stands for, when only one does: the base entries (20), or the
+// base entries and the sight entries (22, as version 1 defined them); nullopt otherwise.
+std::optional<std::vector<sense::Segment>> version1_observation(int inputs) {
+  if (inputs != game::kObservationBase && inputs != game::kObservationBase + 2) return std::nullopt;
+  std::vector<sense::Segment> out;
+  for (const game::ObservationEntry& e : game::kObservationEntries) out.push_back(sense::Segment::uniform(e.name, 1, e.unit, 0, 0, e.meaning));
+  if (inputs > game::kObservationBase) sense::SightSensor(sense::SightConfig{}).segments({}, out);
+  sense::lay_out(out);
+  return out;
+}
+
 }  // namespace
 
 bool is_mlp_document(const nlohmann::json& doc) {
@@ -57,19 +71,38 @@ std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const s
   if (!is_mlp_document(doc)) {
     r.fail("format", fmt::format("expects \"{}\"", kMlpFormat));
   }
-  if (r.at(doc, "version", "version") != kMlpVersion) r.fail("version", fmt::format("expects {}", kMlpVersion));
+  const nlohmann::json& version = r.at(doc, "version", "version");
+  if (version != 1 && version != kMlpVersion) r.fail("version", fmt::format("expects 1 or {}", kMlpVersion));
   auto m = std::make_shared<MlpModel>();
   const nlohmann::json& role_name = r.at(doc, "role", "role");
   if (role_name != "pursuer" && role_name != "evader") r.fail("role", "expects \"pursuer\" or \"evader\"");
   m->role = role_name == "pursuer" ? game::Role::kPursuer : game::Role::kEvader;
-  if (m->role != role) r.fail("role", fmt::format("saved for the {}, asked to play the {}", to_string(m->role), to_string(role)));
+  if (m->role != role) r.fail("role", fmt::format("saved for the {}, asked to play the {}", game::to_string(m->role), game::to_string(role)));
   const double inputs = r.number(r.at(doc, "inputs", "inputs"), "inputs");
-  const double rest = std::fmod(inputs - game::kObservationBase, 8.0);
-  if (inputs < game::kObservationBase || inputs > game::kObservationBase + 2 * 16 * 4 + 2 || (rest != 0.0 && rest != 2.0)) {
-    r.fail("inputs", "expects 20 + 8 k entries, k in [0, 16], or 2 more with limited sight");
-  }
+  if (!(inputs >= 1 && inputs <= 1 << 20) || inputs != std::floor(inputs)) r.fail("inputs", "expects a count in [1, 2^20]");
   m->inputs = static_cast<int>(inputs);
-  m->sight = rest == 2.0;
+  if (version == 1) {
+    // Version 1 recorded the input count alone; only counts that one observation gives are read.
+    auto observation = version1_observation(m->inputs);
+    if (!observation) {
+      r.fail("inputs", fmt::format("a version 1 file records only its input count, and {} inputs can be neighbour slots "
+                                   "or a sensor's readings: it would be guessed. Re-save it with the observation it was "
+                                   "trained on: peg3d.upgrade_policy(FILE, env, AGENT) (docs/python.md, \"Policy files\")",
+                                   m->inputs));
+    }
+    m->observation = std::move(*observation);
+  } else {
+    try {
+      m->observation = sense::segments_from_json(r.at(doc, "observation", "observation"));
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      r.fail(what.substr(0, what.find(':')), what.substr(std::min(what.size(), what.find(':') + 2)));
+    }
+    if (sense::observation_size(m->observation) != m->inputs) {
+      r.fail("inputs", fmt::format("{} inputs, but the observation's segments hold {}", m->inputs,
+                                   sense::observation_size(m->observation)));
+    }
+  }
   m->action_bound = r.number(r.at(doc, "action_bound", "action_bound"), "action_bound");
   if (!(m->action_bound > 0.0 && m->action_bound <= 3.2)) r.fail("action_bound", "expects a bound in (0, pi] rad");
   m->mean = r.vector(r.at(doc, "input_mean", "input_mean"), "input_mean", m->inputs);
@@ -116,6 +149,16 @@ std::shared_ptr<const MlpModel> mlp_from_json(const nlohmann::json& doc, const s
   return m;
 }
 
+game::ObservationTable fit_observation(const MlpModel& model, const game::Sim& sim, game::Role role, int rank,
+                                       const std::filesystem::path& file) {
+  try {
+    return game::bind_observation(sim, role, rank, model.observation);
+  } catch (const std::invalid_argument& e) {
+    throw PolicyFormatError(file, 0, "observation",
+                            fmt::format("does not fit {} {} of this game: {}", game::to_string(role), rank, e.what()));
+  }
+}
+
 MlpPolicy::MlpPolicy(std::shared_ptr<const MlpModel> model, std::uint64_t seed) : model_(std::move(model)), rng_(seed) {
   obs_.assign(std::size_t(model_->inputs), 0.0f);
   std::size_t widest = std::size_t(model_->inputs);
@@ -124,13 +167,25 @@ MlpPolicy::MlpPolicy(std::shared_ptr<const MlpModel> model, std::uint64_t seed) 
   b_.setZero(Eigen::Index(widest));
 }
 
+void MlpPolicy::bind(const game::AgentView& view) {
+  if (view.observation == nullptr) throw std::logic_error("MlpPolicy: a view without its observation writer");
+  if (bound_model_ == view.observation->model() && bound_agent_ == view.index) return;
+  try {
+    table_ = view.observation->bind(view.index, model_->observation);
+  } catch (const std::invalid_argument& e) {
+    throw PolicyFormatError(file(), 0, "observation", fmt::format("does not fit agent {} of this game: {}", view.index, e.what()));
+  }
+  bound_model_ = view.observation->model();
+  bound_agent_ = view.index;
+}
+
+void MlpPolicy::begin_episode(const game::AgentView& view, bool) { bind(view); }
+
 Steering MlpPolicy::act(const game::AgentView& view) {
   const MlpModel& m = *model_;
-  game::observation_base(view, obs_.data());  // the neighbour slots stay empty (masks 0): the view has no others
-  if (m.sight) {  // the two sight entries close the inputs, as they follow the neighbour slots in the batch's layout
-    obs_[std::size_t(m.inputs - 2)] = view.other_visible ? 1.0f : 0.0f;
-    obs_[std::size_t(m.inputs - 1)] = float(view.other_age);
-  }
+  bind(view);
+  // What the batch gives this agent, by the same function (game::write_observation).
+  view.observation->write(view.index, table_, obs_);
   for (int k = 0; k < m.inputs; ++k) a_[k] = (double(obs_[std::size_t(k)]) - m.mean[k]) * m.inv_std[k];
   Eigen::Index n = m.inputs;
   for (std::size_t l = 0; l < m.weights.size(); ++l) {

@@ -28,6 +28,18 @@ std::unique_ptr<game::Policy> SavedPolicy::make(std::uint64_t seed) const {
   return player;
 }
 
+void SavedPolicy::check_fits(const game::Sim& sim, game::Role role, int rank) const {
+  if (mlp) fit_observation(*mlp, sim, role, rank, file);  // a FACL model plays on its percept, which every agent has
+}
+
+void SavedPolicy::check_fits(const game::Sim& sim, game::Role role) const {
+  std::size_t most = 0;
+  for (const world::Scenario& s : sim.arena().map().scenarios) {
+    most = std::max(most, role == game::Role::kPursuer ? s.pursuers.size() : s.evaders.size());
+  }
+  for (std::size_t k = 0; k < most; ++k) check_fits(sim, role, int(k));
+}
+
 std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, game::Role role) {
   const PolicyDocument d = read_policy_document(file);
   auto p = std::make_shared<SavedPolicy>();

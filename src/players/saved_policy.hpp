@@ -31,6 +31,11 @@ struct SavedPolicy {
   /// A new player of the policy (its per-agent buffers its own, the model shared); `seed` feeds an MLP that
   /// samples its actions ("play": "sample"); every other player is greedy and ignores it.
   std::unique_ptr<game::Policy> make(std::uint64_t seed) const;
+  /// Throws PolicyFormatError naming the file unless the policy can play agent `rank` of `role` in `sim`: an MLP's
+  /// observation must be the agent's (fit_observation). Programs call it before any run.
+  void check_fits(const game::Sim& sim, game::Role role, int rank) const;
+  /// check_fits for every agent of `role` in every scenario of the Sim's map.
+  void check_fits(const game::Sim& sim, game::Role role) const;
 };
 
 /// Reads a policy file of either kind for an agent of `role`. A file that cannot be read, is not a policy

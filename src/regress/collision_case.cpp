@@ -255,6 +255,9 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     if (const game::AgentConfig* own = saved[std::size_t(i)]->config()) config.set_agent(role, game::rank_at(i, p), *own);
   }
   const game::Sim sim(arena, config);
+  for (int i = 0; i < n; ++i) {
+    if (saved[std::size_t(i)]) saved[std::size_t(i)]->check_fits(sim, game::role_at(i, p), game::rank_at(i, p));
+  }
   players::Lineup lineup;
   for (int i = 0; i < n; ++i) {
     const game::Role role = game::role_at(i, p);

@@ -1,9 +1,12 @@
 #include "results/codecs.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
+#include "core/base64.hpp"
 #include "core/input_files.hpp"
 #include "players/policy_io.hpp"
 
@@ -206,6 +209,38 @@ game::AgentSummary agent_summary_from_json(const nlohmann::json& j) {
   return a;
 }
 
+namespace {
+
+// A trace's sensing, checked to fit its frames and agents before anything indexes it.
+void sensing_from_json(const nlohmann::json& j, game::Trace& t) {
+  t.slot_first = j.at("slot_first").get<std::vector<int>>();
+  t.value_first = j.at("value_first").get<std::vector<int>>();
+  require(t.slot_first.size() == std::size_t(t.agents) + 1 && t.slot_first.front() == 0 &&
+              std::is_sorted(t.slot_first.begin(), t.slot_first.end()),
+          "a trace's sensor slots are one list per agent");
+  const auto slots = std::size_t(t.slot_first.back());
+  require(t.value_first.size() == slots + 1 && t.value_first.front() == 0 &&
+              std::is_sorted(t.value_first.begin(), t.value_first.end()),
+          "a trace's sensor values are one range per slot");
+  const std::vector<std::uint8_t> bytes = base64_decode(j.at("readings_f32").get<std::string>());
+  const std::size_t frames = t.times.size(), values = std::size_t(t.value_first.back());
+  require(bytes.size() == frames * values * sizeof(float), "a trace's readings are one value per frame and slot value");
+  t.readings.resize(frames * values);
+  std::memcpy(t.readings.data(), bytes.data(), bytes.size());
+  t.echoes = base64_decode(j.at("echo_u8").get<std::string>());
+  require(t.echoes.size() == frames * values, "a trace's echoes are one per reading");
+  t.scan_frames = j.at("scan_frames").get<std::vector<int>>();
+  require(t.scan_frames.size() == frames * slots, "a trace's scan frames are one per frame and slot");
+  for (const auto& f : j.at("map_flips")) {
+    array_of(f, 6, "a map flip needs 6 values");
+    game::MapFlip m{int_from(f[0]), int_from(f[1]), vec_from(f, 2), int_from(f[5]) != 0};
+    require(m.agent >= 0 && m.agent < t.agents && m.frame >= 0 && std::size_t(m.frame) < frames, "a map flip of no frame or agent");
+    t.map_flips.push_back(m);
+  }
+}
+
+}  // namespace
+
 nlohmann::json trace_to_json(const game::Trace& t) {
   nlohmann::json roles = nlohmann::json::array(), times = nlohmann::json::array(), frames = nlohmann::json::array(),
                  collisions = nlohmann::json::array(), captures = nlohmann::json::array();
@@ -214,8 +249,24 @@ nlohmann::json trace_to_json(const game::Trace& t) {
   for (const game::AgentFrame& f : t.frames) frames.push_back(frame_to_json(f));
   for (const auto& c : t.collisions) collisions.push_back(collision_to_json(c));
   for (const auto& c : t.captures) captures.push_back(capture_to_json(c));
-  return {{"agents", t.agents}, {"roles", std::move(roles)},           {"times", std::move(times)},
-          {"frames", std::move(frames)}, {"collisions", std::move(collisions)}, {"captures", std::move(captures)}};
+  nlohmann::json j{{"agents", t.agents}, {"roles", std::move(roles)},           {"times", std::move(times)},
+                   {"frames", std::move(frames)}, {"collisions", std::move(collisions)}, {"captures", std::move(captures)}};
+  if (!t.slot_first.empty()) {
+    // The sensors' readings as their float bits (base64 of little-endian bytes) and the maps' changes: what a
+    // replay's sensor layers are drawn from.
+    nlohmann::json flips = nlohmann::json::array();
+    for (const game::MapFlip& f : t.map_flips) {
+      flips.push_back({f.frame, f.agent, number_to_json(f.centre.x()), number_to_json(f.centre.y()),
+                       number_to_json(f.centre.z()), static_cast<int>(f.occupied)});
+    }
+    j["sensing"] = {{"slot_first", t.slot_first},
+                    {"value_first", t.value_first},
+                    {"readings_f32", base64(t.readings.data(), t.readings.size() * sizeof(float))},
+                    {"echo_u8", base64(t.echoes.data(), t.echoes.size())},
+                    {"scan_frames", t.scan_frames},
+                    {"map_flips", std::move(flips)}};
+  }
+  return j;
 }
 
 game::Trace trace_from_json(const nlohmann::json& j) {
@@ -232,6 +283,7 @@ game::Trace trace_from_json(const nlohmann::json& j) {
   require(j.at("collisions").is_array() && j.at("captures").is_array(), "a trace's events are lists");
   for (const auto& c : j.at("collisions")) t.collisions.push_back(collision_from_json(c));
   for (const auto& c : j.at("captures")) t.captures.push_back(capture_from_json(c));
+  if (const auto it = j.find("sensing"); it != j.end()) sensing_from_json(*it, t);
   return t;
 }
 

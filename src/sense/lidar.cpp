@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "core/base64.hpp"
+
 namespace peg3d::sense {
 
 Lidar::Lidar(const LidarConfig& config) : config_(config) {
@@ -30,6 +32,73 @@ void Lidar::rays_at(const Vec3& origin, const Heading& h, std::span<Ray> out) co
     out[k].origin = origin;
     out[k].direction = (f.x() * x + f.y() * y + f.z() * z).normalized();
   }
+}
+
+namespace {
+
+// A scan's rays and what they met, exactly (before noise and dropout): what map_points reads back.
+struct LidarScratch final : SensorScratch {
+  std::vector<Ray> rays;
+  std::vector<RayHit> hits;
+};
+
+template <class T>
+std::string encoded(const std::vector<T>& values) {
+  return base64(values.data(), values.size() * sizeof(T));
+}
+
+}  // namespace
+
+std::unique_ptr<SensorScratch> Lidar::make_scratch() const {
+  auto s = std::make_unique<LidarScratch>();
+  s->rays.resize(frame_.size());
+  s->hits.resize(frame_.size());
+  return s;
+}
+
+void Lidar::scan(const ScanContext& context, Rng& rng, ReadingOut out, SensorScratch* scratch) const {
+  auto& s = static_cast<LidarScratch&>(*scratch);
+  rays_at(context.eye, context.heading, s.rays);
+  WorldAtInstant world = context.world;
+  if (!config_.sees_agents) world.balls = {};
+  cast_all(world, s.rays, config_.range, context.self, s.hits);
+  read_out(config_, s.hits, rng, out.values, out.echo);
+}
+
+std::size_t Lidar::map_points(const Reading& reading, const SensorScratch* scratch, bool skip_agents, double beyond,
+                              std::span<Vec3> points) const {
+  const auto& s = static_cast<const LidarScratch&>(*scratch);
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < s.rays.size(); ++k) {
+    if (skip_agents && s.hits[k].target == RayTarget::kBall) continue;
+    points[n++] = s.rays[k].origin + (reading.echo[k] != 0 ? reading.values[k] : beyond) * s.rays[k].direction;
+  }
+  return n;
+}
+
+void Lidar::segments(const SegmentContext&, std::vector<Segment>& out) const {
+  const int n = rays();
+  std::vector<int> shape = config_.elevation_rays > 1 ? std::vector<int>{config_.elevation_rays, config_.azimuth_rays}
+                                                      : std::vector<int>{n};
+  out.push_back(Segment::uniform("lidar.ranges", n, "m", 0.0, config_.range,
+                                 "the lidar's latest range per ray, rows of equal elevation, bottom row first",
+                                 std::move(shape)));
+}
+
+void Lidar::observe(const Reading& reading, const ObserveContext&, std::span<float> out) const {
+  for (std::size_t k = 0; k < reading.values.size(); ++k) out[k] = float(reading.values[k]);
+}
+
+nlohmann::json Lidar::replay(const RecordedReadings& r) const {
+  std::vector<float> frame, ranges(r.values.begin(), r.values.end());
+  const std::vector<std::uint8_t> echoes(r.echo.begin(), r.echo.end());
+  std::vector<std::uint32_t> scan_frames;
+  for (const Vec3& f : frame_) {
+    for (int k = 0; k < 3; ++k) frame.push_back(float(f[k]));
+  }
+  for (const int f : r.scan_frames) scan_frames.push_back(std::uint32_t(std::max(0, f)));
+  return {{"rays", rays()}, {"range", config_.range}, {"frame_f32", encoded(frame)}, {"ranges_f32", encoded(ranges)},
+          {"echo_u8", encoded(echoes)}, {"scan_frame_u32", encoded(scan_frames)}};
 }
 
 void read_out(const LidarConfig& config, std::span<const RayHit> hits, Rng& rng, std::span<double> ranges,

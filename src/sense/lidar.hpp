@@ -21,6 +21,7 @@
 #include "core/random.hpp"
 #include "geometry/angles.hpp"
 #include "geometry/ray.hpp"
+#include "sense/sensor.hpp"
 #include "sense/static_ray_scene.hpp"
 
 namespace peg3d::sense {
@@ -67,8 +68,10 @@ void visit_fields(V& v, C& c) {
             static_cast<double>(c.elevation_rays), "makes azimuth_rays * elevation_rays more than 65536 rays");
 }
 
-/// A lidar's rays in the sensor's frame, computed once from its configuration.
-class Lidar {
+/// A lidar as a sensor (sense/sensor.hpp): its rays in the sensor's frame, computed once from its configuration.
+/// A reading is one range per ray (m, read_out below) and its echo; it feeds its holder's own map; its
+/// observation segment is "lidar.ranges" (rays entries, m, in [0, range]); its replay layer draws its rays.
+class Lidar final : public Sensor {
  public:
   explicit Lidar(const LidarConfig& config);
   const LidarConfig& config() const { return config_; }
@@ -77,6 +80,24 @@ class Lidar {
   const Vec3& frame_direction(int k) const { return frame_[std::size_t(k)]; }
   /// Writes each ray from `origin` for an agent heading `h` (world frame) into `out` (rays() long).
   void rays_at(const Vec3& origin, const Heading& h, std::span<Ray> out) const;
+
+  std::string_view name() const override { return "lidar"; }
+  int values(int) const override { return rays(); }
+  int period() const override { return config_.period; }
+  std::uint64_t stream() const override { return 0x6c69646172ull; }  // "lidar"
+  std::unique_ptr<SensorScratch> make_scratch() const override;
+  /// The rays from the eye (rays_at) against the world (sense::cast_all; the agents' balls only with
+  /// sees_agents), then read_out's noise and dropouts.
+  void scan(const ScanContext& context, Rng& rng, ReadingOut out, SensorScratch* scratch) const override;
+  double map_range() const override { return config_.range; }
+  int map_points_max() const override { return rays(); }
+  std::size_t map_points(const Reading& reading, const SensorScratch* scratch, bool skip_agents, double beyond,
+                         std::span<Vec3> points) const override;
+  void segments(const SegmentContext& context, std::vector<Segment>& out) const override;
+  void observe(const Reading& reading, const ObserveContext& context, std::span<float> out) const override;
+  /// {rays, range, frame_f32 (its rays in the sensor's frame), ranges_f32 and echo_u8 (every frame's readings),
+  /// scan_frame_u32 (the frame each was taken at)}.
+  nlohmann::json replay(const RecordedReadings& readings) const override;
 
  private:
   LidarConfig config_;

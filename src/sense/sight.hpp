@@ -1,22 +1,18 @@
 #pragma once
-// The sight sensor's settings (issue 39, docs/sight.md): opponents seen only in line of sight. The test itself is
-// sense/line_of_sight.hpp; what an agent does with what it sees (its memory of sightings, their estimates, the
-// sharing between teammates) is the game's knowledge of its opponents (game/sight.hpp).
+// The sight sensor (issue 39, docs/sight.md): opponents seen only in line of sight. Its settings, and the test
+// itself (sense/line_of_sight.hpp) as a detector under the sensor contract (sense/sensor.hpp): a reading says which
+// agents it sees now. What its holder does with what it sees (its memory of sightings, their estimates, the
+// sharing between teammates) is the game's knowledge of its opponents (game/sight.hpp), which the detection()
+// settings steer.
 
 #include <concepts>
 #include <type_traits>
 
 #include "core/config_fields.hpp"
+#include "sense/sensor.hpp"
 
 namespace peg3d::sense {
 
-/// What an agent with limited sight estimates an opponent it does not see now to be doing (SightConfig::estimate).
-enum class SightEstimate {
-  kLastSeen,       ///< where it was last seen, heading as it was
-  kDeadReckoning,  ///< where it was last seen, moved on since at the velocity it had then (kept in the arena)
-};
-inline constexpr config::EnumNames<SightEstimate, 2> kSightEstimateNames{
-    {{SightEstimate::kLastSeen, "last-seen"}, {SightEstimate::kDeadReckoning, "dead-reckoning"}}};
 
 /// Opponents seen only in line of sight (issue 39, docs/sight.md). Off (the default): the agent knows every
 /// opponent's state at every step, the paper's full information. On: after each step (and at the reset) the
@@ -52,5 +48,35 @@ void visit_fields(V& v, C& c) {
            "an opponent out of sight is where it was last seen, or moved on at its velocity then (dead-reckoning)");
   v.flag("share", c.share, "teammates with share on pool their sightings");
 }
+
+/// The sight test as a detector: a reading holds, per agent of the game, 1 when the holder sees it now (echo 1)
+/// and 0 otherwise; it looks only at its targets (the holder's opponents in the game). It sees an agent when the
+/// agent's centre lies within `range` and the field of view and a sight ray reaches its sphere before any solid
+/// (sense/line_of_sight.hpp; other agents do not hide it). Its observation segments are the knowledge it gives:
+/// "sight.visible" (1 while the opponent of the observation's first entries is in sight) and "sight.age" (s, how
+/// old the sighting those entries come from is).
+class SightSensor final : public Sensor {
+ public:
+  explicit SightSensor(const SightConfig& config) : config_(config), detection_{config.estimate, config.share} {}
+  const SightConfig& config() const { return config_; }
+
+  std::string_view name() const override { return "sight"; }
+  int values(int agents) const override { return agents; }
+  void scan(const ScanContext& context, Rng& rng, ReadingOut out, SensorScratch* scratch) const override;
+  const Detection* detection() const override { return &detection_; }
+  void segments(const SegmentContext& context, std::vector<Segment>& out) const override;
+  void observe(const Reading& reading, const ObserveContext& context, std::span<float> out) const override;
+  /// {fov (deg), range (m)}; the game's knowledge adds what the holder took its opponent to be, frame by frame.
+  nlohmann::json replay(const RecordedReadings& readings) const override;
+
+ private:
+  SightConfig config_;
+  Detection detection_;
+};
+
+/// Whether an eye at `self` (centre) heading `heading`, with sight `config`, sees the sphere (centre, radius) in
+/// `world` (its balls ignored): within range and field of view, and a sight ray reaching it.
+bool in_sight(const WorldAtInstant& world, const SightConfig& config, const Vec3& self, const Heading& heading,
+              const Vec3& centre, double radius);
 
 }  // namespace peg3d::sense

@@ -45,30 +45,6 @@ std::vector<std::uint32_t> sample_frames(int frames, int cap) {
 
 }  // namespace
 
-std::string base64(const void* data, std::size_t bytes) {
-  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const auto* in = static_cast<const unsigned char*>(data);
-  std::string out;
-  out.reserve((bytes + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 2 < bytes; i += 3) {
-    const unsigned v = unsigned(in[i]) << 16 | unsigned(in[i + 1]) << 8 | unsigned(in[i + 2]);
-    out += kDigits[v >> 18];
-    out += kDigits[(v >> 12) & 63];
-    out += kDigits[(v >> 6) & 63];
-    out += kDigits[v & 63];
-  }
-  if (i < bytes) {
-    const bool two = i + 1 < bytes;
-    const unsigned v = unsigned(in[i]) << 16 | (two ? unsigned(in[i + 1]) << 8 : 0u);
-    out += kDigits[v >> 18];
-    out += kDigits[(v >> 12) & 63];
-    out += two ? kDigits[(v >> 6) & 63] : '=';
-    out += '=';
-  }
-  return out;
-}
-
 DrawnMesh drawn_mesh(const world::TriangleMesh& mesh, std::size_t max_triangles, std::string name) {
   assert(max_triangles >= 1);
   DrawnMesh out;
@@ -174,29 +150,9 @@ nlohmann::json agent_track(const game::Trace& trace, int i) {
           {"reward_f32", encoded(reward)}};
 }
 
-// Agent i's lidar, when it has one: its rays in the sensor's frame (x the heading, y level and to its left, z
-// up: sense::Lidar::rays_at), every frame's readings and echoes, and the frame each reading was taken at.
-nlohmann::json agent_lidar(const game::Trace& trace, int i, const sense::Lidar& lidar, double range) {
-  const int first = trace.ray_first[std::size_t(i)], n = trace.ray_first[std::size_t(i) + 1] - first;
-  std::vector<float> frame, ranges;
-  std::vector<std::uint8_t> echoes;
-  std::vector<std::uint32_t> scan_frames;
-  for (int k = 0; k < n; ++k) push(frame, lidar.frame_direction(k));
-  const std::size_t per_frame = std::size_t(trace.rays());
-  for (int f = 0; f < trace.frame_count(); ++f) {
-    const std::size_t at = std::size_t(f) * per_frame + std::size_t(first);
-    ranges.insert(ranges.end(), trace.ranges.begin() + long(at), trace.ranges.begin() + long(at) + n);
-    echoes.insert(echoes.end(), trace.echoes.begin() + long(at), trace.echoes.begin() + long(at) + n);
-    scan_frames.push_back(std::uint32_t(std::max(0, trace.scan_frames[std::size_t(f) * std::size_t(trace.agents) + std::size_t(i)])));
-  }
-  return {{"rays", n}, {"range", range}, {"frame_f32", encoded(frame)}, {"ranges_f32", encoded(ranges)},
-          {"echo_u8", encoded(echoes)}, {"scan_frame_u32", encoded(scan_frames)}};
-}
-
-// Agent i's limited sight (AgentConfig::sight): its field of view and range, and at every frame the opponent it
-// looked for (0xffffffff: not recorded, as in a trace from an older journal), whether it saw it and where it took
-// it to be.
-nlohmann::json agent_sight(const game::Trace& trace, int i, const sense::SightConfig& sight) {
+// Agent i's limited sight (its detector's knowledge): at every frame the opponent it looked for (0xffffffff: not
+// recorded, as in a trace from an older journal), whether it saw it and where it took it to be.
+void add_knowledge(nlohmann::json& layer, const game::Trace& trace, int i) {
   std::vector<std::uint32_t> opponent;
   std::vector<std::uint8_t> visible;
   std::vector<float> estimate;
@@ -206,8 +162,9 @@ nlohmann::json agent_sight(const game::Trace& trace, int i, const sense::SightCo
     visible.push_back(a.sees ? 1 : 0);
     push(estimate, a.estimate);
   }
-  return {{"fov", sight.fov}, {"range", sight.range}, {"opponent_u32", encoded(opponent)}, {"visible_u8", encoded(visible)},
-          {"estimate_f32", encoded(estimate)}};
+  layer["opponent_u32"] = encoded(opponent);
+  layer["visible_u8"] = encoded(visible);
+  layer["estimate_f32"] = encoded(estimate);
 }
 
 // Agent i's own map as it grows: the cells occupied at frame 0, then each change, in order.
@@ -314,12 +271,19 @@ nlohmann::json replay_json(const ReplayScene& scene, const game::Sim& sim, const
                            {"radius", a.radius},
                            {"speed", a.speed},
                            {"track", agent_track(trace, i)}});
-    const sense::Lidar* lidar = sim.lidar(role, rank);
-    if (lidar != nullptr && lidar->rays() > 0 && !trace.ray_first.empty()) {
-      j["agents"].back()["lidar"] = agent_lidar(trace, i, *lidar, a.lidar.range);
-      if (a.map.enabled) j["agents"].back()["map"] = agent_map(trace, i, a.map.resolution);
+    // Each sensor's layer under its name (sense::Sensor::replay), from the readings the trace recorded; a
+    // detector's also shows the knowledge it gave, which every trace records (a trajectory file's too).
+    const auto sensors = sim.sensors(role, rank);
+    for (int k = 0; k < int(sensors.size()); ++k) {
+      const sense::Sensor& sensor = *sensors[std::size_t(k)];
+      const bool recorded = k < trace.sensors(i);
+      if (!recorded && sensor.detection() == nullptr) continue;
+      nlohmann::json layer = sensor.replay(recorded ? trace.slot_readings(i, k).view(frames) : sense::RecordedReadings{frames, 0, {}, {}, {}});
+      if (layer.is_null()) continue;
+      if (sensor.detection() != nullptr) add_knowledge(layer, trace, i);
+      j["agents"].back()[std::string(sensor.name())] = std::move(layer);
     }
-    if (a.sight.enabled) j["agents"].back()["sight"] = agent_sight(trace, i, a.sight);
+    if (a.map.enabled && trace.sensors(i) > 0) j["agents"].back()["map"] = agent_map(trace, i, a.map.resolution);
   }
 
   // What the trace does not hold, sampled: where the movers are, and each pair's Apollonius sphere and cone.

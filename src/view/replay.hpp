@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/base64.hpp"
+
 #include "game/episode.hpp"
 #include "game/sim.hpp"
 #include "world/arena.hpp"
@@ -62,8 +64,5 @@ struct ReplayInfo {
 /// `sim` recorded (agent i of the trace is agent i of the sim's line-up: pursuers first).
 nlohmann::json replay_json(const ReplayScene& scene, const game::Sim& sim, const game::Trace& trace,
                            const ReplayInfo& info);
-
-/// Standard base64 (RFC 4648, with padding) of raw bytes.
-std::string base64(const void* data, std::size_t bytes);
 
 }  // namespace peg3d::view

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/atomic_file.hpp"
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 
 namespace peg3d::view {
 namespace {

@@ -24,7 +24,7 @@
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/episode.hpp"
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 #include "players/saved_policy.hpp"
 #include "test_arena.hpp"
 
@@ -203,25 +203,35 @@ TEST(EnvBatch, NeighbourSlotsHoldTheNearestOtherAgentsFirstThenZeros) {
   }
 }
 
-TEST(EnvBatch, RangeSlotsHoldEachAgentsLatestReadingsThenZeros) {
-  // Pursuers with 8 x 2 rays to 12 m, evaders with 4 x 1 to 6 m: 16 slots, the evaders' last 12 zeros.
+TEST(EnvBatch, EachAgentsObservationEndsWithItsOwnSensorsSegmentsThenZeros) {
+  // Pursuers with 8 x 2 rays to 12 m, evaders with 4 x 1 to 6 m: each agent's table ends with its own lidar's
+  // segment; the rows are as long as the pursuers' observation, an evader's ending in 12 zeros.
   game::GameConfig c = standing_evaders();
-  c.pursuer.lidar.azimuth_rays = 8, c.pursuer.lidar.elevation_rays = 2, c.pursuer.lidar.elevation_fov = 40;
-  c.pursuer.lidar.range = 12;
-  c.evader.lidar.azimuth_rays = 4, c.evader.lidar.range = 6;
+  c.pursuer.sensors.lidar.azimuth_rays = 8, c.pursuer.sensors.lidar.elevation_rays = 2, c.pursuer.sensors.lidar.elevation_fov = 40;
+  c.pursuer.sensors.lidar.range = 12;
+  c.evader.sensors.lidar.azimuth_rays = 4, c.evader.sensors.lidar.range = 6;
   Batch batch(arena(), c, settings(3, 2));
   Buffers buf{batch};
-  ASSERT_EQ(batch.rays(), 16);
-  ASSERT_EQ(batch.ranges_offset(), game::kObservationBase + 2 * 2 * 4);
-  ASSERT_EQ(batch.observation_size(), batch.ranges_offset() + 16);
-  EXPECT_EQ(batch.rays(0), 16);
-  EXPECT_EQ(batch.rays(3), 4);
-  const ObservationBounds bounds = batch.observation_bounds();
-  for (int k = batch.ranges_offset(); k < batch.observation_size(); ++k) {
-    EXPECT_LT(bounds.low[std::size_t(k)], 0.0f);
-    EXPECT_GT(bounds.high[std::size_t(k)], 12.0f);
-    EXPECT_LT(bounds.high[std::size_t(k)], 12.0001f);
+  const int offset = game::kObservationBase + 2 * 2 * 4;
+  ASSERT_EQ(batch.observation_size(), offset + 16);
+  for (const auto& [i, rays, range] : {std::tuple{0, 16, 12.0f}, std::tuple{3, 4, 6.0f}}) {
+    const game::ObservationTable& t = batch.observation_table(i);
+    const sense::Segment* seg = t.find("lidar.ranges");
+    ASSERT_NE(seg, nullptr);
+    EXPECT_EQ(seg->offset, offset);
+    EXPECT_EQ(seg->size, rays);
+    EXPECT_EQ(seg->unit, "m");
+    EXPECT_EQ(t.size(), offset + rays);
+    EXPECT_EQ(&t.segments.back(), seg);
+    const ObservationBounds bounds = batch.observation_bounds(i);
+    ASSERT_EQ(int(bounds.low.size()), t.size());
+    for (int k = offset; k < t.size(); ++k) {
+      EXPECT_LT(bounds.low[std::size_t(k)], 0.0f);
+      EXPECT_GT(bounds.high[std::size_t(k)], range);
+      EXPECT_LT(bounds.high[std::size_t(k)], range + 0.0001f);
+    }
   }
+  EXPECT_EQ(batch.observation_table(1).find("lidar.ranges")->shape, (std::vector<int>{2, 8}));  // rows of elevation
   const std::vector<double> zeros(3 * 4 * 2, 0.0);
   int echoes = 0;
   for (int step = 0; step <= crash_step() + 2; ++step) {
@@ -230,13 +240,13 @@ TEST(EnvBatch, RangeSlotsHoldEachAgentsLatestReadingsThenZeros) {
       for (int i = 0; i < 4; ++i) {
         SCOPED_TRACE(::testing::Message() << "step " << step << ", game " << g << ", agent " << i);
         const std::vector<float> o = buf.observation(g, i);
-        EXPECT_EQ(std::vector<float>(o.begin(), o.begin() + batch.ranges_offset()), expected_observation(st, i, 2));
-        const std::span<const double> r = st.ranges(i);
-        ASSERT_EQ(int(r.size()), batch.rays(i));
+        EXPECT_EQ(std::vector<float>(o.begin(), o.begin() + offset), expected_observation(st, i, 2));
+        const sense::Reading* r = st.reading(i, "lidar");
+        ASSERT_NE(r, nullptr);
         for (int k = 0; k < 16; ++k) {
-          const float want = k < int(r.size()) ? float(r[std::size_t(k)]) : 0.0f;
-          EXPECT_EQ(o[std::size_t(batch.ranges_offset() + k)], want) << "ray " << k;
-          if (k < int(r.size())) echoes += st.echoes(i)[std::size_t(k)];
+          const float want = k < int(r->values.size()) ? float(r->values[std::size_t(k)]) : 0.0f;
+          EXPECT_EQ(o[std::size_t(offset + k)], want) << "ray " << k;
+          if (k < int(r->values.size())) echoes += r->echo[std::size_t(k)];
         }
       }
     }

@@ -22,13 +22,13 @@ TEST(Algorithms, ANamedVariantEntersAPresetTwiceAndTakesOnlyItsOwnOverrides) {
                                     {"sensing.pursuer.lidar.azimuth_rays=16", "time_limit=50"});
   ASSERT_EQ(algs.size(), 2u);
   EXPECT_EQ(algs[1].name, "sensing");
-  EXPECT_EQ(algs[0].config.game.pursuer.lidar.azimuth_rays, 0);
-  EXPECT_EQ(algs[1].config.game.pursuer.lidar.azimuth_rays, 16);
+  EXPECT_EQ(algs[0].config.game.pursuer.sensors.lidar.azimuth_rays, 0);
+  EXPECT_EQ(algs[1].config.game.pursuer.sensors.lidar.azimuth_rays, 16);
   EXPECT_EQ(algs[0].config.game.time_limit, 50.0);
   EXPECT_EQ(algs[1].config.game.time_limit, 50.0);
   // Apart from its own override, the variant is its preset.
   TrialConfig back = algs[1].config;
-  back.game.pursuer.lidar.azimuth_rays = 0;
+  back.game.pursuer.sensors.lidar.azimuth_rays = 0;
   EXPECT_EQ(config::to_json(back), config::to_json(algs[0].config));
 }
 

@@ -116,9 +116,9 @@ TEST(ExperimentDeterminism, MovingObstacleMapsMatchTheGoldenHashesOnOneAndTwoThr
 
 TEST(ExperimentDeterminism, LimitedSightMatchesTheGoldenHashOnOneAndTwoThreads) {
   game::GameConfig c = game::preset("peg3d");
-  for (game::AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true, a->sight.fov = 240.0;
-  c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
-  c.pursuer.sight.share = true;
+  for (game::AgentConfig* a : {&c.pursuer, &c.evader}) a->sensors.sight.enabled = true, a->sensors.sight.fov = 240.0;
+  c.pursuer.sensors.sight.estimate = sense::SightEstimate::kDeadReckoning;
+  c.pursuer.sensors.sight.share = true;
   const auto both = [&](int threads) {
     Fnv1a h;
     h.add_value(sweep_hash("maps/pack.yaml", 2, threads, c));

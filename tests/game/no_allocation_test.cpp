@@ -31,22 +31,22 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
   if (lidar) {
     // 64 rays in 4 rows, with noise and dropouts; the pursuer every step, the evader every other step.
     for (AgentConfig* a : {&c.pursuer, &c.evader}) {
-      a->lidar.azimuth_rays = 16;
-      a->lidar.elevation_rays = 4;
-      a->lidar.elevation_fov = 60.0;
-      a->lidar.noise = 0.02;
-      a->lidar.dropout = 0.1;
+      a->sensors.lidar.azimuth_rays = 16;
+      a->sensors.lidar.elevation_rays = 4;
+      a->sensors.lidar.elevation_fov = 60.0;
+      a->sensors.lidar.noise = 0.02;
+      a->sensors.lidar.dropout = 0.1;
     }
-    c.evader.lidar.period = 2;
+    c.evader.sensors.lidar.period = 2;
     if (own_map) {
       for (AgentConfig* a : {&c.pursuer, &c.evader}) a->map.enabled = true, a->observation.obstacles = ObstacleSource::kOwnMap;
     }
   }
   if (sight) {
     // Limited sight, in a cone ahead, dead-reckoned and shared by the pursuers.
-    for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true, a->sight.fov = 240.0;
-    c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
-    c.pursuer.sight.share = true;
+    for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sensors.sight.enabled = true, a->sensors.sight.fov = 240.0;
+    c.pursuer.sensors.sight.estimate = sense::SightEstimate::kDeadReckoning;
+    c.pursuer.sensors.sight.share = true;
   }
   const Sim sim(arena, c);
   SimState state(sim);
@@ -58,10 +58,8 @@ void expect_no_allocation(const char* map, const char* preset_name, AgentCollisi
     add_configured(lineups[k], c, Role::kEvader, static_cast<int>(scenarios[k].evaders.size()), 100 + k);
     play(sim, state, scenarios[k], lineups[k].policies(), true, 0);  // warm-up: anything lazily made is made now
   }
-  int most = 0;
-  for (const auto& s : scenarios) most = std::max(most, s.agents());
   Trace trace;
-  trace.reserve(c.max_steps(), most, lidar ? most * 64 : 0, own_map ? 1 << 20 : 0);
+  trace.reserve(sim, scenarios[2], own_map ? 1 << 20 : 0);
   const long before = testing::g_allocations.load();
   long steps = 0;
   for (std::uint64_t k = 0; k < 8; ++k) {

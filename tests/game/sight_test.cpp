@@ -24,7 +24,7 @@ GameConfig straight(bool sight) {
   for (AgentConfig* a : {&c.pursuer, &c.evader}) {
     a->motion_space = false;
     a->guard.enabled = false;
-    a->sight.enabled = sight;
+    a->sensors.sight.enabled = sight;
   }
   return c;
 }
@@ -58,7 +58,7 @@ TEST(GameSight, AnOpponentBehindAPillarIsKnownWhereItWasLastSeen) {
 
 TEST(GameSight, DeadReckoningMovesTheLastSightingOnAtItsVelocityWithinTheArena) {
   GameConfig c = straight(true);
-  c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
+  c.pursuer.sensors.sight.estimate = sense::SightEstimate::kDeadReckoning;
   c.evader.speed = 0.7;
   const Sim sim(pillar_room(), c);
   SimState st(sim);
@@ -96,8 +96,8 @@ TEST(GameSight, TheFieldOfViewAndTheRangeBoundWhatIsSeen) {
     for (const double fov : {50.0, 70.0, 190.0, 210.0, 260.0, 280.0, 360.0}) {
       for (const double range : {9.9, 10.1}) {
         GameConfig c = straight(true);
-        c.pursuer.sight.fov = fov;
-        c.pursuer.sight.range = range;
+        c.pursuer.sensors.sight.fov = fov;
+        c.pursuer.sensors.sight.range = range;
         const Sim sim(arena, c);
         SimState st(sim);
         reset(sim, st, testing::scenario("s", {15, 15, 5}, at), 1);
@@ -113,7 +113,7 @@ TEST(GameSight, TeammatesThatShareSeeWhatAnyOfThemSees) {
   // Pursuer 0 has the evader behind the pillar; pursuer 1 sees it from the side.
   for (const bool share : {false, true}) {
     GameConfig c = straight(true);
-    c.pursuer.sight.share = share;
+    c.pursuer.sensors.sight.share = share;
     const Sim sim(pillar_room(), c);
     SimState st(sim);
     reset(sim, st, testing::team("t", {{4, 15, 5}, {20, 27, 5}}, {{20, 15, 5}}), 1);
@@ -154,8 +154,8 @@ TEST(GameSight, OnAnOpenArenaSightOnPlaysExactlyAsFullInformation) {
       GameConfig c = preset("peg3d");
       c.pursuer.policy = pursuer;
       c.time_limit = 20;
-      c.pursuer.sight.enabled = c.evader.sight.enabled = sight;
-      c.pursuer.sight.estimate = sense::SightEstimate::kDeadReckoning;
+      c.pursuer.sensors.sight.enabled = c.evader.sensors.sight.enabled = sight;
+      c.pursuer.sensors.sight.estimate = sense::SightEstimate::kDeadReckoning;
       const Sim sim(arena, c);
       results.push_back(testing::play_once(sim, testing::scenario("s", {3, 4, 5}, {20, 22, 6}), 9, &traces[sight]));
     }
@@ -181,8 +181,8 @@ namespace {
 
 TEST(GameSight, TheProbeKnowsWhatTheAgentsOwnMapHasSeen) {
   GameConfig c = straight(true);
-  c.pursuer.lidar.azimuth_rays = 16;
-  c.pursuer.lidar.range = 6.0;
+  c.pursuer.sensors.lidar.azimuth_rays = 16;
+  c.pursuer.sensors.lidar.range = 6.0;
   c.pursuer.map.enabled = true;
   const Sim sim(pillar_room(), c);
   SimState st(sim);

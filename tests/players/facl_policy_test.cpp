@@ -220,20 +220,20 @@ TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
   // agents in maps, full information).
   AgentConfig offset = agent_preset("peg3d", Role::kEvader);
   offset.action = FaclAction::kTargetLineOffset;
-  offset.lidar.azimuth_rays = 8;
-  offset.sight.enabled = true;
+  offset.sensors.lidar.azimuth_rays = 8;
+  offset.sensors.sight.enabled = true;
   nlohmann::json saved = policy_to_json(FaclModel(offset, Role::kEvader));
   EXPECT_EQ(saved["version"], 8);
-  EXPECT_TRUE(policy_from_json(saved, "p.json", Role::kEvader)->config().sight.enabled);
+  EXPECT_TRUE(policy_from_json(saved, "p.json", Role::kEvader)->config().sensors.sight.enabled);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().action, FaclAction::kTargetLineOffset);
-  EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().lidar, offset.lidar);
+  EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().sensors.lidar, offset.sensors.lidar);
   EXPECT_FALSE(policy_from_json(saved, "p.json", Role::kEvader)->config().map.insert_agents);
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
   // Version 7 agents had full information.
   doc["version"] = 7;
   doc["config"].erase("sight");
-  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().sight, sense::SightConfig{});
+  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().sensors.sight, sense::SightConfig{});
   // Version 6 maps held the agents' echoes.
   doc["version"] = 6;
   doc["config"]["map"].erase("insert_agents");
@@ -241,7 +241,7 @@ TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
   doc["version"] = 5;
   doc["config"].erase("lidar");
   doc["config"].erase("map");
-  EXPECT_FALSE(policy_from_json(doc, "p.json", Role::kEvader)->config().lidar.enabled());
+  EXPECT_FALSE(policy_from_json(doc, "p.json", Role::kEvader)->config().sensors.lidar.enabled());
   doc["version"] = 4;
   doc["config"].erase("action");
   const auto four = policy_from_json(doc, "p.json", Role::kEvader);

@@ -11,13 +11,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 #include "players/policy_io.hpp"
+#include "view_writer.hpp"
 
 namespace peg3d::players {
 namespace {
 
 using namespace peg3d::game;
+using testing::WrittenView;
 
 // A one-layer network 20 -> 2 that reads the target's azimuth and elevation errors (entries 1 and 2).
 nlohmann::json steer_at_target(double gain) {
@@ -42,7 +44,8 @@ TEST(MlpPolicy, ActsAsTheDocumentedForwardPass) {
   const auto file = write(steer_at_target(2.0), "steer.json");
   ASSERT_TRUE(is_mlp_document(read_policy_document(file).doc));
   MlpPolicy policy(load_mlp_policy(file, Role::kPursuer), 0);
-  AgentView v;
+  WrittenView w;
+  AgentView& v = w.view;
   v.percept.target.azimuth = 0.3;
   v.percept.target.elevation = -0.1;
   const Steering u = policy.act(v);
@@ -59,7 +62,8 @@ TEST(MlpPolicy, HiddenLayersTakeTanhAndInputsAreNormalized) {
   doc["input_std"][1] = 0.5;
   doc["layers"].push_back({{"weights", {{3.0, 0.0}, {0.0, -1.0}}}, {"bias", {0.25, 0.0}}});
   MlpPolicy policy(load_mlp_policy(write(doc, "two.json"), Role::kPursuer), 0);
-  AgentView v;
+  WrittenView w;
+  AgentView& v = w.view;
   v.percept.target.azimuth = 0.6;
   const Steering u = policy.act(v);
   volatile double azimuth = double(0.6f), zero = 0.0;
@@ -80,7 +84,8 @@ TEST(MlpPolicy, ANetworkTrainedWithSightReadsTheSightEntriesLast) {
   }
   MlpPolicy policy(load_mlp_policy(write(doc, "sight.json"), Role::kPursuer), 0);
   for (const bool visible : {true, false}) {
-    AgentView v;
+    WrittenView w;
+    AgentView& v = w.view;
     v.other_visible = visible;
     v.other_age = visible ? 0.0 : 3.5;
     const Steering u = policy.act(v);
@@ -100,7 +105,8 @@ TEST(MlpPolicy, PlayedBySampleItDrawsAboutTheMeanWithTheFilesStandardDeviations)
   const auto model = load_mlp_policy(write(doc, "sample.json"), Role::kPursuer);
   MlpPolicy mean_player(load_mlp_policy(write(steer_at_target(2.0), "mean.json"), Role::kPursuer), 0);
   for (const double azimuth : {-0.4, 0.0, 0.25}) {
-    AgentView v;
+    WrittenView w;
+    AgentView& v = w.view;
     v.percept.target.azimuth = azimuth;
     v.percept.target.elevation = -0.5 * azimuth;
     const Steering mean = mean_player.act(v);
@@ -130,7 +136,8 @@ TEST(MlpPolicy, PlayedBySampleItDrawsAboutTheMeanWithTheFilesStandardDeviations)
   // Played by its mean (the default, or "play": "mean"), a file with action_std plays exactly the mean.
   doc["play"] = "mean";
   MlpPolicy by_mean(load_mlp_policy(write(doc, "by_mean.json"), Role::kPursuer), 5);
-  AgentView v;
+  WrittenView w;
+  AgentView& v = w.view;
   v.percept.target.azimuth = 0.3;
   EXPECT_EQ(by_mean.act(v).d_alpha, mean_player.act(v).d_alpha);
 }

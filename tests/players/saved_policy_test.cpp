@@ -11,9 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/random.hpp"
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 #include "game/episode.hpp"
 #include "players/policy_io.hpp"
+#include "view_writer.hpp"
 #include "game/sim.hpp"
 #include "game/test_arena.hpp"
 
@@ -87,6 +88,7 @@ TEST(SavedPolicy, AFaclFilePlaysAsItsModelWithItsOwnConfiguration) {
 }
 
 TEST(SavedPolicy, AnMlpFilePlaysAsTheMlpWithTheGamesConfiguration) {
+  // (Its observation is the game's: tests/python/test_policy_feed.py plays one against the batch.)
   const auto file = temp("saved_mlp.json");
   write_mlp(file, "evader");
   const auto saved = load_saved_policy(file, Role::kEvader);
@@ -96,7 +98,8 @@ TEST(SavedPolicy, AnMlpFilePlaysAsTheMlpWithTheGamesConfiguration) {
   const auto player = saved->make(0);
   Rng rng(3);
   for (int i = 0; i < 200; ++i) {
-    const AgentView v = random_view(rng);
+    const testing::WrittenView w(random_view(rng));
+    const AgentView& v = w.view;
     const Steering a = reference.act(v), b = player->act(v);
     ASSERT_EQ(a.d_alpha, b.d_alpha);
     ASSERT_EQ(a.d_theta, b.d_theta);

@@ -131,7 +131,7 @@ double seen_share(const std::string& evader) {
   c.initial_heading = InitialHeading::kPlusX;
   c.pursuer.motion_space = false;
   c.pursuer.speed = 0.5;
-  for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sight.enabled = true;
+  for (AgentConfig* a : {&c.pursuer, &c.evader}) a->sensors.sight.enabled = true;
   c.evader = scripted_agent(c.evader, evader);
   const Sim sim(testing::pillar_room(), c);
   SimState st(sim);

@@ -180,8 +180,8 @@ TEST(ViewReplay, SightCarriesEachFramesOpponentVisibilityAndEstimate) {
   game::GameConfig c = game::preset("peg3d");
   c.pursuer.policy = "search";
   c.evader.policy = "flee";
-  c.pursuer.sight.enabled = true;
-  c.pursuer.sight.fov = 120.0;
+  c.pursuer.sensors.sight.enabled = true;
+  c.pursuer.sensors.sight.fov = 120.0;
   c.time_limit = 30.0;
   const game::Sim sim(arena, c);
   game::Trace trace;

@@ -1,4 +1,4 @@
-// Range sensors in the game (game/scans.hpp, SimState::scans): readings against analytic distances, and against
+// Range sensors in the game (game/sensing.hpp, SimState::sensing): readings against analytic distances, and against
 // testing every solid, mover, pushed body and agent at the instant of each scan over whole games; scans only when
 // their period comes; a lidar that only observes changes nothing of the game; the same readings for a seed on any
 // thread count (a golden hash).
@@ -13,7 +13,7 @@
 #include "core/hash.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
-#include "game/scans.hpp"
+#include "game/sensing.hpp"
 #include "sense/lidar.hpp"
 #include "test_arena.hpp"
 #include "world/map/map_loader.hpp"
@@ -30,6 +30,19 @@ sense::LidarConfig lidar(int azimuth, int elevation, double fov_elevation, doubl
   return c;
 }
 
+// Agent i's lidar readings and echoes (empty without a lidar), and the lidar of an agent.
+std::span<const double> lidar_ranges(const SimState& st, int i) {
+  const sense::Reading* r = st.reading(i, "lidar");
+  return r != nullptr ? r->values : std::span<const double>{};
+}
+std::span<const std::uint8_t> lidar_echoes(const SimState& st, int i) {
+  const sense::Reading* r = st.reading(i, "lidar");
+  return r != nullptr ? r->echo : std::span<const std::uint8_t>{};
+}
+const sense::Lidar* lidar_of(const Sim& sim, Role role, int rank) {
+  return dynamic_cast<const sense::Lidar*>(sim.sensor(role, rank, "lidar"));
+}
+
 // One arena per map for the whole program: quarry's movers are simulated once for every test here.
 std::shared_ptr<const world::Arena> map_arena(const std::string& map) {
   static std::map<std::string, std::shared_ptr<const world::Arena>> built;
@@ -41,7 +54,7 @@ std::shared_ptr<const world::Arena> map_arena(const std::string& map) {
 // What agent i's rays meet now, by testing every static solid, mover, pushed body and other agent.
 std::vector<sense::RayHit> reference(const Sim& sim, const SimState& st, int i) {
   const AgentState& a = st.agents[std::size_t(i)];
-  const sense::Lidar& l = *sim.lidar(a.role, a.rank);
+  const sense::Lidar& l = *lidar_of(sim, a.role, a.rank);
   std::vector<Ray> rays(std::size_t(l.rays()));
   l.rays_at(a.kinematics.position, a.kinematics.heading, rays);
   std::vector<sense::RayHit> out;
@@ -73,9 +86,9 @@ std::vector<sense::RayHit> reference(const Sim& sim, const SimState& st, int i) 
 // Agent i's readings equal the reference's (no noise, no dropout); returns how many rays returned an echo.
 int expect_readings_match(const Sim& sim, const SimState& st, int i) {
   const auto want = reference(sim, st, i);
-  const auto ranges = st.ranges(i);
-  const auto echo = st.echoes(i);
-  const double range = sim.lidar(st.agents[std::size_t(i)].role, st.agents[std::size_t(i)].rank)->config().range;
+  const auto ranges = lidar_ranges(st, i);
+  const auto echo = lidar_echoes(st, i);
+  const double range = lidar_of(sim, st.agents[std::size_t(i)].role, st.agents[std::size_t(i)].rank)->config().range;
   EXPECT_EQ(ranges.size(), want.size());
   int echoes = 0;
   for (std::size_t k = 0; k < want.size(); ++k) {
@@ -101,20 +114,20 @@ TEST(Scans, ARayAlongTheHeadingReadsTheDistanceToTheSphereAhead) {
     s.pursuers[0].heading = heading_of(d);
     const auto arena = testing::make_arena(Vec3(22, 22, 22), {{at + (gap + radius) * d, radius}}, {s});
     GameConfig c = preset("peg3d");
-    c.pursuer.lidar = lidar(1, 1, 0.0, 9.0);
+    c.pursuer.sensors.lidar = lidar(1, 1, 0.0, 9.0);
     c.pursuer.guard.enabled = false;
     c.pursuer.motion_space = false;  // a zero command keeps the heading
     const Sim sim(arena, c);
     SimState st(sim);
     reset(sim, st, s, 1);
-    ASSERT_EQ(st.ranges(0).size(), 1u);
-    EXPECT_NEAR(st.ranges(0)[0], gap, 1e-9);
-    EXPECT_EQ(st.echoes(0)[0], 1);
-    EXPECT_TRUE(st.ranges(1).empty());  // the evader has no lidar
+    ASSERT_EQ(lidar_ranges(st, 0).size(), 1u);
+    EXPECT_NEAR(lidar_ranges(st, 0)[0], gap, 1e-9);
+    EXPECT_EQ(lidar_echoes(st, 0)[0], 1);
+    EXPECT_TRUE(lidar_ranges(st, 1).empty());  // the evader has no lidar
     // One step straight on: the pursuer is speed * dt nearer (it reads from where the step left it).
     const std::array<Steering, 2> none{};
     step(sim, st, none);
-    EXPECT_NEAR(st.ranges(0)[0], gap - c.pursuer.speed * c.dt, 1e-9);
+    EXPECT_NEAR(lidar_ranges(st, 0)[0], gap - c.pursuer.speed * c.dt, 1e-9);
   }
 }
 
@@ -135,16 +148,16 @@ TEST(Scans, AgentsAreSeenUnlessTheSettingSaysOtherwise) {
   const auto [s, arena, e] = FacingEvader{};
   for (const bool sees : {true, false}) {
     GameConfig c = preset("peg3d");
-    c.pursuer.lidar = lidar(1, 1, 0.0, 20.0);
-    c.pursuer.lidar.sees_agents = sees;
+    c.pursuer.sensors.lidar = lidar(1, 1, 0.0, 20.0);
+    c.pursuer.sensors.lidar.sees_agents = sees;
     const Sim sim(arena, c);
     SimState st(sim);
     reset(sim, st, s, 1);
     if (sees) {
-      EXPECT_NEAR(st.ranges(0)[0], 7.0 - c.evader.radius, 1e-12);
+      EXPECT_NEAR(lidar_ranges(st, 0)[0], 7.0 - c.evader.radius, 1e-12);
     } else {
-      EXPECT_EQ(st.echoes(0)[0], 0);  // the arena's faces are not obstacles on this map
-      EXPECT_EQ(st.ranges(0)[0], 20.0);
+      EXPECT_EQ(lidar_echoes(st, 0)[0], 0);  // the arena's faces are not obstacles on this map
+      EXPECT_EQ(lidar_ranges(st, 0)[0], 20.0);
     }
   }
 }
@@ -155,15 +168,15 @@ TEST(Scans, AnAgentsMapLeavesOutTheOtherAgentsUnlessTheSettingSaysOtherwise) {
   const auto [s, arena, e] = FacingEvader{};
   for (const bool insert : {false, true}) {
     GameConfig c = preset("peg3d");
-    c.pursuer.lidar = lidar(9, 5, 8.0, 20.0);
-    c.pursuer.lidar.azimuth_fov = 8.0;
+    c.pursuer.sensors.lidar = lidar(9, 5, 8.0, 20.0);
+    c.pursuer.sensors.lidar.azimuth_fov = 8.0;
     c.pursuer.map.enabled = true;
     c.pursuer.map.insert_agents = insert;
     const Sim sim(arena, c);
     SimState st(sim);
     reset(sim, st, s, 1);
     int echoes = 0;
-    for (const std::uint8_t k : st.echoes(0)) echoes += k;
+    for (const std::uint8_t k : lidar_echoes(st, 0)) echoes += k;
     EXPECT_GT(echoes, 0);  // the readings see the evader either way
     EXPECT_LT(echoes, 45);
     const sense::ScanMap& map = *st.map(0);
@@ -184,9 +197,9 @@ void check_game(const char* map, MoverDynamics dynamics, int steps, int min_echo
   GameConfig c = preset("peg3d");
   c.mover_dynamics = dynamics;
   c.collision = CollisionMode::kPenalize;
-  c.pursuer.lidar = lidar(16, 3, 50.0, 15.0);
-  c.evader.lidar = lidar(8, 2, 20.0, 8.0);
-  c.evader.lidar.period = 3;
+  c.pursuer.sensors.lidar = lidar(16, 3, 50.0, 15.0);
+  c.evader.sensors.lidar = lidar(8, 2, 20.0, 8.0);
+  c.evader.sensors.lidar.period = 3;
   const Sim sim(arena, c);
   SimState st(sim);
   Rng rng(8);
@@ -202,7 +215,7 @@ void check_game(const char* map, MoverDynamics dynamics, int steps, int min_echo
       for (int i = 0; i < st.agent_count(); ++i) {
         const int period = st.agents[std::size_t(i)].role == Role::kPursuer ? 1 : 3;
         const bool due = ev.agents[std::size_t(i)].acted && st.step % period == 0;
-        EXPECT_EQ(st.scans.step[std::size_t(i)] == st.step, due) << "step " << st.step << " agent " << i;
+        EXPECT_EQ(st.reading(i, "lidar")->step == st.step, due) << "step " << st.step << " agent " << i;
         if (!due) continue;
         echoes += expect_readings_match(sim, st, i), ++checked;
         if (::testing::Test::HasFailure()) return;
@@ -229,9 +242,9 @@ TEST(Scans, ReadingsSeeTheBodiesWhereThePushModeRunMovedThem) {
 TEST(Scans, ALidarThatOnlyObservesChangesNothingOfTheGame) {
   const auto arena = map_arena("maps/forest.yaml");
   GameConfig with = preset("peg3d");
-  with.pursuer.lidar = lidar(32, 2, 30.0, 10.0);
-  with.evader.lidar = with.pursuer.lidar;
-  with.evader.lidar.noise = 0.05;
+  with.pursuer.sensors.lidar = lidar(32, 2, 30.0, 10.0);
+  with.evader.sensors.lidar = with.pursuer.sensors.lidar;
+  with.evader.sensors.lidar.noise = 0.05;
   const Sim plain(arena, preset("peg3d")), sensing(arena, with);
   for (const world::Scenario& s : arena->map().scenarios) {
     Trace a, b;
@@ -248,7 +261,7 @@ TEST(Scans, ALidarThatOnlyObservesChangesNothingOfTheGame) {
 GameConfig own_map_config() {
   GameConfig c = preset("peg3d");
   for (AgentConfig* a : {&c.pursuer, &c.evader}) {
-    a->lidar = lidar(16, 4, 60.0, 10.0);
+    a->sensors.lidar = lidar(16, 4, 60.0, 10.0);
     a->map.enabled = true;
     a->observation.obstacles = ObstacleSource::kOwnMap;
   }
@@ -270,9 +283,9 @@ TEST(Scans, OwnMapInputsAreTheNearestOccupiedCellOfTheMapTheScansBuilt) {
   std::vector<Steering> u(2);
   for (int k = 0; k < 200 && !st.done; ++k) {
     const AgentState& a = st.agents[0];
-    sim.lidar(Role::kPursuer, 0)->rays_at(a.kinematics.position, a.kinematics.heading, rays);
+    lidar_of(sim, Role::kPursuer, 0)->rays_at(a.kinematics.position, a.kinematics.heading, rays);
     for (std::size_t r = 0; r < rays.size(); ++r) {
-      const double d = st.echoes(0)[r] != 0 ? st.ranges(0)[r] : 10.0 + 0.5;
+      const double d = lidar_echoes(st, 0)[r] != 0 ? lidar_ranges(st, 0)[r] : 10.0 + 0.5;
       points[r] = a.kinematics.position + d * rays[r].direction;
     }
     mine.insert(a.kinematics.position, points, 10.0);
@@ -357,7 +370,7 @@ TEST(Scans, ATraceRecordsEveryFramesReadingsAndTheMapsGrowth) {
   // The pursuer scans every 3 steps and keeps its map over episodes; the evader scans every step.
   const auto arena = map_arena("maps/forest.yaml");
   GameConfig c = own_map_config();
-  c.pursuer.lidar.period = 3;
+  c.pursuer.sensors.lidar.period = 3;
   c.pursuer.map.persist = true;
   const Sim sim(arena, c);
   SimState st(sim);
@@ -374,12 +387,12 @@ TEST(Scans, ATraceRecordsEveryFramesReadingsAndTheMapsGrowth) {
     std::size_t applied = 0;
     for (int k = 0;; ++k) {
       ASSERT_EQ(trace.frame_count(), k + 1);
-      ASSERT_EQ(trace.rays(), 128);
+      ASSERT_EQ(trace.values(), 128);
       for (int i = 0; i < 2; ++i) {
-        const int first = trace.ray_first[std::size_t(i)];
+        const int first = trace.value_first[std::size_t(trace.slot_first[std::size_t(i)])];
         for (int r = 0; r < 64; ++r) {
-          ASSERT_EQ(trace.ranges[std::size_t(k * 128 + first + r)], float(st.ranges(i)[std::size_t(r)]));
-          ASSERT_EQ(trace.echoes[std::size_t(k * 128 + first + r)], st.echoes(i)[std::size_t(r)]);
+          ASSERT_EQ(trace.readings[std::size_t(k * 128 + first + r)], float(lidar_ranges(st, i)[std::size_t(r)]));
+          ASSERT_EQ(trace.echoes[std::size_t(k * 128 + first + r)], lidar_echoes(st, i)[std::size_t(r)]);
         }
         const int scanned = trace.scan_frames[std::size_t(k * 2 + i)];
         ASSERT_EQ(scanned, i == 0 ? k - k % 3 : k) << "frame " << k;
@@ -422,9 +435,9 @@ TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {
     c.evader.policy = "flee";
     c.evader.speed = 0.0;
     if (own_map) {
-      c.pursuer.lidar = lidar(12, 3, 30.0, 8.0);
-      c.pursuer.lidar.azimuth_fov = 90.0;
-      c.pursuer.lidar.mount_azimuth = mount_azimuth;
+      c.pursuer.sensors.lidar = lidar(12, 3, 30.0, 8.0);
+      c.pursuer.sensors.lidar.azimuth_fov = 90.0;
+      c.pursuer.sensors.lidar.mount_azimuth = mount_azimuth;
       c.pursuer.map.enabled = true;
       c.pursuer.observation.obstacles = ObstacleSource::kOwnMap;
     }
@@ -466,7 +479,7 @@ std::uint64_t own_map_game_hash(const Sim& sim, std::uint64_t seed) {
 
 TEST(Scans, AnOwnMapGameIsTheSameOnAnyThreadCount) {
   GameConfig c = own_map_config();
-  c.pursuer.lidar.noise = c.evader.lidar.noise = 0.02;
+  c.pursuer.sensors.lidar.noise = c.evader.sensors.lidar.noise = 0.02;
   c.time_limit = 30.0;
   const Sim sim(map_arena("maps/forest.yaml"), c);
   const std::uint64_t here = own_map_game_hash(sim, 5);
@@ -487,8 +500,8 @@ std::uint64_t sensing_game_hash(const Sim& sim, std::uint64_t seed) {
     reset(sim, st, s, seed);
     std::vector<Steering> u(std::size_t(st.agent_count()));
     while (!st.done && st.step < 150) {
-      h.add_span(st.scans.ranges);
-      h.add_span(st.scans.echo);
+      h.add_span(st.sensing.values);
+      h.add_span(st.sensing.echo);
       for (Steering& s_ : u) s_ = {uniform(rng, -0.3, 0.3), uniform(rng, -0.2, 0.2)};
       step(sim, st, u);
     }
@@ -499,11 +512,11 @@ std::uint64_t sensing_game_hash(const Sim& sim, std::uint64_t seed) {
 TEST(Scans, ASensingGameIsTheSameOnAnyThreadCount) {
   GameConfig c = preset("peg3d");
   c.collision = CollisionMode::kPenalize;
-  c.pursuer.lidar = lidar(16, 4, 60.0, 12.0);
-  c.pursuer.lidar.noise = 0.03;
-  c.pursuer.lidar.dropout = 0.1;
-  c.evader.lidar = c.pursuer.lidar;
-  c.evader.lidar.period = 2;
+  c.pursuer.sensors.lidar = lidar(16, 4, 60.0, 12.0);
+  c.pursuer.sensors.lidar.noise = 0.03;
+  c.pursuer.sensors.lidar.dropout = 0.1;
+  c.evader.sensors.lidar = c.pursuer.sensors.lidar;
+  c.evader.sensors.lidar.period = 2;
   const Sim sim(map_arena("maps/quarry.yaml"), c);
   const std::uint64_t here = sensing_game_hash(sim, 5);
   expect_same_on_threads([&] { return sensing_game_hash(sim, 5); }, here);

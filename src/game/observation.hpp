@@ -1,19 +1,37 @@
 #pragma once
-// The observation vector of the Python front (env/batch.hpp, docs/python.md) as far as one agent's view
-// holds it: the 20 entries every learner outside the C++ side sees, and what an MLP policy trained there
-// reads back on the C++ side (players/mlp_policy.hpp). The neighbour slots that follow need the whole state and
-// are the batch's. kObservationEntries declares each entry once (name, unit, meaning, what bounds it); the
-// batch's bounds, the Python package's names (peg3d.OBSERVATION) and the replay viewer's labels come from it.
+// An agent's observation (issue 50): one table of segments (sense/segment.hpp) per agent, built once from the
+// game's settings, and the one function that writes it, which the batch of the Python front (env/batch.hpp) and the
+// C++ players of networks trained there (players/mlp_policy.hpp) share. The table, in order:
+//   the 20 base entries (kObservationEntries: the percept, the agent's pose, its opponent's, its nearest obstacle),
+//     one segment each;
+//   k neighbour slots of the nearest other opponents, then k of the nearest teammates, still in the game, nearest
+//     first: "neighbour.opponent.m.offset" (its position minus the agent's, m; with limited sight where the agent
+//     takes it to be) and "neighbour.opponent.m.mask" (1, or 0 with zeros where there are fewer), likewise
+//     "neighbour.teammate.m.*";
+//   every segment of every sensor the agent carries, in the order it carries them (sense/sensors.hpp): the sight
+//     sensor's "sight.visible" and "sight.age", the lidar's "lidar.ranges", ...
+// Every entry's bounds hold what it can take on this Sim (the float bounds widened by one ulp each way). The
+// Python package's names and offsets, the replay viewer's labels, docs/python.md's table and the policy files'
+// record of what a network reads all come from this table.
 
 #include <array>
+#include <span>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "game/policy.hpp"
+#include "sense/segment.hpp"
 
 namespace peg3d::game {
 
+class Sim;
+class SimState;
+
 /// Entries of observation_base.
 inline constexpr int kObservationBase = 20;
+/// The most neighbour slots of each kind (opponents, teammates) a table may have.
+inline constexpr int kMaxNeighbours = 16;
 
 /// What bounds an entry, given the arena and the game (observation_bounds).
 enum class EntryRange {
@@ -31,7 +49,7 @@ enum class EntryRange {
 };
 
 struct ObservationEntry {
-  const char* name;     ///< as Python names it (peg3d.OBSERVATION)
+  const char* name;     ///< its segment's name (peg3d.OBSERVATION)
   const char* unit;     ///< "m", "rad" or "m/s"
   const char* meaning;  ///< as the viewer and the docs say it
   EntryRange range;
@@ -67,6 +85,39 @@ inline constexpr int kPerceptEntries = 6;
 /// The bounds of an entry of `range` on an arena of `box`, with `reach` (m) and the fastest agent's `speed`
 /// (m/s).
 std::pair<double, double> entry_bounds(EntryRange range, const Box& box, double reach, double speed);
+
+/// An agent's observation: its segments, and where the game finds their values.
+struct ObservationTable {
+  std::vector<sense::Segment> segments;  ///< in order, tiling [0, size)
+  int neighbours = 0;                    ///< k: the neighbour slots of each kind
+  /// Where each sensor's segments lie: its index among the agent's sensors, and its entries [offset, offset + size).
+  struct SensorPart {
+    int sensor = 0;
+    int offset = 0;
+    int size = 0;
+  };
+  std::vector<SensorPart> sensors;
+  int size() const { return sense::observation_size(segments); }
+  /// The segment called `name`; null when there is none.
+  const sense::Segment* find(std::string_view name) const;
+};
+
+/// The observation table of agent `rank` of `role` in `sim`, with `neighbours` slots of each kind (in [0,
+/// kMaxNeighbours]).
+ObservationTable observation_table(const Sim& sim, Role role, int rank, int neighbours);
+
+/// The table of agent `rank` of `role` that reads what `recorded` (a policy file's segments: names, sizes and
+/// units) lists: its own table with as many neighbour slots as `recorded` has. Throws std::invalid_argument with the
+/// first segment that differs (sense::first_difference) when the agent's observation does not hold them.
+ObservationTable bind_observation(const Sim& sim, Role role, int rank, std::span<const sense::Segment> recorded);
+
+/// Writes agent i's observation in `state` as `table` (its own, or one bound to it) lays it out, float32, into
+/// `out` (table.size() long). No allocation.
+void write_observation(const Sim& sim, const SimState& state, int i, const ObservationTable& table, std::span<float> out);
+
+/// Gives `state` its ObservationWriter over `sim` (made by the first reset, then pointed at the Sim the reset plays):
+/// what every view's `observation` points at.
+void attach_observation_writer(const Sim& sim, SimState& state);
 
 /// Writes the view's 20 entries, float32, as kObservationEntries lists them:
 ///   [0]      d to the opponent, m                      the percept: the paper's fuzzy inputs (eq. 19-20)

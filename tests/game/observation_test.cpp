@@ -1,6 +1,6 @@
-// The observation's entries (game/observation_vector.hpp): each name in kObservationEntries is the quantity
+// The observation's entries (game/observation.hpp): each name in kObservationEntries is the quantity
 // observation_base writes at that place, and each entry's bounds hold what it can take.
-#include "game/observation_vector.hpp"
+#include "game/observation.hpp"
 
 #include <gtest/gtest.h>
 
