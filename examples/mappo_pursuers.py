@@ -8,9 +8,10 @@ pursuer of a team (--pursuer-entrant), beside the FACL and classic teams (docs/l
     .venv/bin/python examples/mappo_pursuers.py --map maps/pack.yaml --steps 2000000 --out mappo_pack.json \
         --opponent flee --opponent flee-apollonius
 
-The actor sees the 20 entries of its own observation (neighbours=0): an MLP played by the C++ side gets no
-other agents in its view, so that is what it will see in the league. Every pursuer's transition counts once it
-acted; next-step autoreset's reset steps are left out, as in examples/ppo_pursuer.py, whose helpers this uses.
+The actor sees its own observation; with --neighbours K it also sees the K nearest other evaders and the K nearest
+teammates (docs/python.md, "Observations"), and the saved file records that observation, which the C++ side feeds
+it in the league exactly as the batch did in training. Every pursuer's transition counts once it acted; next-step
+autoreset's reset steps are left out, as in examples/ppo_pursuer.py, whose helpers this uses.
 """
 
 import argparse
@@ -109,7 +110,7 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "games": games, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             games = captures = 0
-    save_policy(args.out, actor, obs_stats, bound, env.opponents, log_std, args.play,
+    save_policy(args.out, actor, obs_stats, bound, env.observation, env.opponents, log_std, args.play,
                 trained_by="examples/mappo_pursuers.py")
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 

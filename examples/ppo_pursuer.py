@@ -62,17 +62,16 @@ def mlp(sizes, out_scale=1.0):
     return nn.Sequential(*layers)
 
 
-def save_policy(path, actor, stats, bound, opponents, log_std, play="mean", trained_by="examples/ppo_pursuer.py"):
-    """The actor as a peg3d-mlp file, with the Gaussian's learnt standard deviation (action_std, rad): the C++
-    side plays the mean, or with play="sample" draws about it as training did."""
-    layers = [{"weights": m.weight.detach().double().tolist(), "bias": m.bias.detach().double().tolist()}
+def save_policy(path, actor, stats, bound, observation, opponents, log_std, play="mean",
+                trained_by="examples/ppo_pursuer.py"):
+    """The actor as a policy file (peg3d.save_policy) recording the observation it reads, with the Gaussian's
+    learnt standard deviation (action_std, rad): the C++ side plays the mean, or with play="sample" draws about it
+    as training did."""
+    layers = [(m.weight.detach().double().numpy(), m.bias.detach().double().numpy())
               for m in actor if isinstance(m, nn.Linear)]
-    doc = {"format": "peg3d-mlp", "version": 1, "role": "pursuer", "inputs": int(stats.mean.size),
-           "action_bound": float(bound), "input_mean": stats.mean.tolist(), "input_std": stats.std.tolist(),
-           "layers": layers, "action_std": log_std.detach().exp().double().tolist(), "play": play,
-           "trained_by": trained_by, "opponents": list(opponents)}
-    with open(path, "w") as f:
-        json.dump(doc, f)
+    peg3d.save_policy(path, role="pursuer", observation=observation, layers=layers, action_bound=bound,
+                      input_mean=stats.mean, input_std=stats.std, action_std=log_std.detach().exp().double().numpy(),
+                      play=play, trained_by=trained_by, opponents=list(opponents))
 
 
 def load_policy(path, actor, stats):
@@ -97,17 +96,18 @@ def load_policy(path, actor, stats):
 
 class Games:
     """One vector env per map and evader policy, the games split among them, seen as one batch of pursuer arrays
-    (games x pursuers x ...). Pursuers see no neighbours: an MLP the C++ side plays gets none in its view."""
+    (games x pursuers x ...). A pursuer sees `neighbours` slots of the nearest other evaders and of its teammates
+    (docs/python.md); the C++ side feeds a saved network the same."""
 
-    def __init__(self, opponents, maps, num_envs, seed, **kw):
+    def __init__(self, opponents, maps, num_envs, seed, neighbours=0, **kw):
         self.opponents = list(opponents)
         pairs = [(m, o) for m in maps for o in opponents]
         k = len(pairs)
         if num_envs < k:
             raise SystemExit(f"--num-envs {num_envs}: at least one game per map and opponent ({k})")
         self.sizes = [num_envs // k + (i < num_envs % k) for i in range(k)]
-        self.envs = [peg3d.vector_env(map=m, num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=0, **kw)
-                     for i, (n, (m, o)) in enumerate(zip(self.sizes, pairs))]
+        self.envs = [peg3d.vector_env(map=m, num_envs=n, opponents={"evader": o}, seed=seed + i, neighbours=neighbours,
+                                      **kw) for i, (n, (m, o)) in enumerate(zip(self.sizes, pairs))]
         e = self.envs[0]
         shapes = {(v.single_observation_space["pursuer"].shape, v.single_state_space.shape) for v in self.envs}
         if len(shapes) > 1:
@@ -116,6 +116,8 @@ class Games:
         self.obs_size = e.single_observation_space["pursuer"].shape[-1]
         self.state_size = e.single_state_space.shape[0]
         self.bound = float(e.single_action_space["pursuer"].high[0, 0])
+        # What a pursuer's network reads, as the saved file records it (every pursuer's is the first's here).
+        self.observation = e.observation_segments["pursuer_0"]
 
     def reset(self, seed):
         obs = [e.reset(seed=seed + i)[0]["pursuer"] for i, e in enumerate(self.envs)]
@@ -160,6 +162,8 @@ def add_training_arguments(ap, map, steps, threads, out):
                     help="the exploration's initial standard deviation, as a fraction of the steering bound")
     ap.add_argument("--critic-warmup", type=int, default=0,
                     help="updates that train the critic alone before the actor moves (for --init's new critic)")
+    ap.add_argument("--neighbours", type=int, default=0,
+                    help="slots of the nearest other evaders and of the teammates in each pursuer's observation")
     ap.add_argument("--play", choices=["mean", "sample"], default="mean",
                     help="how the C++ side plays the saved network: its mean action, or drawn from its Gaussian")
     ap.add_argument("--out", default=out)
@@ -168,7 +172,8 @@ def add_training_arguments(ap, map, steps, threads, out):
 
 def make_games(args):
     return Games(args.opponent or ["flee"], args.map or [args.default_map], args.num_envs, args.seed,
-                 threads=args.threads, scenario=args.scenario, set=dict(s.split("=", 1) for s in args.set))
+                 neighbours=args.neighbours, threads=args.threads, scenario=args.scenario,
+                 set=dict(s.split("=", 1) for s in args.set))
 
 
 def main():
@@ -247,7 +252,7 @@ def main():
             print(json.dumps({"steps": done_steps, "updates": update, "episodes": episodes, "capture_rate": rate,
                               "seconds": round(time.time() - start, 1)}), flush=True)
             episodes = captures = 0
-    save_policy(args.out, actor, stats, bound, env.opponents, log_std, args.play)
+    save_policy(args.out, actor, stats, bound, env.observation, env.opponents, log_std, args.play)
     print(json.dumps({"saved": args.out, "seconds": round(time.time() - start, 1)}))
 
 

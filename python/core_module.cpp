@@ -237,6 +237,19 @@ PYBIND11_MODULE(_core, m) {
         }
         return out;
       })
+      .def("agent_commands", [](const env::Batch& b, int g) {
+        // Every agent's steering command of game g's last step (rad, d_alpha and d_theta), whoever gave it: the
+        // caller's actions as stepped, or what a C++ player chose; zeros before the first step of an episode.
+        if (g < 0 || g >= b.games()) throw py::index_error("no such game");
+        const game::SimState& st = b.state(g);
+        py::array_t<double> out({py::ssize_t(st.agent_count()), py::ssize_t(2)});
+        auto o = out.mutable_unchecked<2>();
+        for (int i = 0; i < st.agent_count(); ++i) {
+          const Steering u = st.step > 0 ? st.events.agents[std::size_t(i)].command : Steering{};
+          o(i, 0) = u.d_alpha, o(i, 1) = u.d_theta;
+        }
+        return out;
+      })
       .def("agent_states", [](const env::Batch& b, int g) {
         // Every agent's x, y, z, alpha, theta in double precision (what trajectory hashes cover), a copy.
         if (g < 0 || g >= b.games()) throw py::index_error("no such game");
