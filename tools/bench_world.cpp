@@ -27,6 +27,11 @@
 //                                   counter free_cells_per_ray
 //   BM_MapNearest/<cap_m>           the nearest occupied cell of that map (all 2000 scans in) from the walk's points,
 //                                   within cap_m
+//   BM_CameraImage/<map>/<range_m>/<by_ray>  one 64 x 48 depth image (sense::DepthCamera, 90 deg wide: 3 072
+//                                   coherent rays) from each point of the walk of BM_StaticScan/<map>, along its first
+//                                   ray, the movers where they are at the image's instant (quarry: 640), as the game
+//                                   casts it (sense::cast_image; by_ray 1: ray by ray as the lidar, sense::cast_all);
+//                                   items_per_second is images per second, counter s_per_ray (65n: 65 ns)
 // Run: build/bin/peg-bench-world [--benchmark_filter=...]
 
 #include <map>
@@ -46,6 +51,8 @@
 #include "world/map/map_spec.hpp"
 #include "world/bodies/mover_timeline.hpp"
 #include "world/moving_field.hpp"
+#include "sense/depth_camera.hpp"
+#include "sense/image_cast.hpp"
 #include "sense/line_of_sight.hpp"
 #include "sense/static_ray_scene.hpp"
 #include "sense/world_rays.hpp"
@@ -441,6 +448,48 @@ void BM_MapNearest(benchmark::State& state) {
   state.counters["occupied_cells"] = double(map.occupied_cells());
 }
 BENCHMARK(BM_MapNearest)->Arg(2)->Arg(5)->Arg(10)->Unit(benchmark::kMicrosecond);
+
+// BM_CameraImage/<map>/<range_m>/<by_ray>: a 64 x 48 image from each scan origin of the walk, the scan's heading, at
+// the scan's instant (0.1 s apart).
+void BM_CameraImage(benchmark::State& state) {
+  const auto arena = scan_arena(static_cast<int>(state.range(0)));
+  const sense::StaticRayScene scene(*arena);
+  const auto timeline = arena->movers_until(200.0);
+  if (timeline) timeline->nearest(arena->bounds().lo, 199.9, 1.0);  // every block simulated before timing
+  sense::DepthCameraConfig config;
+  config.width = 64, config.height = 48, config.range = double(state.range(1));
+  const sense::DepthCamera camera(config);
+  const std::vector<Ray> walk = walk_scans(*arena);
+  std::vector<Ray> rays(std::size_t(camera.pixels()));
+  std::vector<sense::RayHit> hits(rays.size());
+  sense::ImageCastScratch scratch;
+  long images = 0, met = 0;
+  for (auto _ : state) {
+    const std::size_t s = std::size_t(images % kScans);
+    const Ray& look = walk[s * kRays];  // the scan's first ray: its origin, and a heading near the scan's
+    const Heading heading = heading_of(look.direction);
+    camera.rays_at(look.origin, heading, rays);
+    const sense::Pinhole pinhole = camera.pinhole_at(heading);
+    sense::WorldAtInstant w;
+    w.scene = &scene, w.movers = timeline.get(), w.time = 0.1 * static_cast<double>(s);
+    if (state.range(2) != 0) {
+      sense::cast_all(w, rays, config.range, -1, hits);
+    } else {
+      sense::cast_image(w, rays, config.width, &pinhole, config.range, -1, hits, scratch);
+    }
+    benchmark::DoNotOptimize(hits.data());
+    if (images < kScans) {
+      for (const auto& h : hits) met += h.target != sense::RayTarget::kNone;
+    }
+    ++images;
+  }
+  state.SetItemsProcessed(images);
+  // Seconds a ray (printed with an SI prefix: 65n is 65 ns).
+  state.counters["s_per_ray"] = benchmark::Counter(double(images) * double(rays.size()),
+                                                   benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["share_hit"] = double(met) / double(std::min<long>(images, kScans) * long(rays.size()));
+}
+BENCHMARK(BM_CameraImage)->ArgsProduct({{1, 2}, {10, 20}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 void BM_StaticScan(benchmark::State& state) { scan_benchmark(state, false); }
 void BM_WorldScan(benchmark::State& state) { scan_benchmark(state, true); }

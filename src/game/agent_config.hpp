@@ -97,8 +97,7 @@ void visit_fields(V& v, C& c) {
   v.number("pn_gain", c.pn_gain, Range::positive(), "", "proportional-navigation constant N");
   v.embed(c.sensors);
   v.section("map", c.map, "the agent's occupancy map from its own scans (sense/scan_map.hpp); none by default");
-  v.require(!c.map.enabled || sense::feeds_map(c.sensors), "map.enabled", "true",
-            "needs a sensor that feeds it (a lidar: lidar.azimuth_rays > 0)");
+  v.require(!c.map.enabled || sense::feeds_map(c.sensors), "map.enabled", "true", sense::kMapFeeders);
   v.require(c.observation.obstacles != ObstacleSource::kOwnMap || c.map.enabled, "observation.obstacles", "own-map",
             "needs map.enabled");
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,

@@ -91,7 +91,8 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     // Fields that older versions predate, as those agents played: version 1 without guard.faces, versions
     // 1 and 2 without guard.look_ahead, versions 1 to 3 without observation.opponent_heading, versions 1 to
     // 4 without action, versions 1 to 5 without lidar, map and observation.obstacles, version 6 without
-    // map.insert_agents (its maps held the agents' echoes), versions 1 to 7 without sight (full information).
+    // map.insert_agents (its maps held the agents' echoes), versions 1 to 7 without sight (full information),
+    // versions 1 to 8 without camera.
     if (image.is_object() && image.contains("guard") && image["guard"].is_object()) {
       nlohmann::json& guard = image["guard"];
       if (version.get<long long>() < 2 && !guard.contains("faces")) guard["faces"] = false;
@@ -119,6 +120,9 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     }
     if (image.is_object() && version.get<long long>() < 8 && !image.contains("sight")) {
       image["sight"] = config::to_json(sense::SightConfig{});
+    }
+    if (image.is_object() && version.get<long long>() < 9 && !image.contains("camera")) {
+      image["camera"] = config::to_json(sense::DepthCameraConfig{});
     }
     config::from_json(image, config, {{}, /*complete=*/true, {}});
     config::validate(config);

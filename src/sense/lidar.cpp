@@ -4,7 +4,8 @@
 #include <cassert>
 #include <cmath>
 
-#include "core/base64.hpp"
+#include "sense/range_reading.hpp"
+
 
 namespace peg3d::sense {
 
@@ -23,41 +24,17 @@ Lidar::Lidar(const LidarConfig& config) : config_(config) {
 
 void Lidar::rays_at(const Vec3& origin, const Heading& h, std::span<Ray> out) const {
   assert(out.size() == frame_.size());
-  // The sensor's frame in the world: x the heading, y level and to its left, z = x cross y.
-  const Vec3 x = direction(h);
-  const Vec3 y(-std::sin(h.alpha), std::cos(h.alpha), 0.0);
-  const Vec3 z = x.cross(y);
+  const SensorFrame frame(h);
   for (std::size_t k = 0; k < frame_.size(); ++k) {
-    const Vec3& f = frame_[k];
     out[k].origin = origin;
-    out[k].direction = (f.x() * x + f.y() * y + f.z() * z).normalized();
+    out[k].direction = frame.to_world(frame_[k]).normalized();
   }
 }
 
-namespace {
-
-// A scan's rays and what they met, exactly (before noise and dropout): what map_points reads back.
-struct LidarScratch final : SensorScratch {
-  std::vector<Ray> rays;
-  std::vector<RayHit> hits;
-};
-
-template <class T>
-std::string encoded(const std::vector<T>& values) {
-  return base64(values.data(), values.size() * sizeof(T));
-}
-
-}  // namespace
-
-std::unique_ptr<SensorScratch> Lidar::make_scratch() const {
-  auto s = std::make_unique<LidarScratch>();
-  s->rays.resize(frame_.size());
-  s->hits.resize(frame_.size());
-  return s;
-}
+std::unique_ptr<SensorScratch> Lidar::make_scratch() const { return std::make_unique<RayScratch>(frame_.size()); }
 
 void Lidar::scan(const ScanContext& context, Rng& rng, ReadingOut out, SensorScratch* scratch) const {
-  auto& s = static_cast<LidarScratch&>(*scratch);
+  auto& s = static_cast<RayScratch&>(*scratch);
   rays_at(context.eye, context.heading, s.rays);
   WorldAtInstant world = context.world;
   if (!config_.sees_agents) world.balls = {};
@@ -67,13 +44,7 @@ void Lidar::scan(const ScanContext& context, Rng& rng, ReadingOut out, SensorScr
 
 std::size_t Lidar::map_points(const Reading& reading, const SensorScratch* scratch, bool skip_agents, double beyond,
                               std::span<Vec3> points) const {
-  const auto& s = static_cast<const LidarScratch&>(*scratch);
-  std::size_t n = 0;
-  for (std::size_t k = 0; k < s.rays.size(); ++k) {
-    if (skip_agents && s.hits[k].target == RayTarget::kBall) continue;
-    points[n++] = s.rays[k].origin + (reading.echo[k] != 0 ? reading.values[k] : beyond) * s.rays[k].direction;
-  }
-  return n;
+  return ray_points(static_cast<const RayScratch&>(*scratch), reading, {}, skip_agents, beyond, points);
 }
 
 void Lidar::segments(const SegmentContext&, std::vector<Segment>& out) const {
@@ -90,32 +61,21 @@ void Lidar::observe(const Reading& reading, const ObserveContext&, std::span<flo
 }
 
 nlohmann::json Lidar::replay(const RecordedReadings& r) const {
-  std::vector<float> frame, ranges(r.values.begin(), r.values.end());
-  const std::vector<std::uint8_t> echoes(r.echo.begin(), r.echo.end());
-  std::vector<std::uint32_t> scan_frames;
+  std::vector<float> frame;
   for (const Vec3& f : frame_) {
     for (int k = 0; k < 3; ++k) frame.push_back(float(f[k]));
   }
-  for (const int f : r.scan_frames) scan_frames.push_back(std::uint32_t(std::max(0, f)));
-  return {{"rays", rays()}, {"range", config_.range}, {"frame_f32", encoded(frame)}, {"ranges_f32", encoded(ranges)},
-          {"echo_u8", encoded(echoes)}, {"scan_frame_u32", encoded(scan_frames)}};
+  return {{"rays", rays()},
+          {"range", config_.range},
+          {"frame_f32", encoded_f32(frame)},
+          {"ranges_f32", encoded_f32(r.values)},
+          {"echo_u8", encoded_u8(r.echo)},
+          {"scan_frame_u32", encoded_frames(r.scan_frames)}};
 }
 
 void read_out(const LidarConfig& config, std::span<const RayHit> hits, Rng& rng, std::span<double> ranges,
               std::span<std::uint8_t> echo) {
-  assert(hits.size() == ranges.size() && hits.size() == echo.size());
-  for (std::size_t k = 0; k < hits.size(); ++k) {
-    const bool dropped = config.dropout > 0.0 && unit_uniform(rng) < config.dropout;
-    echo[k] = hits[k].target != RayTarget::kNone && !dropped;
-    double r = echo[k] != 0 ? hits[k].distance : config.range;
-    if (echo[k] != 0 && config.noise > 0.0) {
-      // Box-Muller from two portable uniforms (std::normal_distribution differs between standard libraries).
-      const double u1 = 1.0 - unit_uniform(rng), u2 = unit_uniform(rng);
-      r += config.noise * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-      r = std::clamp(r, 0.0, config.range);
-    }
-    ranges[k] = r;
-  }
+  read_echoes(hits, {}, {config.range, config.noise, config.dropout}, rng, ranges, echo);
 }
 
 }  // namespace peg3d::sense

@@ -104,10 +104,8 @@ class Lidar final : public Sensor {
   std::vector<Vec3> frame_;
 };
 
-/// A scan's readings after noise and dropout, from each ray's first hit: a ray that met a solid returns an echo
-/// unless it drops out, and reads the hit's distance plus noise, clamped to [0, range]; without an echo it reads
-/// the range. Draws from `rng` per ray, in ray order: one uniform for the dropout when dropout > 0, then two
-/// uniforms (Box-Muller) for the noise of an echo when noise > 0.
+/// A scan's readings after noise and dropout, from each ray's first hit: read_echoes (sense/range_reading.hpp) of
+/// the hits' distances with the lidar's range, noise and dropout.
 void read_out(const LidarConfig& config, std::span<const RayHit> hits, Rng& rng, std::span<double> ranges,
               std::span<std::uint8_t> echo);
 

@@ -63,7 +63,7 @@ template <class V, class C>
   requires std::same_as<std::remove_const_t<C>, ScanMapConfig>
 void visit_fields(V& v, C& c) {
   using config::Range;
-  v.flag("enabled", c.enabled, "the agent builds an occupancy map from its lidar's scans (needs lidar.azimuth_rays > 0)");
+  v.flag("enabled", c.enabled, "the agent builds an occupancy map from its range sensors' scans (a lidar's, a depth camera's)");
   v.number("resolution", c.resolution, Range::closed(0.02, 5.0), "m", "edge of a map cell");
   v.number("prob_hit", c.prob_hit, Range{0.5, 1.0, true, true}, "", "occupancy probability an endpoint gives its cell");
   v.number("prob_miss", c.prob_miss, Range{0.0, 0.5, true, true}, "", "occupancy probability a ray gives a cell it crosses");

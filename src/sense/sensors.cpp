@@ -6,6 +6,7 @@ std::vector<std::unique_ptr<const Sensor>> make_sensors(const SensorSettings& s)
   std::vector<std::unique_ptr<const Sensor>> out;
   if (s.sight.enabled) out.push_back(std::make_unique<SightSensor>(s.sight));
   if (s.lidar.enabled()) out.push_back(std::make_unique<Lidar>(s.lidar));
+  if (s.camera.enabled()) out.push_back(std::make_unique<DepthCamera>(s.camera));
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/config_fields.hpp"
+#include "sense/depth_camera.hpp"
 #include "sense/lidar.hpp"
 #include "sense/sensor.hpp"
 #include "sense/sight.hpp"
@@ -20,6 +21,7 @@ namespace peg3d::sense {
 struct SensorSettings {
   SightConfig sight;  ///< opponents seen only in line of sight (off by default: full information)
   LidarConfig lidar;  ///< a range sensor (none by default)
+  DepthCameraConfig camera;  ///< a depth camera (none by default)
   bool operator==(const SensorSettings&) const = default;
 };
 
@@ -28,13 +30,17 @@ template <class V, class C>
 void visit_fields(V& v, C& c) {
   v.section("sight", c.sight, "opponents seen only in line of sight (docs/sight.md); off by default");
   v.section("lidar", c.lidar, "the agent's range sensor (sense/lidar.hpp); none by default");
+  v.section("camera", c.camera, "the agent's depth camera (sense/depth_camera.hpp); none by default");
 }
 
 /// The sensors `settings` turn on, in the order an agent carries them and its observation lists their segments:
-/// sight, then the lidar.
+/// sight, the lidar, then the depth camera.
 std::vector<std::unique_ptr<const Sensor>> make_sensors(const SensorSettings& settings);
 
 /// Whether some sensor of `settings` feeds its holder's own map (map_range() > 0).
 bool feeds_map(const SensorSettings& settings);
+/// What a configuration turns on for feeds_map() to hold, as messages say it.
+inline constexpr const char* kMapFeeders =
+    "needs a sensor whose scans feed it: a lidar (lidar.azimuth_rays > 0) or a depth camera (camera.width > 0)";
 
 }  // namespace peg3d::sense

@@ -2,17 +2,21 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
+#include "geometry/box_index.hpp"
+
 namespace peg3d::sense {
 namespace {
 
 // The arena's face the ray leaves through, when the map makes it an obstacle and it lies within range.
-RayHit face_hit(const world::MapSpec& map, const Ray& ray, double range) {
+RayHit arena_face_hit(const world::MapSpec& map, const Ray& ray, double range) {
   const BoxExit exit = ray_box_exit(ray, map.bounds.lo, map.bounds.hi);
   const bool obstacle = exit.face == 4 ? map.floor_is_obstacle : exit.face == 5 ? map.ceiling_is_obstacle : map.walls_is_obstacle;
   if (!obstacle || exit.distance > range) return {range, RayTarget::kNone, -1};
@@ -82,12 +86,21 @@ void cylinder_intersect(const RTCIntersectFunctionNArguments* args) {
 
 }  // namespace
 
+// Ray masks: a triangle geometry answers rays of mask kTriangleMask, the user geometry those of kShapeMask; cast()
+// asks both.
+constexpr unsigned kTriangleMask = 1u, kShapeMask = 2u;
+
 struct StaticRayScene::Impl {
   const world::Arena& arena;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   unsigned spheres_id = RTC_INVALID_GEOMETRY_ID, cylinders_id = RTC_INVALID_GEOMETRY_ID;
   std::vector<unsigned> mesh_of_geometry;  // geometry ID -> mesh index (triangle geometries), else -1
+  bool triangles = false;
+  bool masks = false;  // the device honours ray masks (Debian's Embree does): cast_triangles can leave shapes out
+  // The spheres' and cylinders' bounds (spheres first), when there are few enough to index.
+  std::vector<ShapeRef> shape_of_box;
+  BoxIndex shapes;
 
   explicit Impl(const world::Arena& a) : arena(a) {
     // One thread: the scene is built when the Arena's user asks for it, never beside the runs' threads.
@@ -111,11 +124,13 @@ struct StaticRayScene::Impl {
       for (std::size_t i = 0; i < mesh.faces.size(); ++i) {
         for (int k = 0; k < 3; ++k) f[3 * i + std::size_t(k)] = static_cast<unsigned>(mesh.faces[i][std::size_t(k)]);
       }
+      rtcSetGeometryMask(g, kTriangleMask);
       rtcCommitGeometry(g);
       const unsigned id = rtcAttachGeometry(scene, g);
       rtcReleaseGeometry(g);
       if (mesh_of_geometry.size() <= id) mesh_of_geometry.resize(id + 1, ~0u);
       mesh_of_geometry[id] = static_cast<unsigned>(m);
+      triangles = true;
     }
     const auto user = [&](unsigned count, const void* data, RTCBoundsFunction bounds, RTCIntersectFunctionN hit) {
       RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
@@ -123,6 +138,7 @@ struct StaticRayScene::Impl {
       rtcSetGeometryUserData(g, const_cast<void*>(data));
       rtcSetGeometryBoundsFunction(g, bounds, nullptr);
       rtcSetGeometryIntersectFunction(g, hit);
+      rtcSetGeometryMask(g, kShapeMask);
       rtcCommitGeometry(g);
       const unsigned id = rtcAttachGeometry(scene, g);
       rtcReleaseGeometry(g);
@@ -134,6 +150,21 @@ struct StaticRayScene::Impl {
     }
     rtcCommitScene(scene);
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the static scene failed");
+    masks = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
+    if (map.spheres.size() + map.cylinders.size() <= BoxIndex::kMaxBoxes) {
+      std::vector<Box> boxes;
+      for (std::size_t i = 0; i < map.spheres.size(); ++i) {
+        const auto& o = map.spheres[i];
+        boxes.push_back({o.center - Vec3::Constant(o.radius), o.center + Vec3::Constant(o.radius)});
+        shape_of_box.push_back({RayTarget::kSphere, int(i)});
+      }
+      for (std::size_t i = 0; i < map.cylinders.size(); ++i) {
+        const auto& c = map.cylinders[i];
+        boxes.push_back({c.base - Vec3(c.radius, c.radius, 0), c.base + Vec3(c.radius, c.radius, c.height)});
+        shape_of_box.push_back({RayTarget::kCylinder, int(i)});
+      }
+      if (!boxes.empty()) shapes = BoxIndex(boxes);
+    }
   }
 
   ~Impl() {
@@ -153,27 +184,102 @@ struct StaticRayScene::Impl {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &ctx.embree, &rh);
-    RayHit best = face_hit(arena.map(), ray, range);
+    RayHit best = arena_face_hit(arena.map(), ray, range);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return best;
     RayHit solid;
     if (rh.hit.geomID == spheres_id || rh.hit.geomID == cylinders_id) {
       solid = {ctx.exact, rh.hit.geomID == spheres_id ? RayTarget::kSphere : RayTarget::kCylinder, int(rh.hit.primID)};
     } else {
-      // The triangle again in double precision, from the ray as given; float may have seen it across an edge
-      // that double does not, and then its float distance stands.
-      const unsigned m = mesh_of_geometry[rh.hit.geomID];
-      const world::TriangleMesh& mesh = arena.meshes()[m];
-      const auto& f = mesh.faces[rh.hit.primID];
-      const auto t = ray_triangle(ray, mesh.vertices[std::size_t(f[0])], mesh.vertices[std::size_t(f[1])],
-                                  mesh.vertices[std::size_t(f[2])], std::numeric_limits<double>::infinity());
-      solid = {t ? *t : double(rh.ray.tfar), RayTarget::kTriangle, int(m)};
+      solid = exact_triangle(ray, rh.hit.geomID, rh.hit.primID, rh.ray.tfar);
     }
     if (solid.distance > range) return best;
     return nearer(best, solid);
   }
+
+  // The triangle Embree chose again in double precision, from the ray as given; float may have seen it across an
+  // edge that double does not, and then its float distance stands.
+  RayHit exact_triangle(const Ray& ray, unsigned geometry, unsigned primitive, float float_distance) const {
+    const unsigned m = mesh_of_geometry[geometry];
+    const world::TriangleMesh& mesh = arena.meshes()[m];
+    const auto& f = mesh.faces[primitive];
+    const auto t = ray_triangle(ray, mesh.vertices[std::size_t(f[0])], mesh.vertices[std::size_t(f[1])],
+                                mesh.vertices[std::size_t(f[2])], std::numeric_limits<double>::infinity());
+    return {t ? *t : double(float_distance), RayTarget::kTriangle, int(m)};
+  }
+
+  // The triangles alone, eight rays at a time (their origins may differ; each lane is its own ray).
+  void cast_triangles(std::span<const Ray> rays, double range, std::span<RayHit> hits) const {
+    constexpr std::size_t kLanes = 8;
+    for (std::size_t from = 0; from < rays.size(); from += kLanes) {
+      const std::size_t n = std::min(kLanes, rays.size() - from);
+      alignas(32) int valid[kLanes];
+      alignas(32) RTCRayHit8 rh;
+      for (std::size_t k = 0; k < kLanes; ++k) {
+        const bool on = k < n;
+        valid[k] = on ? -1 : 0;
+        const Ray& ray = rays[from + (on ? k : 0)];
+        rh.ray.org_x[k] = float(ray.origin.x()), rh.ray.org_y[k] = float(ray.origin.y()), rh.ray.org_z[k] = float(ray.origin.z());
+        rh.ray.dir_x[k] = float(ray.direction.x()), rh.ray.dir_y[k] = float(ray.direction.y()),
+        rh.ray.dir_z[k] = float(ray.direction.z());
+        rh.ray.tnear[k] = 0.0f;
+        rh.ray.tfar[k] = float(range);
+        rh.ray.mask[k] = kTriangleMask;
+        rh.ray.time[k] = 0.0f;
+        rh.ray.id[k] = unsigned(k);
+        rh.ray.flags[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcIntersect8(valid, scene, &context, &rh);
+      for (std::size_t k = 0; k < n; ++k) {
+        RayHit& out = hits[from + k];
+        out = {range, RayTarget::kNone, -1};
+        if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+        const RayHit t = exact_triangle(rays[from + k], rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k]);
+        if (t.distance <= range) out = t;
+      }
+    }
+  }
 };
 
 StaticRayScene::StaticRayScene(const world::Arena& arena) : impl_(std::make_unique<Impl>(arena)) {}
+
+const world::Arena& StaticRayScene::arena() const { return impl_->arena; }
+
+RayHit StaticRayScene::face_hit(const Ray& ray, double range) const { return arena_face_hit(impl_->arena.map(), ray, range); }
+
+bool StaticRayScene::has_triangles() const { return impl_->triangles; }
+
+bool StaticRayScene::casts_triangles_alone() const { return impl_->masks; }
+
+void StaticRayScene::cast_triangles(std::span<const Ray> rays, double range, std::span<RayHit> hits) const {
+  assert(impl_->masks || !impl_->triangles);
+  if (!impl_->triangles) {
+    for (RayHit& h : hits) h = {range, RayTarget::kNone, -1};
+    return;
+  }
+  impl_->cast_triangles(rays, range, hits);
+}
+
+void StaticRayScene::shapes_overlapping(const Box& box, std::vector<ShapeRef>& out) const {
+  out.clear();
+  const world::MapSpec& map = impl_->arena.map();
+  if (impl_->shape_of_box.empty() && map.spheres.size() + map.cylinders.size() > 0) {
+    // Too many to index: every one of them.
+    for (std::size_t i = 0; i < map.spheres.size(); ++i) out.push_back({RayTarget::kSphere, int(i)});
+    for (std::size_t i = 0; i < map.cylinders.size(); ++i) out.push_back({RayTarget::kCylinder, int(i)});
+    return;
+  }
+  if (impl_->shape_of_box.empty()) return;
+  impl_->shapes.overlapping(box, [&](auto b) { out.push_back(impl_->shape_of_box[std::size_t(b)]); });
+  std::sort(out.begin(), out.end(), [](const ShapeRef& a, const ShapeRef& b) {
+    return a.kind != b.kind ? a.kind == RayTarget::kSphere : a.index < b.index;
+  });
+}
 StaticRayScene::~StaticRayScene() = default;
 
 RayHit StaticRayScene::cast(const Ray& ray, double range) const { return impl_->cast(ray, range); }
@@ -184,7 +290,7 @@ void StaticRayScene::cast(std::span<const Ray> rays, double range, std::span<Ray
 
 RayHit cast_every_solid(const world::Arena& arena, const Ray& ray, double range) {
   const world::MapSpec& map = arena.map();
-  RayHit best = face_hit(map, ray, range);
+  RayHit best = arena_face_hit(map, ray, range);
   const auto consider = [&](std::optional<double> t, RayTarget target, int index) {
     if (t && *t <= range && (best.target == RayTarget::kNone || *t < best.distance)) best = {*t, target, index};
   };

@@ -12,6 +12,7 @@
 
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "geometry/ray.hpp"
 #include "world/arena.hpp"
@@ -41,6 +42,31 @@ class StaticRayScene {
   RayHit cast(const Ray& ray, double range) const;
   /// cast() for each ray, into `hits` (the same length).
   void cast(std::span<const Ray> rays, double range, std::span<RayHit> hits) const;
+
+  // The parts cast() combines, for casters that find some solids their own way (sense/image_cast.hpp): cast()'s
+  // answer is the face_hit() unless the solid the triangles and the shapes give is strictly nearer, that solid the
+  // nearer of cast_triangles()'s and the shapes' (ray_sphere, ray_upright_cylinder within range; spheres before
+  // cylinders, lower indices first among equally near ones).
+
+  const world::Arena& arena() const;
+  /// Where the ray leaves the arena through a face the map makes an obstacle, within `range`; kNone otherwise.
+  RayHit face_hit(const Ray& ray, double range) const;
+  /// Whether the terrain has any triangle.
+  bool has_triangles() const;
+  /// Whether cast_triangles() may be called: Embree honours ray masks, so that the triangles are cast alone.
+  bool casts_triangles_alone() const;
+  /// The first terrain triangle along each ray within `range` (kNone beyond), as cast() finds it among the
+  /// triangles alone (Embree in float, the chosen triangle's distance again in double); rays that share their
+  /// origin go through Embree eight at a time.
+  void cast_triangles(std::span<const Ray> rays, double range, std::span<RayHit> hits) const;
+  /// A static sphere or cylinder of the map (RayTarget::kSphere or kCylinder, and its index there).
+  struct ShapeRef {
+    RayTarget kind = RayTarget::kSphere;
+    int index = 0;
+  };
+  /// Writes to `out` (cleared first) the spheres and cylinders whose bounds meet `box`, spheres first, each kind by
+  /// index. No allocation once `out` has held as many.
+  void shapes_overlapping(const Box& box, std::vector<ShapeRef>& out) const;
 
  private:
   struct Impl;

@@ -47,6 +47,11 @@ void cast_movers(const world::MoverTimeline& movers, double t, std::span<const R
 void cast_all(const WorldAtInstant& w, std::span<const Ray> rays, double range, int skip, std::span<RayHit> hits) {
   w.scene->cast(rays, range, hits);
   if (w.movers != nullptr && w.movers->count() > 0) cast_movers(*w.movers, w.time, rays, hits);
+  cast_bodies_and_balls(w, rays, skip, hits);
+}
+
+void cast_bodies_and_balls(const WorldAtInstant& w, std::span<const Ray> rays, int skip, std::span<RayHit> hits) {
+  if (w.push == nullptr && w.balls.empty()) return;
   for (std::size_t k = 0; k < rays.size(); ++k) {
     const Ray& ray = rays[k];
     RayHit& hit = hits[k];

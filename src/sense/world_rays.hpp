@@ -37,4 +37,8 @@ struct WorldAtInstant {
 /// the lower index within one. No allocation.
 void cast_all(const WorldAtInstant& world, std::span<const Ray> rays, double range, int skip, std::span<RayHit> hits);
 
+/// cast_all's last part: the push world's dynamic bodies, then the balls but `skip`, each only where strictly nearer
+/// than what `hits` holds (the static solids' and the movers' answer). No allocation.
+void cast_bodies_and_balls(const WorldAtInstant& world, std::span<const Ray> rays, int skip, std::span<RayHit> hits);
+
 }  // namespace peg3d::sense

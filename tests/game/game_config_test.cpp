@@ -56,9 +56,9 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  // 63 per agent (11 of its lidar, 9 of its map, 6 of its sight), 7 game and 4 team fields (training is the
-  // experiments': experiment::TrialConfig)
-  EXPECT_EQ(leaves, 2 * 63 + 11);
+  // 73 per agent (11 of its lidar, 10 of its camera, 9 of its map, 6 of its sight), 7 game and 4 team fields
+  // (training is the experiments': experiment::TrialConfig)
+  EXPECT_EQ(leaves, 2 * 73 + 11);
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
@@ -71,6 +71,10 @@ TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {
   EXPECT_EQ(config::table_field_count<ObservationConfig>(), static_cast<int>(config::member_count<ObservationConfig>()));
   EXPECT_EQ(config::table_field_count<RewardConfig>(), static_cast<int>(config::member_count<RewardConfig>()));
   EXPECT_EQ(config::table_field_count<sense::LidarConfig>(), static_cast<int>(config::member_count<sense::LidarConfig>()));
+  EXPECT_EQ(config::table_field_count<sense::DepthCameraConfig>(),
+            static_cast<int>(config::member_count<sense::DepthCameraConfig>()));
+  EXPECT_EQ(config::table_field_count<sense::SensorSettings>(),
+            static_cast<int>(config::member_count<sense::SensorSettings>()));
   EXPECT_EQ(config::table_field_count<sense::ScanMapConfig>(), static_cast<int>(config::member_count<sense::ScanMapConfig>()));
   EXPECT_EQ(config::table_field_count<ObstacleGuard>(), static_cast<int>(config::member_count<ObstacleGuard>()));
   EXPECT_EQ(config::table_field_count<SteeringConfig>(), static_cast<int>(config::member_count<SteeringConfig>()));

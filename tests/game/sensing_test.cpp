@@ -1,7 +1,7 @@
 // Range sensors in the game (game/sensing.hpp, SimState::sensing): readings against analytic distances, and against
-// testing every solid, mover, pushed body and agent at the instant of each scan over whole games; scans only when
-// their period comes; a lidar that only observes changes nothing of the game; the same readings for a seed on any
-// thread count (a golden hash).
+// testing every solid, mover, pushed body and agent at the instant of each scan over whole games, for the lidar and
+// the depth camera; scans only when their period comes; maps and observations fed from them; a lidar that only
+// observes changes nothing of the game; the same readings for a seed on any thread count (golden hashes).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,7 +13,9 @@
 #include "core/hash.hpp"
 #include "core/random.hpp"
 #include "game/episode.hpp"
+#include "game/observation.hpp"
 #include "game/sensing.hpp"
+#include "sense/depth_camera.hpp"
 #include "sense/lidar.hpp"
 #include "test_arena.hpp"
 #include "world/map/map_loader.hpp"
@@ -51,15 +53,13 @@ std::shared_ptr<const world::Arena> map_arena(const std::string& map) {
   return arena;
 }
 
-// What agent i's rays meet now, by testing every static solid, mover, pushed body and other agent.
-std::vector<sense::RayHit> reference(const Sim& sim, const SimState& st, int i) {
-  const AgentState& a = st.agents[std::size_t(i)];
-  const sense::Lidar& l = *lidar_of(sim, a.role, a.rank);
-  std::vector<Ray> rays(std::size_t(l.rays()));
-  l.rays_at(a.kinematics.position, a.kinematics.heading, rays);
+// What `rays` of agent i meet now within `range`, by testing every static solid, mover, pushed body and (when the
+// sensor sees them) other agent.
+std::vector<sense::RayHit> reference_hits(const Sim& sim, const SimState& st, int i, std::span<const Ray> rays,
+                                          double range, bool sees_agents) {
   std::vector<sense::RayHit> out;
   for (const Ray& ray : rays) {
-    sense::RayHit want = sense::cast_every_solid(sim.arena(), ray, l.config().range);
+    sense::RayHit want = sense::cast_every_solid(sim.arena(), ray, range);
     if (sim.movers() != nullptr) {
       const world::MoverHit m = sim.movers()->first_along_scan(ray, st.time, want.distance);
       if (m.mover >= 0 && m.distance < want.distance) want = {m.distance, sense::RayTarget::kMover, m.mover};
@@ -72,7 +72,7 @@ std::vector<sense::RayHit> reference(const Sim& sim, const SimState& st, int i) 
         if (d && *d < want.distance) want = {*d, sense::RayTarget::kMover, m};
       }
     }
-    for (int j = 0; j < st.agent_count() && l.config().sees_agents; ++j) {
+    for (int j = 0; j < st.agent_count() && sees_agents; ++j) {
       const AgentState& b = st.agents[std::size_t(j)];
       if (j == i || !b.active) continue;
       const auto d = ray_sphere(ray, b.kinematics.position, b.config->radius, want.distance);
@@ -81,6 +81,15 @@ std::vector<sense::RayHit> reference(const Sim& sim, const SimState& st, int i) 
     out.push_back(want);
   }
   return out;
+}
+
+// What agent i's lidar rays meet now.
+std::vector<sense::RayHit> reference(const Sim& sim, const SimState& st, int i) {
+  const AgentState& a = st.agents[std::size_t(i)];
+  const sense::Lidar& l = *lidar_of(sim, a.role, a.rank);
+  std::vector<Ray> rays(std::size_t(l.rays()));
+  l.rays_at(a.kinematics.position, a.kinematics.heading, rays);
+  return reference_hits(sim, st, i, rays, l.config().range, l.config().sees_agents);
 }
 
 // Agent i's readings equal the reference's (no noise, no dropout); returns how many rays returned an echo.
@@ -449,6 +458,142 @@ TEST(Scans, AnAgentOfItsOwnMapAvoidsOnlyWhatItHasSeen) {
   EXPECT_GT(collisions(true, 180.0), 0);
 }
 
+const sense::DepthCamera* camera_of(const Sim& sim, Role role, int rank) {
+  return dynamic_cast<const sense::DepthCamera*>(sim.sensor(role, rank, "camera"));
+}
+
+// Agent i's camera image equals what its pixels' rays meet by the reference, as depths along the optical axis;
+// returns how many pixels returned an echo and how many met a mover.
+std::pair<int, int> expect_image_matches(const Sim& sim, const SimState& st, int i) {
+  const AgentState& a = st.agents[std::size_t(i)];
+  const sense::DepthCamera& camera = *camera_of(sim, a.role, a.rank);
+  std::vector<Ray> rays(std::size_t(camera.pixels()));
+  camera.rays_at(a.kinematics.position, a.kinematics.heading, rays);
+  const auto want = reference_hits(sim, st, i, rays, camera.config().range, camera.config().sees_agents);
+  const sense::Reading& got = *st.reading(i, "camera");
+  EXPECT_EQ(got.values.size(), want.size());
+  int echoes = 0, on_movers = 0;
+  for (std::size_t k = 0; k < want.size(); ++k) {
+    const bool met = want[k].target != sense::RayTarget::kNone;
+    EXPECT_EQ(got.echo[k], met ? 1 : 0) << "step " << st.step << " agent " << i << " pixel " << k;
+    const double depth = met ? want[k].distance * rays[k].direction.dot(camera.pinhole_at(a.kinematics.heading).forward)
+                             : camera.config().range;
+    EXPECT_NEAR(got.values[k], depth, 1e-9) << "step " << st.step << " agent " << i << " pixel " << k;
+    echoes += met, on_movers += want[k].target == sense::RayTarget::kMover;
+  }
+  return {echoes, on_movers};
+}
+
+sense::DepthCameraConfig camera(int width, int height, double range) {
+  sense::DepthCameraConfig c;
+  c.width = width, c.height = height, c.range = range;
+  return c;
+}
+
+// Random steering for whole games of agents with cameras (the evader's every other step, looking up a little),
+// checking every image against the reference.
+void check_camera_game(const char* map, MoverDynamics dynamics, int steps, int min_on_movers, std::size_t scenarios) {
+  const auto arena = map_arena(map);
+  GameConfig c = preset("peg3d");
+  c.mover_dynamics = dynamics;
+  c.collision = CollisionMode::kPenalize;
+  c.pursuer.sensors.camera = camera(16, 12, 15.0);
+  c.evader.sensors.camera = camera(10, 6, 8.0);
+  c.evader.sensors.camera.period = 2;
+  c.evader.sensors.camera.hfov = 120.0;
+  c.evader.sensors.camera.mount_elevation = 20.0;
+  const Sim sim(arena, c);
+  SimState st(sim);
+  Rng rng(8);
+  int images = 0, echoes = 0, on_movers = 0;
+  const auto check = [&](int i) {
+    const auto [e, m] = expect_image_matches(sim, st, i);
+    ++images, echoes += e, on_movers += m;
+  };
+  const auto& all = arena->map().scenarios;
+  for (std::size_t k = 0; k < std::min(scenarios, all.size()); ++k) {
+    reset(sim, st, all[k], 2);
+    for (int i = 0; i < st.agent_count(); ++i) check(i);
+    std::vector<Steering> u(std::size_t(st.agent_count()));
+    for (int n = 0; n < steps && !st.done; ++n) {
+      for (Steering& s_ : u) s_ = {uniform(rng, -0.3, 0.3), uniform(rng, -0.2, 0.2)};
+      const StepEvents& ev = step(sim, st, u);
+      for (int i = 0; i < st.agent_count(); ++i) {
+        const int period = st.agents[std::size_t(i)].role == Role::kPursuer ? 1 : 2;
+        const bool due = ev.agents[std::size_t(i)].acted && st.step % period == 0;
+        EXPECT_EQ(st.reading(i, "camera")->step == st.step, due) << "step " << st.step << " agent " << i;
+        if (due) check(i);
+        if (::testing::Test::HasFailure()) return;
+      }
+    }
+  }
+  std::printf("%s: %d images checked, %d echoes, %d on movers\n", map, images, echoes, on_movers);
+  EXPECT_GT(images, 25);
+  EXPECT_GT(echoes, 1000);
+  EXPECT_GE(on_movers, min_on_movers);
+}
+
+TEST(Scans, CameraImagesEqualTestingEverySolidAndAgentOnForest) {
+  check_camera_game("maps/forest.yaml", MoverDynamics::kShared, 120, 0, 99);
+}
+
+TEST(Scans, CameraImagesEqualTestingEveryMoverAtTheInstantOfTheImageOnQuarry) {
+  check_camera_game("maps/quarry.yaml", MoverDynamics::kShared, 25, 50, 3);
+}
+
+TEST(Scans, CameraImagesSeeTheBodiesWhereThePushModeRunMovedThem) {
+  check_camera_game("maps/quarry.yaml", MoverDynamics::kPush, 20, 20, 1);
+}
+
+TEST(Scans, ACameraFeedsItsHoldersMapAndItsObservation) {
+  // The pursuer senses obstacles only through a map its camera builds; its observation holds its latest image.
+  const auto arena = map_arena("maps/forest.yaml");
+  GameConfig c = preset("peg3d");
+  c.pursuer.sensors.camera = camera(24, 16, 10.0);
+  c.pursuer.sensors.camera.noise = 0.02;
+  c.pursuer.map.enabled = true;
+  c.pursuer.observation.obstacles = ObstacleSource::kOwnMap;
+  const Sim sim(arena, c);
+  SimState st(sim);
+  reset(sim, st, arena->map().scenarios.front(), 3);
+  const sense::DepthCamera& cam = *camera_of(sim, Role::kPursuer, 0);
+  const ObservationTable table = observation_table(sim, Role::kPursuer, 0, 0);
+  const sense::Segment* image = table.find("camera.depth");
+  ASSERT_NE(image, nullptr);
+  EXPECT_EQ(image->shape, (std::vector<int>{16, 24}));
+  EXPECT_EQ(observation_table(sim, Role::kEvader, 0, 0).find("camera.depth"), nullptr);  // the evader has none
+  // A map of the pursuer's own, fed each image's points from its readings: each echo's depth back along its
+  // pixel's ray, beyond the range where there is none.
+  sense::ScanMap mine(c.pursuer.map, arena->bounds().lo, arena->bounds().hi);
+  std::vector<Ray> rays(std::size_t(cam.pixels()));
+  std::vector<Vec3> points(rays.size());
+  std::vector<float> observed(std::size_t(table.size()));
+  Rng rng(4);
+  std::vector<Steering> u(2);
+  int found = 0;
+  for (int k = 0; k < 150 && !st.done; ++k) {
+    const AgentState& a = st.agents[0];
+    const sense::Reading& r = *st.reading(0, "camera");
+    cam.rays_at(a.kinematics.position, a.kinematics.heading, rays);
+    for (std::size_t p = 0; p < rays.size(); ++p) {
+      const double t = r.echo[p] != 0 ? r.values[p] / cam.axis_cosine(int(p)) : 10.0 + 0.5;
+      points[p] = a.kinematics.position + t * rays[p].direction;
+    }
+    mine.insert(a.kinematics.position, points, 10.0);
+    ASSERT_EQ(st.map(0)->known_cells(), mine.known_cells()) << "step " << st.step;
+    ASSERT_EQ(st.map(0)->occupied_cells(), mine.occupied_cells()) << "step " << st.step;
+    found += observe(st, 0).field.found;
+    write_observation(sim, st, 0, table, observed);
+    for (int p = 0; p < image->size; ++p) {
+      ASSERT_EQ(observed[std::size_t(image->offset + p)], float(r.values[std::size_t(p)])) << "step " << st.step;
+    }
+    for (Steering& s_ : u) s_ = {uniform(rng, -0.3, 0.3), uniform(rng, -0.2, 0.2)};
+    step(sim, st, u);
+  }
+  EXPECT_GT(found, 20);  // the map held trunks the pursuer sensed
+  EXPECT_GT(mine.occupied_cells(), 50);
+}
+
 // `hash(seed)` run on 2 and 4 threads at once, each equal to `here`, the one-thread value.
 template <class Hash>
 void expect_same_on_threads(const Hash& hash, std::uint64_t here) {
@@ -523,6 +668,22 @@ TEST(Scans, ASensingGameIsTheSameOnAnyThreadCount) {
   EXPECT_NE(sensing_game_hash(sim, 6), here);  // the seed reaches the readings
   // The golden value: readings that move must be explained in the commit that updates it.
   EXPECT_EQ(here, 0xd57ba1315a801568ull) << std::hex << here;
+}
+
+TEST(Scans, ACameraGameIsTheSameOnAnyThreadCount) {
+  GameConfig c = preset("peg3d");
+  c.collision = CollisionMode::kPenalize;
+  c.pursuer.sensors.camera = camera(16, 12, 12.0);
+  c.pursuer.sensors.camera.noise = 0.03;
+  c.pursuer.sensors.camera.dropout = 0.1;
+  c.evader.sensors.camera = c.pursuer.sensors.camera;
+  c.evader.sensors.camera.period = 2;
+  const Sim sim(map_arena("maps/quarry.yaml"), c);
+  const std::uint64_t here = sensing_game_hash(sim, 5);
+  expect_same_on_threads([&] { return sensing_game_hash(sim, 5); }, here);
+  EXPECT_NE(sensing_game_hash(sim, 6), here);
+  // The golden value: readings that move must be explained in the commit that updates it.
+  EXPECT_EQ(here, 0x21ce0af910629534ull) << std::hex << here;
 }
 
 }  // namespace

@@ -211,25 +211,32 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"].erase("sight");
   expect_error(d, "config.sight");  // version 8 documents have it
+  d = doc;
+  d["config"].erase("camera");
+  expect_error(d, "config.camera");  // version 9 documents have it
 }
 
 TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
   // Version 1 predates guard.faces, guard.look_ahead, observation.opponent_heading, action and lidar, version 2
   // the look ahead, version 3 the opponent's heading, version 4 the action, version 5 the lidar, version 6
-  // map.insert_agents, version 7 sight; their agents played without them (actions as heading changes, no lidar,
-  // agents in maps, full information).
+  // map.insert_agents, version 7 sight, version 8 the camera; their agents played without them (actions as heading
+  // changes, no lidar, agents in maps, full information, no camera).
   AgentConfig offset = agent_preset("peg3d", Role::kEvader);
   offset.action = FaclAction::kTargetLineOffset;
   offset.sensors.lidar.azimuth_rays = 8;
   offset.sensors.sight.enabled = true;
   nlohmann::json saved = policy_to_json(FaclModel(offset, Role::kEvader));
-  EXPECT_EQ(saved["version"], 8);
+  EXPECT_EQ(saved["version"], 9);
   EXPECT_TRUE(policy_from_json(saved, "p.json", Role::kEvader)->config().sensors.sight.enabled);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().action, FaclAction::kTargetLineOffset);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().sensors.lidar, offset.sensors.lidar);
   EXPECT_FALSE(policy_from_json(saved, "p.json", Role::kEvader)->config().map.insert_agents);
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
+  // Version 8 agents had no camera.
+  doc["version"] = 8;
+  doc["config"].erase("camera");
+  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().sensors.camera, sense::DepthCameraConfig{});
   // Version 7 agents had full information.
   doc["version"] = 7;
   doc["config"].erase("sight");
