@@ -23,13 +23,13 @@
      pegView.render()    renders now
    plus, read-only: pegView.frame (current frame), pegView.time (its time, s), pegView.layers (the layer names
    with their visibility), pegView.timing (load timings, ms), pegView.sensing (the selected agent, its rays
-   drawn and its own map's cells shown). */
+   drawn, its own map's cells shown, and the image shown: its sensor, size and the frame it was taken at). */
 
 var scriptMs = performance.now();  // this script starts running
 var startMs = scriptMs;             // the replay starts loading (set in start())
 
 var LAYERS = ['obstacles', 'terrain', 'movers', 'agents', 'trails', 'capture', 'collisions', 'apollonius',
-  'cone', 'obstacle_vectors', 'sensing', 'sight', 'arena'];
+  'cone', 'obstacle_vectors', 'sensing', 'images', 'sight', 'arena'];
 var LAYER_LABELS = {
   obstacles: 'Obstacles (spheres, cylinders)',
   terrain: 'Terrain',
@@ -42,6 +42,7 @@ var LAYER_LABELS = {
   cone: 'Optimal cone',
   obstacle_vectors: 'Nearest-obstacle vectors',
   sensing: 'Selected agent\'s rays and own map',
+  images: 'Selected agent\'s images (depth camera)',
   sight: 'Lines of sight (seen / hidden), fields of view, last-seen ghosts',
   arena: 'Arena box'
 };

@@ -147,12 +147,13 @@ function Viewer(R) {
     },
     enumerable: true
   });
-  // The sensing layer as drawn now: the selected agent, its rays drawn and its map's cells shown.
+  // The sensing layers as drawn now: the selected agent, its rays drawn, its map's cells shown and its image shown
+  // (null when none is).
   Object.defineProperty(api, 'sensing', {
     get: function () {
       var a = state.agent >= 0 ? agents[state.agent] : null;
       return { agent: state.agent, rays: v.rayLines.visible ? v.rayLines.geometry.drawRange.count / 2 : 0,
-               cells: a && a.mapView ? a.mapView.mesh.count : 0 };
+               cells: a && a.mapView ? a.mapView.mesh.count : 0, image: v.imageShown };
     },
     enumerable: true
   });

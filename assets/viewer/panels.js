@@ -154,6 +154,7 @@ function buildPanels(v) {
     cone: R.pairs.length,
     obstacle_vectors: agents.length,
     sensing: agents.filter(function (a) { return a.lidar; }).length,
+    images: agents.filter(function (a) { return a.images.length > 0; }).length,
     sight: agents.filter(function (a) { return a.sight; }).length,
     arena: 1
   };
@@ -221,6 +222,7 @@ function setLayer(v, name, visible) {
   v.layerOn[name] = on;
   layerGroups[name].visible = on;
   if (v.checkboxes[name]) v.checkboxes[name].checked = on;
+  if (name === 'images') updateImage(v, v.state.frame);  // a panel over the view, not in the scene
   renderNow(v);
 }
 

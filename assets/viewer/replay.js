@@ -90,6 +90,31 @@ function readLidar(li, key, frames) {
     out.scanFrame.length >= frames;
   return ok ? out : null;
 }
+// An agent's images: every sensor layer of the agent that holds an `image` (rows x columns of every frame's values,
+// row-major from the top left, their echoes, the frame each was taken at), in the agent's order; a layer whose data
+// do not fit together is left out.
+function readImages(a, key, frames) {
+  var out = [];
+  Object.keys(a).forEach(function (name) {
+    var im = a[name] && typeof a[name] === 'object' ? a[name].image : null;
+    if (!im || typeof im !== 'object') return;
+    var k = key + name + '.image.';
+    var rows = Math.floor(num(im.rows, 0)), columns = Math.floor(num(im.columns, 0));
+    var img = {
+      sensor: name, rows: rows, columns: columns, unit: str(im.unit, ''),
+      low: num(im.low, 0), high: num(im.high, 1),
+      values: f32(im.values_f32, k + 'values_f32'),
+      echo: u8(im.echo_u8, k + 'echo_u8'),
+      scanFrame: u32(im.scan_frame_u32, k + 'scan_frame_u32')
+    };
+    var n = rows * columns;
+    if (n > 0 && img.high > img.low && img.values.length >= n * frames && img.echo.length >= n * frames &&
+        img.scanFrame.length >= frames) {
+      out.push(img);
+    }
+  });
+  return out;
+}
 // An agent's limited sight (every frame's opponent, whether it saw it, where it took it to be), or null when its
 // sight is not limited or the data do not fit together.
 function readSight(si, key, frames) {
@@ -172,7 +197,8 @@ function loadReplay() {
       reward: f32(tr.reward_f32, key + 'reward_f32'),
       lidar: readLidar(a.lidar, 'agents[' + i + '].lidar.', n),
       map: readMap(a.map, 'agents[' + i + '].map.'),
-      sight: readSight(a.sight, 'agents[' + i + '].sight.', n)
+      sight: readSight(a.sight, 'agents[' + i + '].sight.', n),
+      images: readImages(a, 'agents[' + i + '].', n)
     };
   });
   // Labels: the names, made unique when several agents share one.

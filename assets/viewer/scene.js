@@ -459,6 +459,12 @@ function buildScene(v) {
   v.apoPlane = apoPlane;
   v.coneGroup = coneGroup;
   v.rayLines = rayLines;
+  // The images layer: a picture over the view (its group in the scene stays empty), drawn by updateImage.
+  v.imageBox = $('peg-image');
+  v.imageCanvas = $('peg-image-canvas');
+  v.imageCaption = $('peg-image-caption');
+  v.imageData = null;
+  v.imageShown = null;
   v.coneMesh = coneMesh;
   v.downY = downY;
   v.upZ = upZ;

@@ -119,9 +119,46 @@ function updateMap(a, f) {
   if (changed) mv.mesh.instanceMatrix.needsUpdate = true;
 }
 
+// The selected agent's first image at frame f (the reading in force then), in the image overlay when the images
+// layer is on: near pixels bright, far ones dark, pixels without an echo in dark blue.
+function updateImage(v, f) {
+  var sel = v.state.agent >= 0 ? v.agents[v.state.agent] : null;
+  var im = sel && sel.images.length > 0 ? sel.images[0] : null;
+  var box = v.imageBox;
+  v.imageShown = null;
+  if (!box) return;
+  box.hidden = !(im && v.layerOn.images);
+  if (box.hidden) return;
+  var canvas = v.imageCanvas, n = im.rows * im.columns;
+  if (canvas.width !== im.columns || canvas.height !== im.rows) {
+    canvas.width = im.columns;
+    canvas.height = im.rows;
+    v.imageData = null;
+  }
+  var ctx = canvas.getContext('2d');
+  if (!v.imageData) v.imageData = ctx.createImageData(im.columns, im.rows);
+  var px = v.imageData.data, span = im.high - im.low;
+  for (var k = 0; k < n; ++k) {
+    var j = 4 * k;
+    if (im.echo[f * n + k] === 0) {
+      px[j] = 18; px[j + 1] = 26; px[j + 2] = 58;
+    } else {
+      var g = Math.round(255 * (1 - Math.min(1, Math.max(0, (im.values[f * n + k] - im.low) / span))));
+      px[j] = g; px[j + 1] = g; px[j + 2] = g;
+    }
+    px[j + 3] = 255;
+  }
+  ctx.putImageData(v.imageData, 0, 0);
+  var taken = Math.min(im.scanFrame[f], v.N - 1);
+  v.imageCaption.textContent = sel.label + ' \u00b7 ' + im.sensor + ' ' + im.columns + '\u00d7' + im.rows + ' \u00b7 ' +
+    fmtNum(im.low, 0) + '\u2013' + fmtNum(im.high, 0) + ' ' + im.unit + ' \u00b7 taken at ' + fmtNum(v.times[taken], 2) + ' s';
+  v.imageShown = { agent: v.state.agent, sensor: im.sensor, rows: im.rows, columns: im.columns, frame: taken };
+}
+
 function updateSensing(v, f) {
   var sel = v.state.agent >= 0 ? v.agents[v.state.agent] : null;
   updateRays(v, sel, f);
+  updateImage(v, f);
   v.agents.forEach(function (a) {
     if (!a.mapView) return;
     a.mapView.mesh.visible = a === sel;

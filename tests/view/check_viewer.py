@@ -16,6 +16,10 @@ usage: check_viewer.py BIN_DIR SOURCE_DIR WORK_DIR
 4. On a sensing game's file (peg-matchup --html on maps/forest.yaml, lidars and own maps): the selected agent's
    map shows, at frames reached forwards and backwards, exactly the cells the replay's flips make occupied, its
    rays are drawn, and hiding the sensing layer changes the picture.
+5. On a limited-sight game's file: the sight layer is drawn while the pursuer sees its opponent and while it does not.
+6. On a depth camera's file (peg-matchup --html, the pursuer's camera feeding its own map): the images layer shows
+   the selected agent's image of each frame, pixel for pixel as the replay's depths say, the map its images
+   built is shown, and hiding the layer changes the picture.
 
 Exit status 0: all passed; 77: skipped (no Chromium, or no python3-websocket); 1: a check failed.
 """
@@ -245,6 +249,50 @@ def check_sight(page, html, work):
     check(not problems, "no console error while driving the sight layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
 
 
+def check_camera(page, html, work):
+    """6. The images layer: the pursuer's depth image at frames reached forwards and backwards is the one the replay
+    holds for that frame, pixel for pixel (near bright, far dark, no echo dark blue); its map shows; the evader, without
+    a camera, shows none; hiding the layer changes the picture."""
+    import numpy as np
+    from PIL import Image
+    if not check(load(page, html) is not None, "the depth camera game's viewer is ready"):
+        return
+    replay = json.loads(page.js("document.getElementById('peg-replay').textContent"))
+    times = np.frombuffer(base64.b64decode(replay["times_f64"]), dtype="<f8")
+    n = len(times)
+    image = replay["agents"][0]["camera"]["image"]
+    rows, columns = image["rows"], image["columns"]
+    values = np.frombuffer(base64.b64decode(image["values_f32"]), dtype="<f4").reshape(n, rows, columns)
+    echo = np.frombuffer(base64.b64decode(image["echo_u8"]), dtype=np.uint8).reshape(n, rows, columns)
+    taken = np.frombuffer(base64.b64decode(image["scan_frame_u32"]), dtype="<u4")
+    check("camera" not in replay["agents"][1], "the evader has no camera layer")
+    for f in (n - 1, n // 3, 2 * n // 3, 0):
+        page.js(f"pegView.seek({float(times[f])!r})")
+        shown = page.js("pegView.sensing")
+        want = {"agent": 0, "sensor": "camera", "rows": rows, "columns": columns, "frame": int(taken[f])}
+        check(shown["image"] == want, f"frame {f}: the image shown is {shown['image']}, the replay's is {want}")
+        png = page.js("document.getElementById('peg-image-canvas').toDataURL('image/png')")
+        rgba = np.asarray(Image.open(io.BytesIO(base64.b64decode(png.split(",", 1)[1]))).convert("RGBA"), dtype=np.int64)
+        gray = np.round(255 * (1 - np.clip((values[f] - image["low"]) / (image["high"] - image["low"]), 0, 1)))
+        want_rgb = np.where(echo[f][..., None] == 0, np.array([18, 26, 58]), np.repeat(gray[..., None], 3, axis=2))
+        bad = int((np.abs(rgba[..., :3] - want_rgb) > 1).any(axis=2).sum())
+        check(bad == 0 and echo[f].sum() > 0, f"frame {f}: every pixel as the replay's depths say ({bad} differ, "
+              f"{int(echo[f].sum())} echoes of {rows * columns})")
+        check(shown["cells"] == occupied_cells(replay["agents"][0], f) and shown["cells"] > 0,
+              f"frame {f}: the map the images built shows {shown['cells']} cells")
+    page.js(f"pegView.seek({float(times[n // 2])!r})")
+    full = page.screenshot()
+    full.save(os.path.join(work, "viewer_camera.png"))
+    changed = hidden_layer_pixels(page, "images", full)
+    check(changed > 1000, f"the image is drawn ({changed} pixels change when the layer is hidden)")
+    page.js("(function () { var s = document.getElementById('peg-agent'); s.value = '1';"
+            " s.dispatchEvent(new Event('change')); })()")
+    check(page.js("pegView.sensing").get("image") is None and page.js("document.getElementById('peg-image').hidden"),
+          "an agent without a camera shows no image")
+    problems = console_problems(page, html)
+    check(not problems, "no console error while driving the images layer" + ("" if not problems else ": " + "; ".join(problems[:5])))
+
+
 def main():
     bin_dir, source, work = sys.argv[1:4]
     if shutil.which("chromium") is None:
@@ -295,6 +343,14 @@ def main():
              "--set", "pursuer.sight.enabled=true", "--set", "pursuer.sight.fov=120", "--set", "evader.sight.enabled=true"])
     sight_html = os.path.join(sight_out, "corner_r0_search_vs_hide.html")
     check(r.returncode == 0 and os.path.exists(sight_html), "peg-matchup --html writes a limited-sight game's viewer")
+    camera_out = os.path.join(work, "camera")
+    r = run([os.path.join(bin_dir, "peg-matchup"), "--map", os.path.join(source, "maps", "forest.yaml"),
+             "--out", camera_out, "--pursuers", "pn", "--evaders", "flee", "--repeats", "1", "--no-cache",
+             "--html", "F1_r0_pn_vs_flee", "--plain-progress", "--set", "time_limit=20",
+             "--set", "pursuer.camera.width=32", "--set", "pursuer.camera.height=24", "--set", "pursuer.camera.range=12",
+             "--set", "pursuer.map.enabled=true"])
+    camera_html = os.path.join(camera_out, "F1_r0_pn_vs_flee.html")
+    check(r.returncode == 0 and os.path.exists(camera_html), "peg-matchup --html writes a depth camera game's viewer")
     if failures:
         return 1
 
@@ -303,7 +359,7 @@ def main():
     try:
         page = open_page(port, websocket)
         # 2. Every file opens offline, quietly.
-        for html in (paper_html, view_html, case_html, sensing_html, sight_html):
+        for html in (paper_html, view_html, case_html, sensing_html, sight_html, camera_html):
             name = os.path.basename(html)
             seconds = load(page, html)
             if not check(seconds is not None, f"{name}: the viewer is ready ({os.path.getsize(html) / 1e6:.1f} MB)"):
@@ -375,6 +431,7 @@ def main():
               ("" if not problems else ": " + "; ".join(problems[:5])))
         check_sensing(page, sensing_html, work)
         check_sight(page, sight_html, work)
+        check_camera(page, camera_html, work)
     finally:
         proc.kill()
         proc.wait()
