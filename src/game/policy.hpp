@@ -14,7 +14,7 @@
 
 namespace peg3d::game {
 
-/// What an agent with limited sight can test of the space about it (game/sight.hpp): whether a straight segment
+/// What an agent with limited sight can test of the space about it (game/knowledge.hpp): whether a straight segment
 /// is clear of the solids it knows, the map's terrain and obstacles and the movers where they are now. The
 /// partial game's scripted players look for hiding places with it.
 class SightProbe {

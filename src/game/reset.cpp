@@ -5,7 +5,7 @@
 
 #include "game/observation.hpp"
 #include "game/sensing.hpp"
-#include "game/sight.hpp"
+#include "game/knowledge.hpp"
 #include "game/sim.hpp"
 #include "game/starts.hpp"
 #include "game/views.hpp"

@@ -216,7 +216,7 @@ class SimState {
                                                                                               : nullptr;
   }
 
-  /// What each agent knows of each opponent when a detector limits it (the sight sensor; game/sight.hpp). Entries
+  /// What each agent knows of each opponent when a detector limits it (the sight sensor; game/knowledge.hpp). Entries
   /// [i * n + j] for n agents; those of pairs of one role are unused. Empty when no agent carries a detector.
   struct Sight {
     /// An agent's latest sighting of an opponent: its state then and when.
@@ -227,7 +227,7 @@ class SimState {
     };
     std::vector<Sighting> memory;        ///< agent i's latest sighting of agent j (its own or a teammate's)
     std::vector<std::uint8_t> visible;   ///< 1: i sees j now (itself, or a teammate it shares with)
-    std::vector<std::unique_ptr<SightProbe>> probes;  ///< agent i's probe of the world now (game/sight.hpp)
+    std::vector<std::unique_ptr<SightProbe>> probes;  ///< agent i's probe of the world now (game/knowledge.hpp)
   } sight;
   /// Whether agent i's knowledge of its opponents is limited to what its detector sees (its opponent inputs come
   /// from sight.memory).

@@ -8,7 +8,7 @@
 #include "core/step_profile.hpp"
 #include "game/constraints.hpp"
 #include "game/sensing.hpp"
-#include "game/sight.hpp"
+#include "game/knowledge.hpp"
 #include "game/sim.hpp"
 #include "game/views.hpp"
 #include "sense/scan_map.hpp"

@@ -11,7 +11,7 @@
 //   scan(...)          reads the world at an instant from the holder's eye into a Reading: values and echoes
 //   map_points(...)    what a scan adds to the holder's own map (sense/scan_map.hpp): its rays' endpoints
 //   detection()        a sensor that detects agents (the sight test): the holder knows an opponent only
-//                      through its detections (game/sight.hpp keeps the memory of them)
+//                      through its detections (game/knowledge.hpp keeps the memory of them)
 //   segments(...)      its part of the holder's observation vector: named segments with units and bounds
 //   observe(...)       writes those entries from its latest reading and the holder's view
 //   replay(...)        its layer of the browser replay (view/replay.cpp), from the readings a trace recorded

@@ -2,7 +2,7 @@
 // The sight sensor (issue 39, docs/sight.md): opponents seen only in line of sight. Its settings, and the test
 // itself (sense/line_of_sight.hpp) as a detector under the sensor contract (sense/sensor.hpp): a reading says which
 // agents it sees now. What its holder does with what it sees (its memory of sightings, their estimates, the
-// sharing between teammates) is the game's knowledge of its opponents (game/sight.hpp), which the detection()
+// sharing between teammates) is the game's knowledge of its opponents (game/knowledge.hpp), which the detection()
 // settings steer.
 
 #include <concepts>

@@ -1,4 +1,4 @@
-// Limited sight in the game (game/sight.hpp, SimState::sight, AgentConfig::sight): an opponent behind a pillar is
+// Limited sight in the game (game/knowledge.hpp, SimState::sight, AgentConfig::sight): an opponent behind a pillar is
 // known where it was last seen (or dead-reckoned), one in plain sight as it is; the field of view and the range
 // bound what is seen; teammates that share see what any of them sees; rewards keep measuring the true distance;
 // and on an open arena a game with sight on plays exactly as with full information.
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "game/episode.hpp"
-#include "game/sight.hpp"
+#include "game/knowledge.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::game {

@@ -1,4 +1,4 @@
-#include "game/sight.hpp"
+#include "game/knowledge.hpp"
 
 #include <array>
 #include <cmath>
