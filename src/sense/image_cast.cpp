@@ -167,7 +167,6 @@ void cast_static(const StaticRayScene& scene, std::span<const Ray> rays, int wid
   scene.cast_triangles(rays, range, hits);  // the triangles' answer (kNone: none within range)
   s.faces.resize(n);
   for (std::size_t k = 0; k < n; ++k) s.faces[k] = scene.face_hit(rays[k], range);
-  const world::MapSpec& map = scene.arena().map();
   if (!s.shapes.empty()) {
     // A ray's bound: the nearest of its triangle, its face and the shapes so far; solid[k], the best shape.
     s.bound.resize(n);
@@ -177,16 +176,10 @@ void cast_static(const StaticRayScene& scene, std::span<const Ray> rays, int wid
     }
     s.candidates.clear();
     for (std::size_t i = 0; i < s.shapes.size(); ++i) {
-      const StaticRayScene::ShapeRef& ref = s.shapes[i];
       ImageCastScratch::Candidate c;
       c.id = int(i);
-      if (ref.kind == RayTarget::kSphere) {
-        const auto& o = map.spheres[std::size_t(ref.index)];
-        c.lo = o.center - Vec3::Constant(o.radius), c.hi = o.center + Vec3::Constant(o.radius);
-      } else {
-        const auto& cy = map.cylinders[std::size_t(ref.index)];
-        c.lo = cy.base - Vec3(cy.radius, cy.radius, 0), c.hi = cy.base + Vec3(cy.radius, cy.radius, cy.height);
-      }
+      const Box b = scene.shape_bounds(s.shapes[i]);
+      c.lo = b.lo, c.hi = b.hi;
       c.near = box_distance(eye, c.lo, c.hi);
       s.candidates.push_back(c);
     }
@@ -194,15 +187,7 @@ void cast_static(const StaticRayScene& scene, std::span<const Ray> rays, int wid
     splat(rays, width, pinhole, s.candidates, range, s, [&s](int k) { return s.bound[std::size_t(k)]; },
           [&](const ImageCastScratch::Candidate& c, int k, double bound) {
             const StaticRayScene::ShapeRef& ref = s.shapes[std::size_t(c.id)];
-            const Ray& ray = rays[std::size_t(k)];
-            std::optional<double> d;
-            if (ref.kind == RayTarget::kSphere) {
-              const auto& o = map.spheres[std::size_t(ref.index)];
-              d = ray_sphere(ray, o.center, o.radius, bound);
-            } else {
-              const auto& cy = map.cylinders[std::size_t(ref.index)];
-              d = ray_upright_cylinder(ray, cy.base, cy.radius, cy.height, bound);
-            }
+            const std::optional<double> d = scene.shape_hit(ref, rays[std::size_t(k)], bound);
             if (!d) return;
             RayHit& h = s.solid[std::size_t(k)];
             const bool first = h.target == RayTarget::kNone || *d < h.distance ||

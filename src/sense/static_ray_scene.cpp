@@ -23,6 +23,21 @@ RayHit arena_face_hit(const world::MapSpec& map, const Ray& ray, double range) {
   return {exit.distance, RayTarget::kArenaFace, exit.face};
 }
 
+// The box around a sphere or cylinder of the map.
+Box shape_box(const world::MapSpec& map, const StaticRayScene::ShapeRef& shape) {
+  switch (shape.kind) {
+    case RayTarget::kSphere: {
+      const auto& o = map.spheres[std::size_t(shape.index)];
+      return {o.center - Vec3::Constant(o.radius), o.center + Vec3::Constant(o.radius)};
+    }
+    case RayTarget::kCylinder: {
+      const auto& c = map.cylinders[std::size_t(shape.index)];
+      return {c.base - Vec3(c.radius, c.radius, 0), c.base + Vec3(c.radius, c.radius, c.height)};
+    }
+    default: assert(false && "not a shape of the map"); return {};
+  }
+}
+
 // The nearer of two hits (a tie keeps the first).
 RayHit nearer(const RayHit& a, const RayHit& b) { return b.target != RayTarget::kNone && b.distance < a.distance ? b : a; }
 
@@ -152,17 +167,10 @@ struct StaticRayScene::Impl {
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the static scene failed");
     masks = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0;
     if (map.spheres.size() + map.cylinders.size() <= BoxIndex::kMaxBoxes) {
+      for (std::size_t i = 0; i < map.spheres.size(); ++i) shape_of_box.push_back({RayTarget::kSphere, int(i)});
+      for (std::size_t i = 0; i < map.cylinders.size(); ++i) shape_of_box.push_back({RayTarget::kCylinder, int(i)});
       std::vector<Box> boxes;
-      for (std::size_t i = 0; i < map.spheres.size(); ++i) {
-        const auto& o = map.spheres[i];
-        boxes.push_back({o.center - Vec3::Constant(o.radius), o.center + Vec3::Constant(o.radius)});
-        shape_of_box.push_back({RayTarget::kSphere, int(i)});
-      }
-      for (std::size_t i = 0; i < map.cylinders.size(); ++i) {
-        const auto& c = map.cylinders[i];
-        boxes.push_back({c.base - Vec3(c.radius, c.radius, 0), c.base + Vec3(c.radius, c.radius, c.height)});
-        shape_of_box.push_back({RayTarget::kCylinder, int(i)});
-      }
+      for (const ShapeRef& shape : shape_of_box) boxes.push_back(shape_box(map, shape));
       if (!boxes.empty()) shapes = BoxIndex(boxes);
     }
   }
@@ -277,8 +285,25 @@ void StaticRayScene::shapes_overlapping(const Box& box, std::vector<ShapeRef>& o
   if (impl_->shape_of_box.empty()) return;
   impl_->shapes.overlapping(box, [&](auto b) { out.push_back(impl_->shape_of_box[std::size_t(b)]); });
   std::sort(out.begin(), out.end(), [](const ShapeRef& a, const ShapeRef& b) {
-    return a.kind != b.kind ? a.kind == RayTarget::kSphere : a.index < b.index;
+    return std::pair(int(a.kind), a.index) < std::pair(int(b.kind), b.index);  // kSphere before kCylinder
   });
+}
+
+Box StaticRayScene::shape_bounds(const ShapeRef& shape) const { return shape_box(impl_->arena.map(), shape); }
+
+std::optional<double> StaticRayScene::shape_hit(const ShapeRef& shape, const Ray& ray, double range) const {
+  const world::MapSpec& map = impl_->arena.map();
+  switch (shape.kind) {
+    case RayTarget::kSphere: {
+      const auto& o = map.spheres[std::size_t(shape.index)];
+      return ray_sphere(ray, o.center, o.radius, range);
+    }
+    case RayTarget::kCylinder: {
+      const auto& c = map.cylinders[std::size_t(shape.index)];
+      return ray_upright_cylinder(ray, c.base, c.radius, c.height, range);
+    }
+    default: assert(false && "not a shape of the map"); return std::nullopt;
+  }
 }
 StaticRayScene::~StaticRayScene() = default;
 

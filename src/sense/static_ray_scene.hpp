@@ -11,6 +11,7 @@
 // grazes an edge: see docs/performance.md and tests/sense/static_ray_scene_test.cpp for the bound.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -67,6 +68,10 @@ class StaticRayScene {
   /// Writes to `out` (cleared first) the spheres and cylinders whose bounds meet `box`, spheres first, each kind by
   /// index. No allocation once `out` has held as many.
   void shapes_overlapping(const Box& box, std::vector<ShapeRef>& out) const;
+  /// The box around a shape.
+  Box shape_bounds(const ShapeRef& shape) const;
+  /// Where the ray first meets the shape within `range`, exactly in double precision, as cast() meets it.
+  std::optional<double> shape_hit(const ShapeRef& shape, const Ray& ray, double range) const;
 
  private:
   struct Impl;
