@@ -17,6 +17,8 @@
 #include "view_writer.hpp"
 #include "game/sim.hpp"
 #include "game/test_arena.hpp"
+#include "players/mlp_policy.hpp"
+#include "world/map/map_loader.hpp"
 
 namespace peg3d::players {
 namespace {
@@ -181,6 +183,55 @@ TEST(SavedPolicy, AnOverflowingNetworkIsStoppedAtItsFirstStepNamingItsFile) {
     EXPECT_EQ(what.rfind(file.string() + ": step 1: agent 0 (pursuer 0), played by this policy file: steering command (", 0), 0u) << what;
   }
   EXPECT_EQ(state.step, 0);
+}
+
+TEST(SavedPolicy, TheShippedTeamThatSeesItsTeammatesReadsThemOnOpenWall) {
+  // tests/data/policies/mappo_open_team.json (docs/learning.md, "A MAPPO team that sees its teammates"): in OPEN's
+  // settings each of the four pursuers fits, and the slots it reads hold its three teammates, nearest first.
+  const auto file = std::filesystem::path(PEG3D_TEST_DATA_DIR) / "policies/mappo_open_team.json";
+  const auto saved = load_saved_policy(file, Role::kPursuer);
+  const auto model = load_mlp_policy(file, Role::kPursuer);
+  GameConfig c = preset("peg3d");
+  c.pursuer.sensors.sight.enabled = c.evader.sensors.sight.enabled = true;
+  c.pursuer.sensors.sight.fov = 120.0;
+  c.pursuer.sensors.sight.share = true;
+  c.pursuer.speed = 1.0, c.evader.speed = 1.3, c.capture_distance = 0.3;
+  const auto arena = world::Arena::build(world::load_map(std::filesystem::path(PEG3D_SOURCE_DIR) / "maps/open_wall.yaml"));
+  const Sim sim(arena, c);
+  SimState st(sim);
+  reset(sim, st, arena->map().scenarios.front(), 1);
+  ASSERT_EQ(st.agent_count(), 5);
+  for (int rank = 0; rank < 4; ++rank) {
+    saved->check_fits(sim, Role::kPursuer, rank);
+    const ObservationTable table = bind_observation(sim, Role::kPursuer, rank, model->observation);
+    ASSERT_EQ(table.size(), 46);
+    std::vector<float> obs(std::size_t(table.size()));
+    write_observation(sim, st, rank, table, obs);
+    const Vec3 self = st.agents[std::size_t(rank)].kinematics.position;
+    double last = 0.0;
+    for (int m = 0; m < 3; ++m) {
+      const std::string slot = "neighbour.teammate." + std::to_string(m);
+      EXPECT_EQ(obs[std::size_t(table.find(slot + ".mask")->offset)], 1.0f) << slot;
+      const int at = table.find(slot + ".offset")->offset;
+      const Vec3 offset(obs[std::size_t(at)], obs[std::size_t(at + 1)], obs[std::size_t(at + 2)]);
+      bool a_teammate = false;  // the offset is one of the other pursuers'
+      for (int j = 0; j < 4; ++j) {
+        a_teammate = a_teammate || (j != rank && (st.agents[std::size_t(j)].kinematics.position - self - offset).norm() < 1e-5);
+      }
+      EXPECT_TRUE(a_teammate) << slot;
+      EXPECT_GE(offset.norm(), last - 1e-6) << slot;  // nearest first
+      last = offset.norm();
+    }
+  }
+  // Without limited sight the agents' observation lacks what the team reads: refused, naming the segment.
+  GameConfig full = c;
+  full.pursuer.sensors.sight.enabled = false;
+  try {
+    saved->check_fits(Sim(arena, full), Role::kPursuer, 0);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sight.visible"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
