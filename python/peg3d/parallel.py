@@ -55,7 +55,7 @@ class ParallelEnv(_ParallelEnv):
         # (name, offset, size, unit, bounds, meaning, shape), in order. An agent's segment is
         # obs[agent][segment.slice]; observation_view(name) shows one segment of every agent that has it in place.
         self.observation_segments = {n: _loading.segments_of(b, i) for n, i in self._index.items()}
-        # Read from the segments, as before issue 50: the lidar's readings ("lidar.ranges": `rays` entries from
+        # Kept for older code, read from the segments: the lidar's readings ("lidar.ranges": `rays` entries from
         # `ranges_offset`) and the sight entries ("sight.visible" at `sight_offset`, "sight.age" after it); -1 and 0
         # when no agent has them.
         segs = list(self.observation_segments.values())

@@ -56,7 +56,7 @@ class VectorEnv:
         # The C++ buffers never move: their per-role views are made once and returned by every call.
         self._obs = {r: b.observations[:, s, :self._sizes[r]] for r, s in self._slices.items()}
         self._rew, self._term, self._trunc = self._split(b.rewards), self._split(b.terminated), self._split(b.truncated)
-        # Read from the segments, as before issue 50: each role's agents' latest lidar readings (m), "lidar.ranges"
+        # Kept for older code, read from the segments: each role's agents' latest lidar readings (m), "lidar.ranges"
         # as a flat list, in place (zero entries for a role without a lidar); `rays` and `ranges_offset`, and the
         # sight entries' `sight_offset` ("sight.visible", then "sight.age"); -1 when no agent has them.
         segs = list(self.observation_segments.values())

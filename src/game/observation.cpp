@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -52,6 +53,13 @@ const sense::Segment* ObservationTable::find(std::string_view name) const {
 
 namespace {
 
+// "1st", "2nd", "3rd", "4th", ... for the neighbour slots' meanings.
+std::string ordinal(int n) {
+  const int last = n % 10, tens = n % 100;
+  const char* suffix = (tens >= 11 && tens <= 13) ? "th" : last == 1 ? "st" : last == 2 ? "nd" : last == 3 ? "rd" : "th";
+  return fmt::format("{}{}", n, suffix);
+}
+
 // The fastest agent of the configuration (m/s): what bounds an opponent's velocity.
 double fastest(const GameConfig& c) {
   double speed = std::max(c.pursuer.speed, c.evader.speed);
@@ -85,12 +93,13 @@ ObservationTable observation_table(const Sim& sim, Role role, int rank, int neig
     for (int m = 0; m < neighbours; ++m) {
       sense::Segment offset = sense::Segment::uniform(
           fmt::format("neighbour.{}.{}.offset", kind, m), 3, "m", 0.0, 0.0,
-          fmt::format("the position of the nearest other {} in the game number {} minus the agent's (0 when none)",
-                      kind, m + 1));
+          fmt::format("the position of the agent's {} nearest other {} still in the game (nearest first) minus its own "
+                      "(0 when there is none)",
+                      ordinal(m + 1), kind));
       for (int a = 0; a < 3; ++a) offset.low[std::size_t(a)] = float(-extent[a]), offset.high[std::size_t(a)] = float(extent[a]);
       t.segments.push_back(std::move(offset));
       t.segments.push_back(sense::Segment::uniform(fmt::format("neighbour.{}.{}.mask", kind, m), 1, "", 0.0, 1.0,
-                                                   fmt::format("1 when that {} is there, 0 when the slot is empty", kind)));
+                                                   fmt::format("1 when that {} is there, 0 when the slot is empty (fewer {}s than slots)", kind, kind)));
     }
   }
   const sense::SegmentContext context{sim.config().time_limit};
