@@ -68,14 +68,7 @@ py::tuple bounds_arrays(const env::ObservationBounds& o) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "peg3d's C++ batch of games; use the peg3d package (parallel_env, vector_env) instead";
-  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
-  py::register_exception_translator([](std::exception_ptr p) {
-    try {
-      if (p) std::rethrow_exception(p);
-    } catch (const InputError& e) {
-      input_error(e.what());
-    }
-  });
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
 
   // The configuration presets, from the one list the library keeps (game::kPresetNames).
   py::tuple presets(std::size(game::kPresetNames));

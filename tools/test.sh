@@ -5,6 +5,11 @@
 #                                          in a build folder of its own (build-sanitize/; asserts on, -O1)
 #   tools/test.sh --tsan [CTEST ARGS]      the tests of thread pools (label threads) under ThreadSanitizer, in
 #                                          build-tsan/ (asserts on, -O1); builds only their programs
+#   tools/test.sh --python-versions        after tools/test.sh: the package's wheel (from build/, nothing
+#                                          compiled again) in two clean environments, with the newest numpy,
+#                                          gymnasium and pettingzoo from PyPI (tests/python, those needing
+#                                          PyTorch skipped) and with the oldest that pyproject.toml accepts
+#                                          (tests/python/check_versions.py)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ "${1:-}" == "--sanitize" ]]; then
@@ -13,8 +18,9 @@ if [[ "${1:-}" == "--sanitize" ]]; then
   if [[ ! -f build-sanitize/CMakeCache.txt ]]; then
     # Benchmarks are timed, never checked: the sanitized build leaves them out and builds everything tested.
     # Warnings are the Release build's check (-Werror there); GCC 12 at -O1 with ASan warns falsely inside
-    # <regex> (maybe-uninitialized), so here they stay warnings.
-    cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+    # <regex> (maybe-uninitialized), so here they stay warnings. -g1: line tables for the sanitizers' stack
+    # traces, without the variables' debug information that cost a quarter of the compile time.
+    cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
           -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF >/dev/null
   fi
   cmake --build build-sanitize --parallel "$(nproc)" >&2
@@ -29,13 +35,39 @@ if [[ "${1:-}" == "--tsan" ]]; then
   if [[ ! -f build-tsan/CMakeCache.txt ]]; then
     # As --sanitize: no benchmarks, warnings not errors. The whole library is instrumented (a race inside it
     # shows only then), but only the programs of target peg3d_thread_tests are built.
-    cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
+    cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
           -DPEG3D_SANITIZE=thread -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF >/dev/null
   fi
   cmake --build build-tsan --parallel "$(nproc)" --target peg3d_thread_tests >&2
   # The first race ends the program (status 66), so its test fails.
   export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
   ctest --test-dir build-tsan --output-on-failure --parallel "$(nproc)" -L threads "$@"
+  exit
+fi
+if [[ "${1:-}" == "--python-versions" ]]; then
+  tools/python_env.sh
+  rm -rf build/wheel build/venv-newest build/venv-oldest
+  .venv/bin/python -m pip wheel --quiet --no-build-isolation --no-deps -w build/wheel . >&2
+  wheel=$(ls build/wheel/peg3d-*.whl)
+  for which in newest oldest; do
+    venv=build/venv-$which
+    /usr/bin/python3 -m venv "$venv"  # no system packages: what a newcomer's clean environment has
+    if [[ $which == newest ]]; then
+      pins=(--upgrade numpy gymnasium pettingzoo)
+    else  # the lower bounds of pyproject.toml's dependencies, exactly
+      pins=($(sed -n 's/^dependencies = \[\(.*\)\]/\1/p' pyproject.toml | tr -d '" ' | tr , '\n' | sed 's/>=/==/' | tr '\n' ' '))
+    fi
+    "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$wheel" pytest hypothesis cloudpickle \
+        "${pins[@]}" >&2
+    "$venv/bin/python" -c 'import numpy, gymnasium, pettingzoo; print("'"$which"': numpy", numpy.__version__,
+        "gymnasium", gymnasium.__version__, "pettingzoo", pettingzoo.__version__)'
+    if [[ $which == newest ]]; then
+      # The installed package (no PYTHONPATH), run from the tests' folder as CTest runs them.
+      (cd tests/python && env -u PYTHONPATH -u PEG3D_DATA_DIR "../../$venv/bin/python" -m pytest -q -p no:cacheprovider .)
+    else
+      (cd build && env -u PYTHONPATH -u PEG3D_DATA_DIR "venv-oldest/bin/python" ../tests/python/check_versions.py)
+    fi
+  done
   exit
 fi
 tools/deps.sh --test

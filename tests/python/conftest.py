@@ -2,6 +2,9 @@
 gymnasium and pettingzoo are). By hand: PYTHONPATH=build/python .venv/bin/python -m pytest tests/python; without
 PYTHONPATH the package installed in .venv is tested."""
 
+import os
+from pathlib import Path
+
 import numpy as np
 import pytest
 from hypothesis import settings
@@ -11,6 +14,10 @@ import peg3d
 # No example database in the source tree: every run draws afresh from its seed.
 settings.register_profile("peg3d", database=None, derandomize=True)
 settings.load_profile("peg3d")
+
+# The programs of the build (peg-collide, peg-matchup) that the parity tests compare with: build/bin, or
+# $PEG3D_BIN_DIR; the same whether the package comes from build/python or is installed.
+BIN = Path(os.environ.get("PEG3D_BIN_DIR") or Path(__file__).resolve().parents[2] / "build" / "bin")
 
 # Short episodes keep the suite quick; the paper map is the shipped one.
 SHORT = {"time_limit": 3.0}

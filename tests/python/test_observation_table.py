@@ -5,6 +5,8 @@ and with the same unit and size."""
 import pathlib
 import re
 
+import numpy as np
+
 import peg3d
 from conftest import SHORT
 
@@ -55,3 +57,14 @@ def test_every_segment_of_a_fully_sensing_agent_has_its_row_in_order():
     names = [s.name for s in env.observation_segments["pursuer_0"]]
     assert "camera.depth" in names and "lidar.ranges" in names and "sight.age" in names
     assert "neighbour.teammate.1.mask" in names
+
+
+def test_each_agents_space_holds_its_segments_bounds_entry_by_entry():
+    # Under NumPy 2, a module built with pybind11 older than 2.12 gave every entry the first one's bounds.
+    env = peg3d.parallel_env(map="maps/pack.yaml", scenario="3v2-cross", set=EVERYTHING)
+    for agent in env.possible_agents:
+        space = env.observation_space(agent)
+        for seg in env.observation_segments[agent]:
+            np.testing.assert_array_equal(space.low[seg.slice], seg.low, err_msg=seg.name)
+            np.testing.assert_array_equal(space.high[seg.slice], seg.high, err_msg=seg.name)
+        assert len(set(space.high.tolist())) > 5

@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 
 import peg3d
+from conftest import BIN
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = Path(peg3d.__file__).resolve().parents[2] / "bin"
 SETTINGS = ["pursuer.guard.enabled=false", "evader.guard.enabled=false", "pursuer.motion_space=false",
             "time_limit=12"]
 COMMANDS = [[0, 0, 0], [2, 6, -3], [4.5, -8, 4], [7, 0, 0]]  # time s, d_alpha deg, d_theta deg

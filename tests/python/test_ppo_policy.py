@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import peg3d
 
@@ -30,6 +31,7 @@ def forward(doc, x):
 
 
 def test_a_short_ppo_run_trains_and_saves_a_policy_the_cpp_side_plays(tmp_path):
+    pytest.importorskip("torch")
     out = tmp_path / "ppo.json"
     run = subprocess.run([sys.executable, str(ROOT / "examples/ppo_pursuer.py"), "--steps", "4096", "--num-envs", "8",
                           "--rollout", "64", "--threads", "2", "--out", str(out), "--opponent", "flee",

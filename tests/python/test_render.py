@@ -99,6 +99,8 @@ def test_rgb_array_gives_the_game_as_it_stands_as_an_image():
 def test_gymnasiums_record_video_records_the_learner_env(tmp_path):
     import gymnasium as gym
 
+    pytest.importorskip("moviepy")  # in .venv (python/constraints.txt), not in a clean environment
+
     env = gym.make("peg3d/Pursuer-v0", map="maps/forest.yaml", set=SHORT, render_mode="rgb_array")
     env = gym.wrappers.RecordVideo(env, str(tmp_path / "videos"), episode_trigger=lambda e: True, disable_logger=True)
     env.reset(seed=2)
