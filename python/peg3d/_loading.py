@@ -178,12 +178,36 @@ def largest_size(segments_by_agent, name):
     return max((s.size for segs in segments_by_agent for s in segs if s.name == name), default=0)
 
 
-def check_seed(seed):
+def check_seed(seed, field="seed"):
+    """A seed as an int, or None; ValueError naming `field` for anything else (a float, a string, a bool, NaN)."""
     if seed is None:
         return None
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= int(seed) < 2**64:
-        raise ValueError("seed: None or an integer in [0, 2^64)")
+        raise ValueError(f"{field}: None or an integer in [0, 2^64), not {seed!r}")
     return int(seed)
+
+
+class Rebuilt:
+    """Pickling and copying an environment make it anew from the arguments it was made with (`_made_with`, set
+    first thing by its __init__): a fresh environment on the same map and settings, not reset. Its state (games
+    in progress, seeds, closed or not) stays behind: a C++ batch has no portable bytes, and what ships an
+    environment to workers (SuperSuit, Ray, cloudpickle) wants the constructor, not the state."""
+
+    _made_with = None
+
+    @staticmethod
+    def remember(arguments):
+        """The constructor's arguments from its locals() (called first thing): self and __class__ left out."""
+        return {k: v for k, v in arguments.items() if k not in ("self", "__class__")}
+
+    def __reduce__(self):
+        if self._made_with is None:
+            raise TypeError(f"{type(self).__name__}: made without its arguments, it cannot be rebuilt")
+        return (_rebuild, (type(self), self._made_with))
+
+
+def _rebuild(cls, arguments):
+    return cls(**arguments)
 
 
 def check_action(name, a, shape):

@@ -47,7 +47,7 @@ def _segment_view(env, name, games):
     return env._batch.segment_view(seg.offset, list(seg.shape), env._agent, 1)[:games, 0]
 
 
-class LearnerEnv(gymnasium.Env):
+class LearnerEnv(_loading.Rebuilt, gymnasium.Env):
     """One game in which the learner (pursuer_0 or evader_0) takes the actions and C++ plays everyone else.
     Observations, actions and rewards are parallel_env's for that agent (docs/python.md). terminated: the
     learner's game is over for it (capture, collision); truncated: the time limit."""
@@ -56,6 +56,7 @@ class LearnerEnv(gymnasium.Env):
 
     def __init__(self, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None, config="peg3d",
                  scenario=None, set=None, neighbours=2, cache=True, render_mode=None):
+        self._made_with = self.remember(locals())
         _check_render_mode(render_mode)
         self.render_mode = render_mode
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, 1, 1, 0,
@@ -69,19 +70,31 @@ class LearnerEnv(gymnasium.Env):
         self._size = self.observation_space.shape[0]
         self._actions = np.zeros((1, self._batch.agents, 2))
         self._done = True
+        self._closed = False
         self._frames = _loading.frame_renderer(self._batch) if render_mode else None
 
     def render(self):
         """With render_mode="rgb_array": the game as it stands from a fixed camera, (480, 640, 3) uint8."""
         return None if self._frames is None else self._frames.render(self._batch, 0)
 
+    def close(self):
+        self._closed = True
+        self._done = True
+
+    def _check_open(self):
+        if self._closed:
+            raise RuntimeError("peg3d: the environment is closed")
+
     def reset(self, *, seed=None, options=None):
+        self._check_open()
+        seed = _loading.check_seed(seed)
         super().reset(seed=seed)
-        self._batch.reset(_loading.check_seed(seed))
+        self._batch.reset(seed)
         self._done = False
         return self._batch.observations[0, self._agent, :self._size].copy(), {}
 
     def step(self, action):
+        self._check_open()
         if self._done:
             raise RuntimeError("peg3d: step() before reset() or after the episode ended; call reset()")
         self._actions[0, self._agent] = _loading.check_action(self.learner, action, (2,))
@@ -106,7 +119,7 @@ class LearnerEnv(gymnasium.Env):
         return self._batch.global_state(0)
 
 
-class LearnerVectorEnv(VectorEnv):
+class LearnerVectorEnv(_loading.Rebuilt, VectorEnv):
     """num_envs games of LearnerEnv, stepped by one call on `threads` C++ threads. Arrays of shape (num_envs, ...)
     everywhere; autoreset is next-step (metadata["autoreset_mode"]): the step after a game ended resets it and
     ignores its action. reset(seed=int) seeds the batch (game g's episodes from derive_seed(seed, {g, e}));
@@ -118,6 +131,7 @@ class LearnerVectorEnv(VectorEnv):
     def __init__(self, num_envs=1, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None,
                  config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True,
                  render_mode=None):
+        self._made_with = self.remember(locals())
         _check_render_mode(render_mode)
         self.render_mode = render_mode
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads,
@@ -139,6 +153,14 @@ class LearnerVectorEnv(VectorEnv):
         self._term, self._trunc = b.terminated[:, i], b.truncated[:, i]
         self._captured, self._collided, self._reset = b.captured[:, i], b.collided[:, i], b.reset_flags
         self._frames = _loading.frame_renderer(b) if render_mode else None
+        self._started = self._closed = False
+
+    def close_extras(self, **kwargs):
+        self._closed = True
+
+    def _check_open(self):
+        if self._closed:
+            raise RuntimeError("peg3d: the environment is closed")
 
     def render(self):
         """With render_mode="rgb_array": every game's image as LearnerEnv.render() gives it, a tuple."""
@@ -147,7 +169,10 @@ class LearnerVectorEnv(VectorEnv):
         return tuple(self._frames.render(self._batch, g) for g in range(self.num_envs))
 
     def reset(self, *, seed=None, options=None):
+        self._check_open()
         per_game = isinstance(seed, (list, tuple, np.ndarray))
+        if not per_game:
+            seed = _loading.check_seed(seed)
         super().reset(seed=None if per_game else seed)
         mask = None if options is None else options.get("reset_mask")
         if mask is not None:
@@ -157,19 +182,23 @@ class LearnerVectorEnv(VectorEnv):
         if per_game:
             if len(seed) != self.num_envs:
                 raise ValueError(f"seed: a list of {self.num_envs} seeds (or None), not {len(seed)}")
-            seeds = [None if s is None else _loading.check_seed(int(s)) for s in seed]
+            seeds = [_loading.check_seed(s, f"seed[{g}]") for g, s in enumerate(seed)]
         b = self._batch
         if mask is None and not per_game:
-            b.reset(_loading.check_seed(seed))
+            b.reset(seed)
         else:
             if seed is not None and not per_game:
                 raise ValueError("seed: with options['reset_mask'], None or a list of one seed (or None) per game")
             for g in range(self.num_envs):
                 if mask is None or mask[g]:
                     b.reset_game(g, seeds[g] if per_game else None)
+        self._started = True
         return self._obs.copy(), {}
 
     def step(self, actions):
+        self._check_open()
+        if not self._started:
+            raise RuntimeError("peg3d: step() before reset(); call reset()")
         self._actions[:, self._agent] = _loading.check_action(self.learner, actions, (self.num_envs, 2))
         self._batch.step(self._actions)
         info = {"captured": self._captured.astype(bool), "collided": self._collided.astype(bool),

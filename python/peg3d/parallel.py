@@ -13,7 +13,7 @@ REWARD_TERMS = ("obstacle", "target", "success")
 RENDER_MODES = ("human", "html", "rgb_array")
 
 
-class ParallelEnv(_ParallelEnv):
+class ParallelEnv(_loading.Rebuilt, _ParallelEnv):
     """One peg3d game. Agents are pursuer_0.., evader_0.. (those not left to `opponents`); each step() takes an
     action per agent still in the game and returns dicts keyed by the agents that acted."""
 
@@ -21,6 +21,7 @@ class ParallelEnv(_ParallelEnv):
 
     def __init__(self, map="maps/paper.yaml", config="peg3d", scenario=None, set=None, opponents=None,
                  render_mode=None, neighbours=2, cache=True, render_path="peg3d_replay.html", max_cycles=None):
+        self._made_with = self.remember(locals())
         if render_mode is not None and render_mode not in RENDER_MODES:
             raise ValueError(f"render_mode: None, 'human', 'html' or 'rgb_array', not {render_mode!r}")
         if not isinstance(render_path, (str, os.PathLike)):

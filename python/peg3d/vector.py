@@ -11,7 +11,7 @@ from .parallel import REWARD_TERMS
 ROLES = ("pursuer", "evader")
 
 
-class VectorEnv:
+class VectorEnv(_loading.Rebuilt):
     """num_envs independent games of one map. Observations, rewards and flags come per role as arrays of shape
     (num_envs, agents of the role, ...), read-only views of the C++ buffers that the next step overwrites
     (copy what you keep). Agents left to `opponents` are played on the C++ side: their actions are ignored."""
@@ -20,6 +20,7 @@ class VectorEnv:
 
     def __init__(self, map="maps/paper.yaml", num_envs=1, threads=1, config="peg3d", scenario=None, set=None,
                  opponents=None, seed=0, neighbours=2, cache=True):
+        self._made_with = self.remember(locals())
         self._batch = b = _loading.make_batch(map, config, scenario, set, opponents, num_envs, threads, seed,
                                               neighbours, cache)
         self.num_envs = b.games

@@ -85,3 +85,34 @@ def test_vector_actions_are_checked_per_role():
     assert [v._batch.game_info(g)["step"] for g in range(3)] == before  # no game of the batch stepped
     with pytest.raises(ValueError, match="referee"):
         v.step({"referee": np.zeros((3, 1, 2))})
+
+
+def test_the_learner_envs_refuse_steps_after_close_and_before_reset():
+    learner = peg3d.LearnerEnv(map="maps/paper.yaml", set=SHORT)
+    learner.reset(seed=1)
+    learner.close()
+    with pytest.raises(RuntimeError, match="closed"):
+        learner.step(np.zeros(2, dtype=np.float32))
+    with pytest.raises(RuntimeError, match="closed"):
+        learner.reset(seed=1)
+    many = peg3d.LearnerVectorEnv(num_envs=2, map="maps/paper.yaml", set=SHORT)
+    with pytest.raises(RuntimeError, match="before reset"):
+        many.step(np.zeros((2, 2), dtype=np.float32))
+    many.reset(seed=3)
+    many.step(np.zeros((2, 2), dtype=np.float32))
+    many.close()
+    with pytest.raises(RuntimeError, match="closed"):
+        many.step(np.zeros((2, 2), dtype=np.float32))
+
+
+@pytest.mark.parametrize("bad, at", [(4.9, 1), ("1", 1), (True, 0), (float("nan"), 2), (-1, 0), (2**64, 1),
+                                     (np.float64(3.0), 2)])
+def test_a_list_of_seeds_refuses_what_a_single_seed_refuses_naming_its_place(bad, at):
+    many = peg3d.LearnerVectorEnv(num_envs=3, map="maps/paper.yaml", set=SHORT)
+    seeds = [1, 2, 3]
+    seeds[at] = bad
+    with pytest.raises(ValueError, match=rf"seed\[{at}\]: None or an integer"):
+        many.reset(seed=seeds)
+    with pytest.raises(ValueError, match="seed: None or an integer"):
+        many.reset(seed=bad)
+    many.reset(seed=[1, None, np.int64(7)])  # integers of numpy and None (not re-seeded) are seeds
