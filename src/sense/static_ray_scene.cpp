@@ -204,15 +204,23 @@ struct StaticRayScene::Impl {
     return nearer(best, solid);
   }
 
-  // The triangle Embree chose again in double precision, from the ray as given; float may have seen it across an
-  // edge that double does not, and then its float distance stands.
+  // The triangle Embree chose again in double precision, from the ray as given. Float may have seen the ray
+  // inside it where double puts it just across an edge (a ray through an edge is outside one of its two
+  // triangles about half the time): the ray then meets the triangle's plane on that edge, and the plane's
+  // distance in double is the answer. Embree's float distance stands only for a ray along the plane.
   RayHit exact_triangle(const Ray& ray, unsigned geometry, unsigned primitive, float float_distance) const {
     const unsigned m = mesh_of_geometry[geometry];
     const world::TriangleMesh& mesh = arena.meshes()[m];
     const auto& f = mesh.faces[primitive];
-    const auto t = ray_triangle(ray, mesh.vertices[std::size_t(f[0])], mesh.vertices[std::size_t(f[1])],
-                                mesh.vertices[std::size_t(f[2])], std::numeric_limits<double>::infinity());
-    return {t ? *t : double(float_distance), RayTarget::kTriangle, int(m)};
+    const Vec3& a = mesh.vertices[std::size_t(f[0])];
+    const Vec3 &b = mesh.vertices[std::size_t(f[1])], &c = mesh.vertices[std::size_t(f[2])];
+    if (const auto t = ray_triangle(ray, a, b, c, std::numeric_limits<double>::infinity())) {
+      return {*t, RayTarget::kTriangle, int(m)};
+    }
+    const Vec3 normal = (b - a).cross(c - a);
+    const double along = normal.dot(ray.direction);
+    const double t = along != 0.0 ? normal.dot(a - ray.origin) / along : double(float_distance);
+    return {t >= 0.0 ? t : double(float_distance), RayTarget::kTriangle, int(m)};
   }
 
   // The triangles alone, eight rays at a time (their origins may differ; each lane is its own ray).

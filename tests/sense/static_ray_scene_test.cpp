@@ -123,5 +123,36 @@ TEST(StaticRayScene, DistancesToALoneSphereCylinderAndFaceAreAnalytic) {
   EXPECT_EQ(scene.cast({{20, 10, 10.5}, {0, 1, 0}}, 40).distance, 0.0);           // from inside the sphere
 }
 
+TEST(StaticRayScene, RaysThroughTheTerrainsEdgesReadTheDistanceInDoublePrecision) {
+  // Rays aimed at points on valley's triangle edges, from 2-12 m away: where nothing is in front, the distance is
+  // the analytic one. Embree chose a triangle in float, and double precision may put the ray just outside it;
+  // then the triangle's plane is met in double, never Embree's float distance (3.0000005 m for a 3.0).
+  world::MapSpec m = world::load_map(std::filesystem::path(PEG3D_SOURCE_DIR) / "maps/valley.yaml");
+  m.resolution = 0.5;
+  m.spheres.clear(), m.cylinders.clear(), m.scenarios.clear();
+  m.floor_is_obstacle = m.ceiling_is_obstacle = m.walls_is_obstacle = false;
+  const auto arena = world::Arena::build(m);
+  const StaticRayScene scene(*arena);
+  const world::TriangleMesh& mesh = arena->meshes().at(0);
+  Rng rng(11);
+  int checked = 0, off = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const auto& f = mesh.faces[std::uniform_int_distribution<std::size_t>(0, mesh.faces.size() - 1)(rng)];
+    const int e = int(k % 3);
+    const Vec3 a = mesh.vertices[std::size_t(f[std::size_t(e)])], b = mesh.vertices[std::size_t(f[std::size_t((e + 1) % 3)])];
+    const Vec3 target = a + uniform(rng, 0.05, 0.95) * (b - a);
+    Vec3 d = random_unit(rng);
+    if (d.z() > -0.2) d.z() = -0.2 - uniform(rng, 0.0, 0.8), d.normalize();  // from above, as a sensor sees terrain
+    const double L = uniform(rng, 2.0, 12.0);
+    const Ray ray{target - L * d, d};
+    const RayHit h = scene.cast(ray, 40.0);
+    if (h.target != RayTarget::kTriangle || std::abs(h.distance - L) > 1e-4) continue;  // something nearer
+    ++checked;
+    off += std::abs(h.distance - L) > 1e-9 * L;
+  }
+  EXPECT_GT(checked, 10000);
+  EXPECT_EQ(off, 0) << "of " << checked << " rays through an edge";
+}
+
 }  // namespace
 }  // namespace peg3d::sense
