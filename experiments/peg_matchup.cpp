@@ -41,8 +41,7 @@ int main(int argc, char** argv) {
     if (!pursuer_policy.empty()) s.pursuer_policy = players::load_saved_policy(pursuer_policy, game::Role::kPursuer);
     if (!evader_policy.empty()) s.evader_policy = players::load_saved_policy(evader_policy, game::Role::kEvader);
     if (!save_maps.empty()) {
-      s.maps_dir = std::filesystem::path(o.out) / "maps";
-      std::filesystem::create_directories(s.maps_dir);
+      s.maps_dir = std::filesystem::path(o.out) / "maps";  // made by the first run that writes a map
       s.keep_maps = [&save_maps](const std::string& key) { return cli::key_chosen(save_maps, key); };
     }
     return std::make_unique<experiment::MatchupExperiment>(cli::load_arena(o.map, !o.no_cache), *config,

@@ -129,6 +129,33 @@ def main():
         counts["policies"] = counts.get("policies", 0) + 1
     run([matchup, "--pursuer-policy", "/dev/zero", *quick], "/dev/zero", out)
 
+    # --save-maps checks nothing later than the rest: with a broken map it leaves no folder, and an unusable --out
+    # is refused as it is without it.
+    broken = os.path.join(source, "tests", "data", "maps", "broken")
+    first_broken = sorted(os.listdir(broken))[0]
+    run([matchup, "--map", os.path.join(broken, first_broken), "--save-maps", "all", *quick], first_broken, out)
+    blocker = os.path.join(work, "a_plain_file")
+    with open(blocker, "w") as f:
+        f.write("not a folder\n")
+    under_file = os.path.join(blocker, "out")
+    run([matchup, "--save-maps", "all", "--repeats", "1", "--episodes", "2", "--plain-progress", "--no-cache",
+         "--out", under_file], "a_plain_file", under_file)
+    counts["flags"] = 2
+
+    # An own map whose arena OctoMap's 16-bit keys do not reach (more than 8192 m from the origin at 0.25 m), or
+    # straddle: refused before any game, naming the field (the world's own octree, at 1 m, reaches them; the
+    # game played on with an empty map, or ended with exit 1).
+    own_map = os.path.join(work, "own_map.json")
+    with open(own_map, "w") as f:
+        json.dump({"pursuer": {"lidar": {"azimuth_rays": 8, "elevation_rays": 1}, "map": {"enabled": True}}}, f)
+    for name, low in (("far_arena.yaml", 9000), ("straddling_arena.yaml", 8180)):
+        far = os.path.join(work, name)
+        with open(far, "w") as f:
+            f.write(f"arena: {{min: [{low}, 0, 0], size: [20, 20, 10]}}\noccupancy: {{resolution: 1.0}}\n"
+                    f"start:\n  pursuer: {{position: [{low + 1}, 1, 5]}}\n  evader: {{position: [{low + 15}, 15, 5]}}\n")
+        run([matchup, "--map", far, "--config", own_map, *quick], "pursuer.map.resolution", out)
+        counts["flags"] += 1
+
     import resource
     peak_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     if peak_kb > LIMIT_KB:

@@ -170,6 +170,8 @@ class MatchupRun {
     record.trace = std::move(trace);
     record.agents = game::agent_summaries(state);
     if (s_.keep_maps && s_.keep_maps(matchup_key(record))) {
+      // Made here, by the first run that writes a map: by then every input was checked and OUT was made.
+      std::filesystem::create_directories(s_.maps_dir);
       for (int i = 0; i < state.agent_count(); ++i) {
         const game::AgentState& a = state.agents[std::size_t(i)];
         if (const sense::ScanMap* map = state.map(i)) {

@@ -105,7 +105,16 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     if (sense::make_sensors(a->sensors).empty()) continue;
     carrying.emplace_back(name, a);
     // An agent's map covers the arena: refused here, before any run, when it would not fit.
-    const long long cells = a->map.enabled ? sense::ScanMap::cells(a->map, arena_->bounds().lo, arena_->bounds().hi) : 0;
+    const Vec3 &lo = arena_->bounds().lo, &hi = arena_->bounds().hi;
+    if (a->map.enabled && !sense::ScanMap::keys_reach(a->map, lo, hi)) {
+      const double reach = 32768.0 * a->map.resolution;
+      throw InvalidParameter(name + ".map.resolution", fmt::format("{}", a->map.resolution),
+                             fmt::format("OctoMap's 16-bit keys reach {:.0f} m from the origin at this resolution, and the "
+                                         "arena spans [{:.1f}, {:.1f}] x [{:.1f}, {:.1f}] x [{:.1f}, {:.1f}] m: move the arena "
+                                         "nearer the origin or choose a coarser resolution",
+                                         reach, lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()));
+    }
+    const long long cells = a->map.enabled ? sense::ScanMap::cells(a->map, lo, hi) : 0;
     if (cells > sense::kMaxMapCells) {
       throw InvalidParameter(name + ".map.resolution", fmt::format("{}", a->map.resolution),
                              fmt::format("gives this arena's map {} cells, more than 2^26 (256 MB): choose a coarser one", cells));

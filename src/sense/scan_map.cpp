@@ -31,6 +31,10 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
   miss_ = keys_->getProbMissLog();
   min_ = keys_->getClampingThresMinLog();
   max_ = keys_->getClampingThresMaxLog();
+  if (!keys_reach(config, lo, hi)) {
+    throw InvalidParameter("resolution", std::to_string(config.resolution),
+                           "OctoMap's keys do not reach the arena: it lies more than 32768 cells from the origin");
+  }
   const CellKey a = key_of(lo), b = key_of(hi);
   long long cells = 1;
   for (int d = 0; d < 3; ++d) {
@@ -80,6 +84,17 @@ long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3
   long long cells = 1;
   for (int d = 0; d < 3; ++d) cells *= static_cast<long long>(std::floor(factor * hi[d]) - std::floor(factor * lo[d])) + 1;
   return cells;
+}
+
+bool ScanMap::keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
+  const double factor = 1.0 / config.resolution;
+  for (int d = 0; d < 3; ++d) {
+    for (const double c : {lo[d], hi[d]}) {
+      const double cell = std::floor(factor * c);
+      if (!(cell >= -32768.0 && cell <= 32767.0)) return false;
+    }
+  }
+  return true;
 }
 
 void ScanMap::clear() {

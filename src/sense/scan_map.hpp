@@ -46,8 +46,10 @@ struct ScanMapConfig {
   double resolution = 0.25;   ///< m, in [0.02, 5]: a cell's edge
   double prob_hit = 0.7;      ///< in (0.5, 1): P(occupied | an endpoint in the cell) (OctoMap's default)
   double prob_miss = 0.4;     ///< in (0, 0.5): P(occupied | a ray through the cell) (OctoMap's default)
-  double clamp_min = 0.1192;  ///< in (0, 0.5]: the least occupancy probability a cell keeps (OctoMap's default)
-  double clamp_max = 0.971;   ///< in [0.5, 1): the most (OctoMap's default)
+  /// in (0, 0.5): the least occupancy probability a cell keeps (OctoMap's default). Both clamps stay off 0.5,
+  /// the threshold between free and occupied: a clamp at it would keep every cell on one side.
+  double clamp_min = 0.1192;
+  double clamp_max = 0.971;   ///< in (0.5, 1): the most (OctoMap's default)
   /// Cells no scan has touched count as occupied for nearest_occupied (the cautious reading); by default free.
   bool unknown_is_occupied = false;
   /// The map persists over the episodes played on one game state (a run) instead of being cleared by every reset.
@@ -67,8 +69,8 @@ void visit_fields(V& v, C& c) {
   v.number("resolution", c.resolution, Range::closed(0.02, 5.0), "m", "edge of a map cell");
   v.number("prob_hit", c.prob_hit, Range{0.5, 1.0, true, true}, "", "occupancy probability an endpoint gives its cell");
   v.number("prob_miss", c.prob_miss, Range{0.0, 0.5, true, true}, "", "occupancy probability a ray gives a cell it crosses");
-  v.number("clamp_min", c.clamp_min, Range::open_closed(0.0, 0.5), "", "least occupancy probability a cell keeps");
-  v.number("clamp_max", c.clamp_max, Range::closed_open(0.5, 1.0), "", "most occupancy probability a cell keeps");
+  v.number("clamp_min", c.clamp_min, Range{0.0, 0.5, true, true}, "", "least occupancy probability a cell keeps");
+  v.number("clamp_max", c.clamp_max, Range{0.5, 1.0, true, true}, "", "most occupancy probability a cell keeps");
   v.flag("unknown_is_occupied", c.unknown_is_occupied,
          "cells no scan has touched count as obstacles for the agent's inputs (default: as free space)");
   v.flag("persist", c.persist,
@@ -100,6 +102,9 @@ class ScanMap {
 
   /// The cells a map of the box [lo, hi] has at the configuration's resolution.
   static long long cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
+  /// Whether OctoMap's 16-bit keys reach the box [lo, hi]: they number the cells -32768 to 32767 about the origin
+  /// on each axis (+-8192 m at 0.25 m); a point beyond wraps to another cell.
+  static bool keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
 
   /// Forgets every cell: the bricks scans touched go back to a new map's state (a fill of those only).
   void clear();

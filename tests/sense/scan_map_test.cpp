@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/random.hpp"
+#include "core/validation.hpp"
 #include "sense/lidar.hpp"
 #include "sense/world_rays.hpp"
 #include "world/map/map_loader.hpp"
@@ -321,6 +322,19 @@ TEST(ScanMap, ABoxTooFineForMemoryIsRefused) {
   const ScanMap paper(c, Vec3::Zero(), Vec3(35, 35, 20));
   std::printf("paper arena at 0.25 m: %.1f MB\n", double(paper.bytes()) / 1e6);
   EXPECT_LT(paper.bytes(), 8u << 20);
+}
+
+TEST(ScanMap, OctoMapsKeysReachAnArenaWithin32768CellsOfTheOriginAndNoFurther) {
+  ScanMapConfig c;
+  c.resolution = 0.25;  // keys -32768 .. 32767: [-8192, 8192) m
+  EXPECT_TRUE(ScanMap::keys_reach(c, Vec3(0, 0, 0), Vec3(35, 35, 20)));
+  EXPECT_TRUE(ScanMap::keys_reach(c, Vec3(-8192.0, -8192.0, 0), Vec3(8191.99, 10, 10)));
+  EXPECT_FALSE(ScanMap::keys_reach(c, Vec3(8180, 0, 0), Vec3(8192.0, 10, 10)));    // straddles the last key
+  EXPECT_FALSE(ScanMap::keys_reach(c, Vec3(-8192.01, 0, 0), Vec3(0, 10, 10)));
+  EXPECT_FALSE(ScanMap::keys_reach(c, Vec3(0, 0, 9000), Vec3(10, 10, 9020)));      // any axis
+  c.resolution = 1.0;  // four times as far
+  EXPECT_TRUE(ScanMap::keys_reach(c, Vec3(9000, 0, 0), Vec3(9020, 20, 10)));
+  EXPECT_THROW(ScanMap(ScanMapConfig{}, Vec3(9000, 0, 0), Vec3(9020, 20, 10)), InvalidParameter);
 }
 
 }  // namespace
