@@ -3,7 +3,7 @@
 - a sweep killed mid-way with SIGKILL keeps its finished runs in OUT/runs.journal and writes no result file;
   --resume (on another thread count, after a torn last line was appended) finishes it with result files
   byte-identical to an uninterrupted sweep's: peg-paper killed on 1 thread and on 2, peg-matchup and
-  peg-generalize once each;
+  peg-generalize once each, and peg-matchup with lidars, own maps and sight writing every replay;
 - SIGINT stops a sweep within 2 s with status 130, says what was kept and prints the command that resumes
   it; that command finishes the sweep identically; SIGTERM exits with 143;
 - peg-league stopped with SIGTERM while it plays its games keeps its training runs and resumes identically;
@@ -86,6 +86,25 @@ def main():
     killed_then_resumed("peg-matchup", sweeps["peg-matchup"], os.path.join(work, "matchup-kill"), references["peg-matchup"], 2, 1, True)
     killed_then_resumed("peg-generalize", sweeps["peg-generalize"], os.path.join(work, "generalize-kill"),
                         references["peg-generalize"], 1, 2, False)
+
+    # Lidars, own maps and sight on, every replay written: runs read back from the journal keep their sensors'
+    # readings, so a resumed sweep's replays hold the same lidar, map and sight layers, byte for byte.
+    sensing = sweeps["peg-matchup"] + ["--html", "all"]
+    for setting in ("pursuer.lidar.azimuth_rays=8", "pursuer.lidar.elevation_rays=2", "pursuer.map.enabled=true",
+                    "pursuer.sight.enabled=true", "evader.sight.enabled=true"):
+        sensing += ["--set", setting]
+    references["sensing"] = os.path.join(work, "matchup-sensing-reference")
+    r = run(sensing + ["--out", references["sensing"], "--threads", "2"])
+    if check(r.returncode == 0, f"peg-matchup with sensing: status {r.returncode}: {r.stderr[-800:]}"):
+        pages = [os.path.join(root, f) for root, _, files in os.walk(references["sensing"]) for f in files
+                 if f.endswith(".html")]
+        check(len(pages) == 64, f"peg-matchup with sensing: a replay per game, 4 pairings x 16 runs ({len(pages)})")
+        with open(pages[0]) as f:
+            page = f.read()
+        check(all(f'"{layer}"' in page for layer in ("lidar", "map", "sight")),
+              "peg-matchup with sensing: its replays hold the lidar, map and sight layers")
+        killed_then_resumed("peg-matchup with sensing", sensing, os.path.join(work, "matchup-sensing-kill"),
+                            references["sensing"], 2, 1, True)
 
     # SIGINT: stops within 2 s, status 130, says what it kept and how to resume; the printed command finishes it.
     out = os.path.join(work, "paper-int")
