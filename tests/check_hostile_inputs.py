@@ -102,6 +102,13 @@ def main():
         run([matchup, "--config", os.path.join(configs, name), *quick], name, out)
         counts["configs"] = counts.get("configs", 0) + 1
 
+    # Amplification: 4 MB of empty per-pursuer entries (10^6) once grew past 4 GiB before any run; refused at once.
+    amplified = os.path.join(work, "million_pursuers.json")
+    with open(amplified, "w") as f:
+        f.write('{"pursuers": [' + ",".join(["{}"] * 1000000) + "]}")
+    run([matchup, "--config", amplified, *quick], "million_pursuers.json", out)
+    counts["configs"] += 1
+
     policies = os.path.join(work, "policies")
     os.makedirs(policies)
     cases = {

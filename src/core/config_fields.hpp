@@ -96,6 +96,11 @@ const E* enum_value(const EnumNames<E, N>& names, std::string_view name) {
   return nullptr;
 }
 
+/// The most entries a list of sections may hold. The lists are per-agent settings, and a role has at most 256
+/// agents (world::kMaxAgentsPerRole): more could never be used, and a small file of empty entries would
+/// otherwise grow into gigabytes of copied settings.
+inline constexpr std::size_t kMaxSections = 256;
+
 /// Checks every field of a configuration against its table: ranges, enumerations, and the rules between
 /// fields. Throws InvalidParameter naming the dotted field, e.g. "pursuer.facl.actor_rate".
 class Validator {
@@ -213,6 +218,7 @@ void Validator::section(const char* key, const S& value, const char*) {
 
 template <class S>
 void Validator::sections(const char* key, const std::vector<S>& values, const S&, const char*) {
+  require(values.size() <= kMaxSections, key, double(values.size()), "must list at most 256 entries, one per agent");
   for (std::size_t i = 0; i < values.size(); ++i) {
     Validator sub(prefix_ + key + "." + std::to_string(i) + ".");
     visit_fields(sub, values[i]);

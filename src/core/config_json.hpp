@@ -111,6 +111,10 @@ class JsonReader {
     const nlohmann::json* j = take(key);
     if (j == nullptr) return;
     if (!j->is_array()) fail(key, "expects a list [...], got " + brief(*j));
+    if (j->size() > kMaxSections) {
+      fail(key, "lists " + std::to_string(j->size()) + " entries, more than 256: one per agent of a role, and a role has at "
+                "most 256 agents");
+    }
     std::vector<S> out;
     for (std::size_t i = 0; i < j->size(); ++i) {
       const std::string element = field(key) + "." + std::to_string(i);

@@ -6,7 +6,12 @@
 
 #include <fmt/format.h>
 
+#include "core/config_fields.hpp"
 #include "game/starts.hpp"
+#include "world/map/map_spec.hpp"
+
+// A configuration's per-agent lists are bounded by the most agents a role can have.
+static_assert(peg3d::config::kMaxSections == std::size_t(peg3d::world::kMaxAgentsPerRole));
 
 namespace peg3d::game {
 
