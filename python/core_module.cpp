@@ -69,6 +69,8 @@ py::tuple bounds_arrays(const env::ObservationBounds& o) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "peg3d's C++ batch of games; use the peg3d package (parallel_env, vector_env) instead";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  // A batch over its memory budget: a MemoryError (registered after InputError, so tried before it).
+  py::register_exception<env::MemoryBudgetError>(m, "MemoryBudgetError", PyExc_MemoryError);
 
   // The configuration presets, from the one list the library keeps (game::kPresetNames).
   py::tuple presets(std::size(game::kPresetNames));
@@ -106,18 +108,20 @@ PYBIND11_MODULE(_core, m) {
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
                        const std::vector<std::string>& scenarios, int games, int threads, std::uint64_t seed, int neighbours,
-                       const std::vector<std::pair<std::string, std::string>>& controllers, bool cache, bool record) {
+                       const std::vector<std::pair<std::string, std::string>>& controllers, bool cache, bool record,
+                       std::size_t memory_budget) {
              env::BatchSettings s;
              s.games = games, s.threads = threads, s.seed = seed, s.neighbours = neighbours;
              s.scenarios = scenarios;
              s.controllers = controllers;
              s.record = record;
+             s.memory_budget = memory_budget;
              py::gil_scoped_release unlocked;  // building a world can take seconds
              return make_batch(map, config, sets, cache, std::move(s));
            }),
            py::arg("map"), py::arg("config"), py::arg("sets"), py::arg("scenarios"), py::arg("games"),
            py::arg("threads"), py::arg("seed"), py::arg("neighbours"), py::arg("controllers"), py::arg("cache") = true,
-           py::arg("record") = false)
+           py::arg("record") = false, py::arg("memory_budget") = 0)
       .def_property_readonly("games", &env::Batch::games)
       .def_property_readonly("agents", &env::Batch::agents)
       .def_property_readonly("pursuers", &env::Batch::pursuers)

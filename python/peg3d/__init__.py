@@ -6,13 +6,14 @@
     gymnasium.make("peg3d/Pursuer-v0")      one learner against C++ players (also Evader-v0), a gymnasium.Env;
     gymnasium.make_vec("peg3d/Pursuer-v0", num_envs=N)   N of them as a gymnasium.vector.VectorEnv
     InputError                              a bad map, configuration, policy or keyword (a ValueError)
+    MemoryBudgetError                       games that would take more than memory_budget (a MemoryError)
     PRESETS                                 the configuration presets `config` may name
     PLAYERS                                 the C++ players `opponents` may name: (name, roles, needs, help) each
     save_policy(path, role=, observation=, layers=, ...)   a network as a policy file the C++ side plays
     upgrade_policy(path, env, agent)        a version 1 policy file re-saved with the observation it reads
 """
 
-from ._core import OBSERVATION_ENTRIES, PLAYERS, PRESETS, InputError
+from ._core import OBSERVATION_ENTRIES, PLAYERS, PRESETS, InputError, MemoryBudgetError
 from gymnasium.spaces import Box
 
 from ._loading import Segment
@@ -43,6 +44,6 @@ def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
     return VectorEnv(map=map, num_envs=num_envs, threads=threads, **kwargs)
 
 
-__all__ = ["Box", "InputError", "LearnerEnv", "LearnerVectorEnv", "OBSERVATION", "OBSERVATION_ENTRIES", "PLAYERS", "PRESETS",
+__all__ = ["Box", "InputError", "LearnerEnv", "MemoryBudgetError", "LearnerVectorEnv", "OBSERVATION", "OBSERVATION_ENTRIES", "PLAYERS", "PRESETS",
            "ParallelEnv", "Segment", "VectorEnv", "env", "parallel_env", "read_policy", "save_policy", "upgrade_policy",
            "vector_env"]

@@ -75,9 +75,10 @@ def controllers(opponents):
 
 
 def make_batch(map, config, scenario, settings, opponents, games, threads, seed, neighbours, cache=True, record=False,
-               extra_controllers=()):
+               extra_controllers=(), memory_budget=None):
     """The C++ batch. `extra_controllers`: (agent or role, policy) pairs after those of `opponents`, which they
-    override ("" gives an agent back to the caller)."""
+    override ("" gives an agent back to the caller). `memory_budget`: bytes the games may take (None: three
+    quarters of the machine's memory); a batch estimated to need more raises peg3d.MemoryBudgetError."""
     if not isinstance(map, (str, os.PathLike)):
         raise TypeError("map: a map file")
     if isinstance(scenario, str):
@@ -91,9 +92,12 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
             raise TypeError(f"{name}: an integer")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= int(seed) < 2**64:
         raise ValueError("seed: an integer in [0, 2^64)")
+    if memory_budget is not None and (isinstance(memory_budget, bool) or not isinstance(memory_budget, (int, np.integer))
+                                      or not 0 < memory_budget < 2**63):
+        raise ValueError(f"memory_budget: None or a positive number of bytes, not {memory_budget!r}")
     return _core.Batch(resolve(map), config_source(config), overrides(settings), list(scenario), int(games),
                        int(threads), int(seed), int(neighbours), controllers(opponents) + list(extra_controllers), cache,
-                       record)
+                       record, int(memory_budget or 0))
 
 
 def frame_renderer(batch):

@@ -17,7 +17,8 @@ DEFAULT_PLAYERS = {learner: (_core.BASELINE_PLAYERS[ROLES[1 - k]][0], _core.BASE
                    for k, learner in enumerate(ROLES)}
 
 
-def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads, seed, neighbours, cache):
+def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads, seed, neighbours, cache,
+          memory_budget=None):
     """The batch, with every agent but the learner (agent 0 of its role) left to the C++ side."""
     if learner not in ROLES:
         raise ValueError(f"learner: 'pursuer' or 'evader', not {learner!r}")
@@ -27,7 +28,7 @@ def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, th
     # Later keys win: the role's players, then the learner itself back to the caller ("").
     players = {other: opponent, learner: teammates}
     batch = _loading.make_batch(map, config, scenario, set, players, num_envs, threads, seed, neighbours, cache,
-                                extra_controllers=[(f"{learner}_0", "")])
+                                extra_controllers=[(f"{learner}_0", "")], memory_budget=memory_budget)
     agent = 0 if learner == "pursuer" else batch.pursuers
     return batch, agent
 
@@ -130,12 +131,12 @@ class LearnerVectorEnv(_loading.Rebuilt, VectorEnv):
 
     def __init__(self, num_envs=1, map="maps/paper.yaml", learner="pursuer", opponent=None, teammates=None,
                  config="peg3d", scenario=None, set=None, threads=1, seed=0, neighbours=2, cache=True,
-                 render_mode=None):
+                 render_mode=None, memory_budget=None):
         self._made_with = self.remember(locals())
         _check_render_mode(render_mode)
         self.render_mode = render_mode
         self._batch, self._agent = _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads,
-                                         seed, neighbours, cache)
+                                         seed, neighbours, cache, memory_budget)
         b = self._batch
         self.num_envs = b.games
         self.learner = learner

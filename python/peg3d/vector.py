@@ -19,10 +19,10 @@ class VectorEnv(_loading.Rebuilt):
     metadata = {"autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, map="maps/paper.yaml", num_envs=1, threads=1, config="peg3d", scenario=None, set=None,
-                 opponents=None, seed=0, neighbours=2, cache=True):
+                 opponents=None, seed=0, neighbours=2, cache=True, memory_budget=None):
         self._made_with = self.remember(locals())
         self._batch = b = _loading.make_batch(map, config, scenario, set, opponents, num_envs, threads, seed,
-                                              neighbours, cache)
+                                              neighbours, cache, memory_budget=memory_budget)
         self.num_envs = b.games
         self.scenarios = list(b.scenario_names)  # the starts the episodes take in turn (parallel_env's)
         p = b.pursuers

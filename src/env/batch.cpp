@@ -9,14 +9,29 @@
 #include <functional>
 #include <span>
 
+#include <malloc.h>
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/observation.hpp"
 #include "players/registry.hpp"
+#include "sense/scan_map.hpp"
 
 namespace peg3d::env {
+
+namespace {
+
+// Bytes malloc holds for the process now (its arenas and its own mappings: Bullet allocates through it too).
+std::size_t allocated_bytes() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+}  // namespace
+
 
 namespace {
 constexpr std::uint64_t kPolicyStream = 0x706f6c6963790000ULL;  // "policy": the C++ policies' seeds below the root
@@ -158,7 +173,12 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     if (const auto& c = controllers_[std::size_t(i)]; c && c->saved) c->saved->check_fits(*sim_, role, rank);
   }
   games_.reserve(std::size_t(settings_.games));
-  for (int g = 0; g < settings_.games; ++g) games_.emplace_back(*sim_);
+  const std::size_t before = allocated_bytes();
+  games_.emplace_back(*sim_);
+  const std::size_t after = allocated_bytes();
+  first_game_bytes_ = after > before ? after - before : 0;
+  check_memory_budget();
+  for (int g = 1; g < settings_.games; ++g) games_.emplace_back(*sim_);
   if (settings_.record) {
     games_.front().trace = std::make_unique<game::Trace>();
     games_.front().trace->reserve(sim_->max_steps(), agents_);
@@ -179,6 +199,34 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
 }
 
 Batch::~Batch() = default;
+
+void Batch::check_memory_budget() {
+  // The first game, built before this call, is measured as it stands (its SimState: Bullet's collision world,
+  // scratch, sensors); its own maps are made at its first reset, so they are counted from their settings.
+  std::size_t budget = settings_.memory_budget;
+  if (budget == 0) {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    budget = pages > 0 && page > 0 ? std::size_t(pages) / 4 * 3 * std::size_t(page) : std::size_t{8} << 30;
+  }
+  std::size_t maps = 0;
+  for (int i = 0; i < agents_; ++i) {
+    const game::AgentConfig& a = sim_->config().agent_at(i, pursuers_);
+    if (a.map.enabled) maps += sense::ScanMap::bytes_for(a.map, sim_->arena().bounds().lo, sim_->arena().bounds().hi);
+  }
+  const std::size_t arrays = std::size_t(agents_) * (std::size_t(stride_) * sizeof(float) + 8 * sizeof(float));
+  const std::size_t per_game = first_game_bytes_ + maps + arrays;
+  const double total = double(per_game) * double(settings_.games);
+  if (total > double(budget)) {
+    const auto mb = [](double bytes) { return fmt::format("{:.1f} MB", bytes / 1e6); };
+    throw MemoryBudgetError(
+        {}, 0, "memory_budget",
+        fmt::format("{} games of about {} each ({} for a game's state, {} for its agents' own maps) would take "
+                    "about {}, more than the memory budget of {}: play fewer games, coarser maps, or raise "
+                    "memory_budget (bytes; by default three quarters of this machine's memory)",
+                    settings_.games, mb(double(per_game)), mb(double(first_game_bytes_)), mb(double(maps)), mb(total),
+                    mb(double(budget))));
+  }
+}
 
 Batch::Controller Batch::resolve_controller(int i, const std::string& source) const {
   const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;

@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/error.hpp"
 #include "game/episode.hpp"
 #include "game/observation.hpp"
 #include "game/sim.hpp"
@@ -46,6 +47,18 @@ struct BatchSettings {
   std::vector<std::pair<std::string, std::string>> controllers;
   /// Keep every instant of game 0's current episode (trace(0)), for replays: the Python front's render().
   bool record = false;
+  /// bytes the games may take, > 0; 0: three quarters of the machine's physical memory. A batch whose estimate
+  /// (the first game's state as built, its agents' own maps, the arrays of observations) exceeds it is refused
+  /// before its games are made, with MemoryBudgetError: N games that do not fit would otherwise fail inside
+  /// Bullet or the kernel's out-of-memory killer, not with an error.
+  std::size_t memory_budget = 0;
+};
+
+/// A batch that would take more memory than its budget (BatchSettings::memory_budget): an input error naming
+/// the figures (games, bytes per game, the budget).
+class MemoryBudgetError : public InputError {
+ public:
+  using InputError::InputError;
 };
 
 /// Lower and upper bounds of every observation entry on this Sim.
@@ -140,9 +153,13 @@ class Batch {
   const game::StepEvents& step_or_name(int g);
   void write_outputs(int g);
   void build_policies(int g);
+  /// Refuses the batch (MemoryBudgetError) when its games would take more than settings_.memory_budget: estimated
+  /// from the first game, built and measured (first_game_bytes_) before the others are made.
+  void check_memory_budget();
   void run_on_threads(void (Batch::*work)(int, const double*), const double* actions);
 
   std::shared_ptr<const game::Sim> sim_;
+  std::size_t first_game_bytes_ = 0;  // what malloc gave for building the first game's state
   BatchSettings settings_;
   std::vector<game::ObservationTable> tables_;  // per agent
   int stride_ = 0;                              // the largest table's size

@@ -86,6 +86,17 @@ long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3
   return cells;
 }
 
+std::size_t ScanMap::bytes_for(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
+  // As the constructor lays the cells out: whole bricks of kBrick^3 cells, a float each, and per brick its flags.
+  const double factor = 1.0 / config.resolution;
+  std::size_t bricks = 1;
+  for (int d = 0; d < 3; ++d) {
+    const auto n = std::size_t(std::floor(factor * hi[d]) - std::floor(factor * lo[d])) + 1;
+    bricks *= (n + kBrick - 1) / kBrick;
+  }
+  return bricks * (kBrickCells * sizeof(float) + 2 + sizeof(BrickBits));
+}
+
 bool ScanMap::keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
   const double factor = 1.0 / config.resolution;
   for (int d = 0; d < 3; ++d) {

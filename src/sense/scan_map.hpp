@@ -102,6 +102,8 @@ class ScanMap {
 
   /// The cells a map of the box [lo, hi] has at the configuration's resolution.
   static long long cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
+  /// The bytes a new map of the box [lo, hi] holds (bytes() before any scan): what a batch of games budgets.
+  static std::size_t bytes_for(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
   /// Whether OctoMap's 16-bit keys reach the box [lo, hi]: they number the cells -32768 to 32767 about the origin
   /// on each axis (+-8192 m at 0.25 m); a point beyond wraps to another cell.
   static bool keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);

@@ -116,3 +116,20 @@ def test_a_list_of_seeds_refuses_what_a_single_seed_refuses_naming_its_place(bad
     with pytest.raises(ValueError, match="seed: None or an integer"):
         many.reset(seed=bad)
     many.reset(seed=[1, None, np.int64(7)])  # integers of numpy and None (not re-seeded) are seeds
+
+
+def test_a_batch_over_its_memory_budget_is_refused_before_its_games_are_made():
+    fine_maps = dict(SHORT, **{"pursuer.lidar.azimuth_rays": 8, "pursuer.lidar.elevation_rays": 1,
+                               "pursuer.map.enabled": True, "pursuer.map.resolution": 0.08})
+    # 2048 games with 0.08 m maps of the paper's arena: about 220 MB each, 450 GB in all (it once allocated on)
+    with pytest.raises(peg3d.MemoryBudgetError, match=r"2048 games of about 2\d\d\.\d MB each .* own maps\) would "
+                                                      r"take about 4\d{5}\.\d MB, more than the memory budget of "
+                                                      r"1000\.0 MB") as refused:
+        peg3d.vector_env(num_envs=2048, set=fine_maps, memory_budget=10**9)
+    assert isinstance(refused.value, MemoryError)
+    with pytest.raises(MemoryError, match="65536 games"):
+        peg3d.LearnerVectorEnv(num_envs=65536, map="maps/paper.yaml", memory_budget=10**9)
+    peg3d.vector_env(num_envs=64, memory_budget=10**9).reset(seed=1)  # 64 of about 0.2 MB fit
+    for bad in (0, -5, 2.5e9, True, "1GB"):
+        with pytest.raises(ValueError, match="memory_budget"):
+            peg3d.vector_env(num_envs=2, memory_budget=bad)
