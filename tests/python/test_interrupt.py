@@ -7,6 +7,13 @@ import subprocess
 import sys
 import time
 
+# A child started from a background job inherits SIGINT ignored, and then Python installs no KeyboardInterrupt
+# handler: give it the default disposition, as a terminal would (CTest does this itself; a plain pytest run from
+# a background job, such as tools/test.sh --python-versions started with &, does not).
+def _sigint_default():
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 PROGRAM = """
 import peg3d, numpy as np
 v = peg3d.vector_env(num_envs=4096, threads=2, opponents={"evader": "flee"})
@@ -19,7 +26,7 @@ while True:
 
 
 def test_sigint_stops_a_loop_of_long_steps():
-    p = subprocess.Popen([sys.executable, "-c", PROGRAM], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    p = subprocess.Popen([sys.executable, "-c", PROGRAM], stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=_sigint_default,
                          env=dict(os.environ), text=True)
     assert p.stdout.readline().strip() == "stepping"
     time.sleep(0.5)
@@ -49,7 +56,7 @@ collections.deque(map(v._batch.step, itertools.repeat(a)), maxlen=0)
 
 
 def test_the_step_itself_raises_the_interrupt():
-    p = subprocess.Popen([sys.executable, "-c", C_LOOP], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    p = subprocess.Popen([sys.executable, "-c", C_LOOP], stdout=subprocess.PIPE, stderr=subprocess.PIPE, preexec_fn=_sigint_default,
                          env=dict(os.environ), text=True)
     assert p.stdout.readline().strip() == "stepping"
     time.sleep(0.5)
