@@ -191,6 +191,16 @@ def check_seed(seed, field="seed"):
     return int(seed)
 
 
+class Closable:
+    """An environment that refuses every call once closed: RuntimeError, the same in every front."""
+
+    _closed = False
+
+    def _check_open(self):
+        if self._closed:
+            raise RuntimeError("peg3d: the environment is closed")
+
+
 class Rebuilt:
     """Pickling and copying an environment make it anew from the arguments it was made with (`_made_with`, set
     first thing by its __init__): a fresh environment on the same map and settings, not reset. Its state (games

@@ -48,7 +48,7 @@ def _segment_view(env, name, games):
     return env._batch.segment_view(seg.offset, list(seg.shape), env._agent, 1)[:games, 0]
 
 
-class LearnerEnv(_loading.Rebuilt, gymnasium.Env):
+class LearnerEnv(_loading.Rebuilt, _loading.Closable, gymnasium.Env):
     """One game in which the learner (pursuer_0 or evader_0) takes the actions and C++ plays everyone else.
     Observations, actions and rewards are parallel_env's for that agent (docs/python.md). terminated: the
     learner's game is over for it (capture, collision); truncated: the time limit."""
@@ -71,7 +71,6 @@ class LearnerEnv(_loading.Rebuilt, gymnasium.Env):
         self._size = self.observation_space.shape[0]
         self._actions = np.zeros((1, self._batch.agents, 2))
         self._done = True
-        self._closed = False
         self._frames = _loading.frame_renderer(self._batch) if render_mode else None
 
     def render(self):
@@ -81,10 +80,6 @@ class LearnerEnv(_loading.Rebuilt, gymnasium.Env):
     def close(self):
         self._closed = True
         self._done = True
-
-    def _check_open(self):
-        if self._closed:
-            raise RuntimeError("peg3d: the environment is closed")
 
     def reset(self, *, seed=None, options=None):
         self._check_open()
@@ -120,7 +115,7 @@ class LearnerEnv(_loading.Rebuilt, gymnasium.Env):
         return self._batch.global_state(0)
 
 
-class LearnerVectorEnv(_loading.Rebuilt, VectorEnv):
+class LearnerVectorEnv(_loading.Rebuilt, _loading.Closable, VectorEnv):
     """num_envs games of LearnerEnv, stepped by one call on `threads` C++ threads. Arrays of shape (num_envs, ...)
     everywhere; autoreset is next-step (metadata["autoreset_mode"]): the step after a game ended resets it and
     ignores its action. reset(seed=int) seeds the batch (game g's episodes from derive_seed(seed, {g, e}));
@@ -154,14 +149,10 @@ class LearnerVectorEnv(_loading.Rebuilt, VectorEnv):
         self._term, self._trunc = b.terminated[:, i], b.truncated[:, i]
         self._captured, self._collided, self._reset = b.captured[:, i], b.collided[:, i], b.reset_flags
         self._frames = _loading.frame_renderer(b) if render_mode else None
-        self._started = self._closed = False
+        self._started = False
 
     def close_extras(self, **kwargs):
         self._closed = True
-
-    def _check_open(self):
-        if self._closed:
-            raise RuntimeError("peg3d: the environment is closed")
 
     def render(self):
         """With render_mode="rgb_array": every game's image as LearnerEnv.render() gives it, a tuple."""

@@ -13,7 +13,7 @@ REWARD_TERMS = ("obstacle", "target", "success")
 RENDER_MODES = ("human", "html", "rgb_array")
 
 
-class ParallelEnv(_loading.Rebuilt, _ParallelEnv):
+class ParallelEnv(_loading.Rebuilt, _loading.Closable, _ParallelEnv):
     """One peg3d game. Agents are pursuer_0.., evader_0.. (those not left to `opponents`); each step() takes an
     action per agent still in the game and returns dicts keyed by the agents that acted."""
 
@@ -102,10 +102,6 @@ class ParallelEnv(_loading.Rebuilt, _ParallelEnv):
     @property
     def max_num_agents(self):
         return len(self.possible_agents)
-
-    def _check_open(self):
-        if self._closed:
-            raise RuntimeError("peg3d: the environment is closed")
 
     def reset(self, seed=None, options=None):
         self._check_open()

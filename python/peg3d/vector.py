@@ -11,7 +11,7 @@ from .parallel import REWARD_TERMS
 ROLES = ("pursuer", "evader")
 
 
-class VectorEnv(_loading.Rebuilt):
+class VectorEnv(_loading.Rebuilt, _loading.Closable):
     """num_envs independent games of one map. Observations, rewards and flags come per role as arrays of shape
     (num_envs, agents of the role, ...), read-only views of the C++ buffers that the next step overwrites
     (copy what you keep). Agents left to `opponents` are played on the C++ side: their actions are ignored."""
@@ -101,10 +101,6 @@ class VectorEnv(_loading.Rebuilt):
         """{role: gymnasium Box of one game's observation_view(name)[role]} (each agent's bounds)."""
         return {r: _loading.segment_view(self._batch, self._role_segments(r), name)[1]
                 for r in ROLES if any(s.name == name for _, segs in self._role_segments(r) for s in segs)}
-
-    def _check_open(self):
-        if self._closed:
-            raise RuntimeError("peg3d: the environment is closed")
 
     def reset(self, seed=None, options=None):
         self._check_open()
