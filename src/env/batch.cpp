@@ -30,10 +30,6 @@ std::size_t allocated_bytes() {
   return m.uordblks + m.hblkhd;
 }
 
-}  // namespace
-
-
-namespace {
 constexpr std::uint64_t kPolicyStream = 0x706f6c6963790000ULL;  // "policy": the C++ policies' seeds below the root
 
 }  // namespace

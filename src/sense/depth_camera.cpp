@@ -83,7 +83,7 @@ void DepthCamera::segments(const SegmentContext&, std::vector<Segment>& out) con
 }
 
 void DepthCamera::observe(const Reading& reading, const ObserveContext&, std::span<float> out) const {
-  for (std::size_t k = 0; k < reading.values.size(); ++k) out[k] = float(reading.values[k]);
+  observe_readings(reading, out);
 }
 
 nlohmann::json DepthCamera::replay(const RecordedReadings& r) const {

@@ -57,7 +57,7 @@ void Lidar::segments(const SegmentContext&, std::vector<Segment>& out) const {
 }
 
 void Lidar::observe(const Reading& reading, const ObserveContext&, std::span<float> out) const {
-  for (std::size_t k = 0; k < reading.values.size(); ++k) out[k] = float(reading.values[k]);
+  observe_readings(reading, out);
 }
 
 nlohmann::json Lidar::replay(const RecordedReadings& r) const {

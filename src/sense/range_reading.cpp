@@ -47,4 +47,8 @@ std::string encoded_frames(std::span<const int> frames) {
   return base64(out.data(), out.size() * sizeof(std::uint32_t));
 }
 
+void observe_readings(const Reading& reading, std::span<float> out) {
+  for (std::size_t k = 0; k < reading.values.size(); ++k) out[k] = float(reading.values[k]);
+}
+
 }  // namespace peg3d::sense

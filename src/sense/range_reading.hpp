@@ -52,6 +52,9 @@ struct RayScratch : SensorScratch {
 std::size_t ray_points(const RayScratch& scan, const Reading& reading, std::span<const double> scale, bool skip_agents,
                        double beyond, std::span<Vec3> points);
 
+/// Sensor::observe of a range sensor: its latest readings as floats, in reading order.
+void observe_readings(const Reading& reading, std::span<float> out);
+
 /// Base64 of a recorded episode's per-frame arrays, as replay layers carry them (little-endian).
 std::string encoded_f32(std::span<const float> values);
 std::string encoded_u8(std::span<const std::uint8_t> values);
