@@ -172,8 +172,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   const std::size_t before = allocated_bytes();
   games_.emplace_back(*sim_);
   const std::size_t after = allocated_bytes();
-  first_game_bytes_ = after > before ? after - before : 0;
-  check_memory_budget();
+  check_memory_budget(after > before ? after - before : 0);
   for (int g = 1; g < settings_.games; ++g) games_.emplace_back(*sim_);
   if (settings_.record) {
     games_.front().trace = std::make_unique<game::Trace>();
@@ -196,7 +195,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
 
 Batch::~Batch() = default;
 
-void Batch::check_memory_budget() {
+void Batch::check_memory_budget(std::size_t state_bytes) const {
   // The first game, built before this call, is measured as it stands (its SimState: Bullet's collision world,
   // scratch, sensors); its own maps are made at its first reset, so they are counted from their settings.
   std::size_t budget = settings_.memory_budget;
@@ -210,7 +209,7 @@ void Batch::check_memory_budget() {
     if (a.map.enabled) maps += sense::ScanMap::bytes_for(a.map, sim_->arena().bounds().lo, sim_->arena().bounds().hi);
   }
   const std::size_t arrays = std::size_t(agents_) * (std::size_t(stride_) * sizeof(float) + 8 * sizeof(float));
-  const std::size_t per_game = first_game_bytes_ + maps + arrays;
+  const std::size_t per_game = state_bytes + maps + arrays;
   const double total = double(per_game) * double(settings_.games);
   if (total > double(budget)) {
     const auto mb = [](double bytes) { return fmt::format("{:.1f} MB", bytes / 1e6); };
@@ -219,7 +218,7 @@ void Batch::check_memory_budget() {
         fmt::format("{} games of about {} each ({} for a game's state, {} for its agents' own maps) would take "
                     "about {}, more than the memory budget of {}: play fewer games, coarser maps, or raise "
                     "memory_budget (bytes; by default three quarters of this machine's memory)",
-                    settings_.games, mb(double(per_game)), mb(double(first_game_bytes_)), mb(double(maps)), mb(total),
+                    settings_.games, mb(double(per_game)), mb(double(state_bytes)), mb(double(maps)), mb(total),
                     mb(double(budget))));
   }
 }

@@ -154,12 +154,11 @@ class Batch {
   void write_outputs(int g);
   void build_policies(int g);
   /// Refuses the batch (MemoryBudgetError) when its games would take more than settings_.memory_budget: estimated
-  /// from the first game, built and measured (first_game_bytes_) before the others are made.
-  void check_memory_budget();
+  /// from the first game's `state_bytes` (what malloc gave for building it), before the others are made.
+  void check_memory_budget(std::size_t state_bytes) const;
   void run_on_threads(void (Batch::*work)(int, const double*), const double* actions);
 
   std::shared_ptr<const game::Sim> sim_;
-  std::size_t first_game_bytes_ = 0;  // what malloc gave for building the first game's state
   BatchSettings settings_;
   std::vector<game::ObservationTable> tables_;  // per agent
   int stride_ = 0;                              // the largest table's size
