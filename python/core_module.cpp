@@ -108,12 +108,16 @@ PYBIND11_MODULE(_core, m) {
   py::class_<env::Batch> batch(m, "Batch");
   batch.def(py::init([](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
                        const std::vector<std::string>& scenarios, int games, int threads, std::uint64_t seed, int neighbours,
-                       const std::vector<std::pair<std::string, std::string>>& controllers, bool cache, bool record,
-                       std::size_t memory_budget) {
+                       const std::vector<std::pair<std::string, std::vector<std::pair<std::string, double>>>>& controllers,
+                       bool cache, bool record, std::size_t memory_budget) {
              env::BatchSettings s;
              s.games = games, s.threads = threads, s.seed = seed, s.neighbours = neighbours;
              s.scenarios = scenarios;
-             s.controllers = controllers;
+             // (agent or role, [(policy, weight), ...]): BatchSettings::controllers' mixtures.
+             for (const auto& [key, members] : controllers) {
+               auto& mixture = s.controllers.emplace_back(key, std::vector<env::MixtureEntry>{}).second;
+               for (const auto& [policy, weight] : members) mixture.push_back({policy, weight});
+             }
              s.record = record;
              s.memory_budget = memory_budget;
              py::gil_scoped_release unlocked;  // building a world can take seconds
@@ -135,6 +139,22 @@ PYBIND11_MODULE(_core, m) {
       .def("controlled", [](const env::Batch& b, int i) {
         if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
         return b.controlled(i);
+      })
+      .def("mixture", [](const env::Batch& b, int i) {
+        // Agent i's C++ players as given: [(policy, weight), ...]; empty for the caller's agents.
+        if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");
+        py::list out;
+        for (const env::MixtureEntry& e : b.mixture(i)) out.append(py::make_tuple(e.policy, e.weight));
+        return out;
+      })
+      .def("members", [](const env::Batch& b) {
+        // games x agents: the member of its mixture each agent plays this episode (-1: the caller's agents).
+        py::array_t<std::int32_t> out({b.games(), b.agents()});
+        auto m = out.mutable_unchecked<2>();
+        for (int g = 0; g < b.games(); ++g) {
+          for (int i = 0; i < b.agents(); ++i) m(g, i) = b.member(g, i);
+        }
+        return out;
       })
       .def("observation_bounds", [](const env::Batch& b, int i) {
         if (i < 0 || i >= b.agents()) throw py::index_error("no such agent");

@@ -1,6 +1,7 @@
 """What parallel_env and vector_env share: finding maps and configurations as the programs do, the
 keyword arguments as the C++ batch takes them, and the spaces."""
 
+import math
 import os
 from pathlib import Path
 from typing import NamedTuple
@@ -59,18 +60,56 @@ def overrides(settings):
     return out
 
 
+def _policy(p, field):
+    if not isinstance(p, (str, os.PathLike)):
+        raise TypeError(f"{field}: a policy name or file, not {type(p).__name__}")
+    p = str(p)
+    return resolve(p) if (p.endswith(".json") or os.sep in p) else p
+
+
+def _weight(w, field):
+    if isinstance(w, bool) or not isinstance(w, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{field}: a weight is a number, not {type(w).__name__}")
+    w = float(w)
+    if not math.isfinite(w) or w < 0:
+        raise ValueError(f"{field}: a weight is finite and >= 0, not {w!r}")
+    return w
+
+
+def mixture(policy, field):
+    """One agent's (or role's) C++ players as [(policy, weight), ...]: a policy name or file plays every episode;
+    {policy: weight, ...} or [(policy, weight), ...] draws one per episode, with probability weight / total."""
+    if isinstance(policy, (str, os.PathLike)):
+        return [(_policy(policy, field), 1.0)]
+    if isinstance(policy, dict):
+        pairs = list(policy.items())
+    elif isinstance(policy, (list, tuple)):
+        pairs = list(policy)
+        if not all(isinstance(p, (list, tuple)) and len(p) == 2 for p in pairs):
+            raise TypeError(f"{field}: a mixture is a dict of policies to weights or a list of (policy, weight) pairs")
+    else:
+        raise TypeError(f"{field}: a policy name, a policy file or a mixture {{policy: weight, ...}}, "
+                        f"not {type(policy).__name__}")
+    if not pairs:
+        raise ValueError(f"{field}: a mixture has at least one member")
+    out = [(_policy(p, f"{field}.{k}"), _weight(w, f"{field}.{k}.weight")) for k, (p, w) in enumerate(pairs)]
+    if not sum(w for _, w in out) > 0:
+        raise ValueError(f"{field}: a mixture's weights sum to more than 0")
+    return out
+
+
 def controllers(opponents):
-    """{"evader_0": "flee", "pursuer": "policy.json"} as (agent or role, policy name or file) pairs."""
+    """{"evader_0": "flee", "pursuer": "policy.json", "evader": {"flee": 0.5, "hide": 0.5}} as (agent or role,
+    [(policy name or file, weight), ...]) pairs."""
     if opponents is None:
         return []
     if not isinstance(opponents, dict):
         raise TypeError("opponents: a dict of agent (or role) names to policies")
     out = []
     for key, policy in opponents.items():
-        if not isinstance(key, str) or not isinstance(policy, (str, os.PathLike)):
-            raise TypeError("opponents: names to policy names or files")
-        p = str(policy)
-        out.append((key, resolve(p) if (p.endswith(".json") or os.sep in p) else p))
+        if not isinstance(key, str):
+            raise TypeError("opponents: names to policy names, files or mixtures")
+        out.append((key, mixture(policy, f"opponents.{key}")))
     return out
 
 
@@ -96,7 +135,8 @@ def make_batch(map, config, scenario, settings, opponents, games, threads, seed,
                                       or not 0 < memory_budget < 2**63):
         raise ValueError(f"memory_budget: None or a positive number of bytes, not {memory_budget!r}")
     return _core.Batch(resolve(map), config_source(config), overrides(settings), list(scenario), int(games),
-                       int(threads), int(seed), int(neighbours), controllers(opponents) + list(extra_controllers), cache,
+                       int(threads), int(seed), int(neighbours),
+                       controllers(opponents) + [(key, [(p, 1.0)]) for key, p in extra_controllers], cache,
                        record, int(memory_budget or 0))
 
 

@@ -133,5 +133,13 @@ class VectorEnv(_loading.Rebuilt, _loading.Closable):
         self._check_open()
         return self._batch.global_states()
 
+    def members(self):
+        """{role: (num_envs, agents of the role) int32}: which member of its mixture (`opponents`) each C++-played
+        agent plays in each game's current episode, an index into that mixture's members in the order given; -1
+        for the caller's agents. A copy."""
+        self._check_open()
+        m = self._batch.members()
+        return {r: m[:, s].copy() for r, s in self._slices.items()}
+
     def close(self):
         self._closed = True

@@ -31,6 +31,7 @@ std::size_t allocated_bytes() {
 }
 
 constexpr std::uint64_t kPolicyStream = 0x706f6c6963790000ULL;  // "policy": the C++ policies' seeds below the root
+constexpr std::uint64_t kMixtureStream = 0x6d69787475726500ULL;  // "mixture": which member plays an episode
 
 }  // namespace
 
@@ -137,27 +138,70 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   for (int i = 0; i < agents_; ++i) {
     names_.push_back(game::agent_label(game::role_at(i, pursuers_), game::rank_at(i, pursuers_)));
   }
-  std::vector<std::string> source(static_cast<std::size_t>(agents_));  // per agent: "" or its policy name or file
-  for (const auto& [key, policy] : settings_.controllers) {
+  // Per agent, the key of settings_.controllers that names it last (-1: the caller's agent).
+  mixture_key_.assign(std::size_t(agents_), -1);
+  for (std::size_t k = 0; k < settings_.controllers.size(); ++k) {
+    const auto& [key, entries] = settings_.controllers[k];
     bool matched = false;
     for (int i = 0; i < agents_; ++i) {
       const bool pursuer = i < pursuers_;
       if (key == names_[std::size_t(i)] || key == (pursuer ? "pursuer" : "evader")) {
-        source[std::size_t(i)] = policy;
+        mixture_key_[std::size_t(i)] = int(k);
         matched = true;
       }
     }
     if (!matched) {
-      throw InvalidParameter("opponents." + key, policy, "names no agent of the game (pursuer_0.., evader_0.., pursuer, evader)");
+      throw InvalidParameter("opponents." + key, entries.empty() ? "" : entries.front().policy,
+                             "names no agent of the game (pursuer_0.., evader_0.., pursuer, evader)");
     }
   }
-  controllers_.resize(std::size_t(agents_));
+  mixtures_.resize(std::size_t(agents_));
   for (int i = 0; i < agents_; ++i) {
-    if (source[std::size_t(i)].empty()) continue;
-    const Controller& c = *(controllers_[std::size_t(i)] = resolve_controller(i, source[std::size_t(i)]));
-    if (const game::AgentConfig* own = c.saved ? c.saved->config() : nullptr) {
-      config.set_agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_), *own);
+    const int k = mixture_key_[std::size_t(i)];
+    if (k < 0) continue;
+    const auto& [key, entries] = settings_.controllers[std::size_t(k)];
+    const std::string field = "opponents." + key;
+    if (entries.size() == 1 && entries.front().policy.empty()) {
+      mixture_key_[std::size_t(i)] = -1;  // given back to the caller
+      continue;
     }
+    if (entries.empty()) {
+      mixture_key_[std::size_t(i)] = -1;
+      continue;
+    }
+    if (entries.size() > std::size_t(kMaxMixtureEntries)) {
+      throw InvalidParameter(field, std::to_string(entries.size()) + " members",
+                             "a mixture has at most " + std::to_string(kMaxMixtureEntries));
+    }
+    double total = 0.0;
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      const double w = entries[e].weight;
+      if (!std::isfinite(w) || w < 0.0) {
+        throw InvalidParameter(field + "." + std::to_string(e) + ".weight", fmt::format("{}", w),
+                               "a member's weight is finite and >= 0");
+      }
+      total += w;
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) {
+      throw InvalidParameter(field, fmt::format("total weight {}", total), "a mixture's weights sum to a finite number > 0");
+    }
+    // A mixture's FACL files carry their agent configuration; the agent plays under it, whichever member plays.
+    const game::AgentConfig* own = nullptr;
+    std::vector<Controller>& mixture = mixtures_[std::size_t(i)];
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      const std::string member = entries.size() == 1 ? field : field + "." + std::to_string(e);
+      Controller c = resolve_controller(i, entries[e], member);
+      if (const game::AgentConfig* mine = c.saved ? c.saved->config() : nullptr) {
+        if (own != nullptr && !(*own == *mine)) {
+          throw InvalidParameter(member, entries[e].policy,
+                                 "carries another agent configuration than the mixture's first FACL policy: "
+                                 "a mixture's FACL policies must play under one configuration");
+        }
+        own = mine;
+      }
+      mixture.push_back(std::move(c));
+    }
+    if (own != nullptr) config.set_agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_), *own);
   }
   sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
   for (int i = 0; i < agents_; ++i) {
@@ -166,7 +210,9 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     tables_.push_back(game::observation_table(*sim_, role, rank, settings_.neighbours));
     stride_ = std::max(stride_, tables_.back().size());
     // A C++-played network reads what this batch would give its agent: refused before any game when it cannot.
-    if (const auto& c = controllers_[std::size_t(i)]; c && c->saved) c->saved->check_fits(*sim_, role, rank);
+    for (const Controller& c : mixtures_[std::size_t(i)]) {
+      if (c.saved) c.saved->check_fits(*sim_, role, rank);
+    }
   }
   games_.reserve(std::size_t(settings_.games));
   const std::size_t before = allocated_bytes();
@@ -223,15 +269,17 @@ void Batch::check_memory_budget(std::size_t state_bytes) const {
   }
 }
 
-Batch::Controller Batch::resolve_controller(int i, const std::string& source) const {
+Batch::Controller Batch::resolve_controller(int i, const MixtureEntry& entry, const std::string& field) const {
   const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+  const std::string& source = entry.policy;
   Controller c;
+  c.weight = entry.weight;
   std::error_code ec;
   if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
     c.saved = players::load_saved_policy(source, role);
     return c;
   }
-  const std::string field = "opponents." + names_[std::size_t(i)];
+  if (source.empty()) throw InvalidParameter(field, source, "a mixture's member names a policy or a policy file");
   const players::PlayerInfo& player = players::player_named(source, role, field);
   c.player = std::string(player.name);
   if (player.learns()) {
@@ -240,23 +288,66 @@ Batch::Controller Batch::resolve_controller(int i, const std::string& source) co
   return c;
 }
 
+std::vector<MixtureEntry> Batch::mixture(int i) const {
+  require_in_range("agent", i, 0, agents_ - 1);
+  std::vector<MixtureEntry> out;
+  const int k = mixture_key_[std::size_t(i)];
+  if (k >= 0) out = settings_.controllers[std::size_t(k)].second;
+  return out;
+}
+
 void Batch::build_policies(int g) {
   Game& game = games_[std::size_t(g)];
-  game.policies.clear();
-  game.policies.resize(std::size_t(agents_));
+  game.players.clear();
+  game.players.resize(std::size_t(agents_));
+  game.member.assign(std::size_t(agents_), -1);
+  game.policies.assign(std::size_t(agents_), nullptr);
   game.commands.assign(std::size_t(agents_), Steering{});
   for (int i = 0; i < agents_; ++i) {
-    const std::optional<Controller>& c = controllers_[std::size_t(i)];
-    std::unique_ptr<game::Policy>& p = game.policies[std::size_t(i)];
-    if (!c) continue;
-    if (c->saved) {
-      p = c->saved->make(derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)}));
-    } else {
-      const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
-      game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
-      a.policy = c->player;
-      p = players::make_player(a, role, derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)}));
+    const std::vector<Controller>& mixture = mixtures_[std::size_t(i)];
+    for (std::size_t e = 0; e < mixture.size(); ++e) {
+      const Controller& c = mixture[e];
+      // A lone member keeps the seed a single C++ player has always had; a mixture's members have their own.
+      const std::uint64_t seed =
+          mixture.size() == 1 ? derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)})
+                              : derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i), std::uint64_t(e)});
+      if (c.saved) {
+        game.players[std::size_t(i)].push_back(c.saved->make(seed));
+      } else {
+        const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+        game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
+        a.policy = c.player;
+        game.players[std::size_t(i)].push_back(players::make_player(a, role, seed));
+      }
     }
+  }
+}
+
+void Batch::choose_members(int g) {
+  Game& game = games_[std::size_t(g)];
+  for (int i = 0; i < agents_; ++i) {
+    const std::vector<Controller>& mixture = mixtures_[std::size_t(i)];
+    if (mixture.empty()) continue;
+    int chosen = 0;
+    if (mixture.size() > 1) {
+      // One draw per key and episode, shared by the key's agents: the cumulative weights against a uniform in [0, 1).
+      const int key = mixture_key_[std::size_t(i)];
+      const std::uint64_t bits = derive_seed(
+          game.seed, {game.slot, kMixtureStream, std::uint64_t(game.episode), std::uint64_t(key)});
+      double total = 0.0;
+      for (const Controller& c : mixture) total += c.weight;
+      const double u = double(bits >> 11) * 0x1.0p-53 * total;
+      double sum = 0.0;
+      chosen = -1;
+      for (std::size_t e = 0; e < mixture.size(); ++e) {
+        if (mixture[e].weight <= 0.0) continue;
+        chosen = int(e);  // the last member of positive weight takes what rounding leaves above the sum
+        sum += mixture[e].weight;
+        if (u < sum) break;
+      }
+    }
+    game.member[std::size_t(i)] = chosen;
+    game.policies[std::size_t(i)] = game.players[std::size_t(i)][std::size_t(chosen)].get();
   }
 }
 
@@ -275,6 +366,7 @@ const world::Scenario& Batch::scenario_for(int g, long long episode) const {
 void Batch::start_episode(int g) {
   Game& game = games_[std::size_t(g)];
   game::reset(*sim_, game.state, scenario_for(g, game.episode), derive_seed(game.seed, {game.slot, std::uint64_t(game.episode)}));
+  choose_members(g);
   for (int i = 0; i < agents_; ++i) {
     if (game.policies[std::size_t(i)]) game.policies[std::size_t(i)]->begin_episode(game::observe(game.state, i), false);
   }
@@ -332,7 +424,7 @@ void Batch::step_game(int g, const double* actions) {
     Steering& u = game.commands[std::size_t(i)];
     if (!a.active) {
       u = {};
-    } else if (game::Policy* p = game.policies[std::size_t(i)].get()) {
+    } else if (game::Policy* p = game.policies[std::size_t(i)]) {
       u = p->act(a.view);
     } else {
       const double* x = actions + (std::size_t(g) * std::size_t(agents_) + std::size_t(i)) * 2;
@@ -371,7 +463,7 @@ const game::StepEvents& Batch::step_or_name(int g) {
   try {
     return game::step(*sim_, game.state, game.commands);
   } catch (const game::CommandError& e) {
-    const game::Policy* p = e.agent() >= 0 ? game.policies[std::size_t(e.agent())].get() : nullptr;
+    const game::Policy* p = e.agent() >= 0 ? game.policies[std::size_t(e.agent())] : nullptr;
     throw (p != nullptr && !p->file().empty() ? e.played_by(p->file()) : e).in_game(g);
   }
 }

@@ -31,6 +31,17 @@
 
 namespace peg3d::env {
 
+/// One member of a mixture of C++ players (BatchSettings::controllers): a policy name (flee, pure-pursuit, ...) or
+/// a saved policy file (FACL or MLP), played in the share weight / (the mixture's total weight) of the episodes.
+struct MixtureEntry {
+  std::string policy;
+  double weight = 1.0;  ///< finite, >= 0; the mixture's weights sum to > 0
+  bool operator==(const MixtureEntry&) const = default;
+};
+
+/// The most members one mixture may have: every game builds a player of each for each of its agents.
+inline constexpr int kMaxMixtureEntries = 256;
+
 /// How a batch is built. Every field a user sets is validated by Batch (InvalidParameter naming it).
 struct BatchSettings {
   int games = 1;                ///< N, in [1, 65536]
@@ -42,9 +53,14 @@ struct BatchSettings {
   /// more than once, to play that start more often (for training). They must have the same numbers of pursuers
   /// and evaders (a batch's arrays have one shape). Empty: the map's scenarios with the first one's numbers.
   std::vector<std::string> scenarios;
-  /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> a policy name (flee, pure-pursuit, ...)
-  /// or a saved policy file (FACL or MLP): those agents are played on the C++ side. The others take the caller's actions.
-  std::vector<std::pair<std::string, std::string>> controllers;
+  /// agent name (pursuer_0, evader_1, ...) or role (pursuer, evader) -> the mixture of C++ players it plays: one
+  /// member, or several drawn per episode by weight. Later keys override earlier ones for the agents they name; an
+  /// empty mixture (or one member named "") gives the agents back to the caller. The agents of one key draw
+  /// together (a team plays one member in an episode), from derive_seed(the game's seed, {game, kMixtureStream,
+  /// episode, key}), so a batch's draws depend on its seed only. The others take the caller's actions.
+  /// A mixture's FACL files carry their agent configuration (guard, steering, observation, ...): they must carry
+  /// the same one, under which its other members play.
+  std::vector<std::pair<std::string, std::vector<MixtureEntry>>> controllers;
   /// Keep every instant of game 0's current episode (trace(0)), for replays: the Python front's render().
   bool record = false;
   /// bytes the games may take, > 0; 0: three quarters of the machine's physical memory. A batch whose estimate
@@ -85,7 +101,12 @@ class Batch {
   const game::ObservationTable& observation_table(int i) const { return tables_[std::size_t(i)]; }
   const std::vector<std::string>& agent_names() const { return names_; }
   /// Whether agent i is played on the C++ side (its actions are ignored).
-  bool controlled(int i) const { return controllers_[std::size_t(i)].has_value(); }
+  bool controlled(int i) const { return !mixtures_[std::size_t(i)].empty(); }
+  /// The members of agent i's mixture, as given (empty for the caller's agents).
+  std::vector<MixtureEntry> mixture(int i) const;
+  /// Which member of its mixture agent i plays in game g's current episode: an index into mixture(i), or -1 for
+  /// the caller's agents.
+  int member(int game, int i) const { return controlled(i) ? games_[std::size_t(game)].member[std::size_t(i)] : -1; }
   /// Agent i's bounds, its observation's size long.
   ObservationBounds observation_bounds(int i) const;
   /// rad: the steering bound per step, the action space's bound on both components.
@@ -138,7 +159,11 @@ class Batch {
   struct Game {
     explicit Game(const game::Sim& sim) : state(sim) {}
     game::SimState state;
-    std::vector<std::unique_ptr<game::Policy>> policies;  // null for the caller's agents
+    // Per agent, a player of every member of its mixture (none for the caller's agents), the member it plays
+    // this episode, and that player (null for the caller's agents).
+    std::vector<std::vector<std::unique_ptr<game::Policy>>> players;
+    std::vector<int> member;
+    std::vector<game::Policy*> policies;
     std::vector<Steering> commands;
     long long episode = 0;
     // The root seed of its episodes and policies, and the game number they are derived with: the batch's seed
@@ -153,6 +178,8 @@ class Batch {
   const game::StepEvents& step_or_name(int g);
   void write_outputs(int g);
   void build_policies(int g);
+  /// Draws each mixture's member for game g's current episode and points its agents' policies at them.
+  void choose_members(int g);
   /// Refuses the batch (MemoryBudgetError) when its games would take more than settings_.memory_budget: estimated
   /// from the first game's `state_bytes` (what malloc gave for building it), before the others are made.
   void check_memory_budget(std::size_t state_bytes) const;
@@ -166,13 +193,17 @@ class Batch {
   int agents_ = 0, pursuers_ = 0;
   std::vector<std::string> names_;
   // How a C++-played agent plays: a classic strategy, or a model read once from its file and shared, read-only,
-  // by every game's policy (nullopt: the caller's agent).
+  // by every game's policy.
   struct Controller {
     std::string player;  // a player of the registry (players/registry.hpp)
     std::shared_ptr<const players::SavedPolicy> saved;  // a policy file of either kind
+    double weight = 1.0;
   };
-  Controller resolve_controller(int agent, const std::string& source) const;
-  std::vector<std::optional<Controller>> controllers_;
+  Controller resolve_controller(int agent, const MixtureEntry& entry, const std::string& field) const;
+  // Per agent: its mixture's members (empty: the caller's agent), and which key of settings_.controllers gave it
+  // (the agents of one key draw together).
+  std::vector<std::vector<Controller>> mixtures_;
+  std::vector<int> mixture_key_;
   std::vector<Game> games_;
   std::vector<float> observations_, rewards_, terms_;
   std::vector<std::uint8_t> terminated_, truncated_, acted_, active_, collided_, captured_, reset_flags_;

@@ -514,7 +514,7 @@ TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
   c.initial_heading = game::InitialHeading::kRandom;  // from each game's episode seed
   BatchSettings s = settings(2, 2, 21);
   s.scenarios = {"timeout"};
-  s.controllers = {{"evader_0", "flee"}};
+  s.controllers = {{"evader_0", {{"flee"}}}};
   Batch batch(arena(), c, s);
   EXPECT_TRUE(batch.controlled(2));
   EXPECT_FALSE(batch.controlled(0) || batch.controlled(1) || batch.controlled(3));
@@ -558,6 +558,143 @@ TEST(EnvBatch, AClassicPolicyNamedForAnAgentPlaysItInsteadOfTheCallersActions) {
   EXPECT_GT(turns, 0);  // flee steered: a batch that flew evader_0 straight would differ
 }
 
+// The members of the first `games` games' first episodes, re-seeded with seeds first, first + 1, ...: games x agents.
+std::vector<int> members_over_seeds(Batch& batch, int first, int count) {
+  std::vector<int> out;
+  for (int k = 0; k < count; ++k) {
+    batch.reset_game(0, std::uint64_t(first + k));
+    for (int i = 0; i < batch.agents(); ++i) out.push_back(batch.member(0, i));
+  }
+  return out;
+}
+
+TEST(EnvBatch, AMixtureDrawsItsMembersByWeightEachEpisodeAndARolesAgentsTogether) {
+  // The evaders' mixture: flee 3, random 1, hide 0 (never drawn). Over 4000 seeds the first member's share is
+  // 0.75 within 5 standard deviations (0.034), both evaders always play the same member, and the pursuers,
+  // left to the caller, none.
+  BatchSettings s = settings(1);
+  s.controllers = {{"evader", {{"flee", 3.0}, {"random", 1.0}, {"hide", 0.0}}}};
+  Batch batch(arena(), standing_evaders(), s);
+  EXPECT_FALSE(batch.controlled(0) || batch.controlled(1));
+  EXPECT_TRUE(batch.controlled(2) && batch.controlled(3));
+  ASSERT_EQ(batch.mixture(2).size(), 3u);
+  EXPECT_EQ(batch.mixture(2)[1].policy, "random");
+  const int n = 4000;
+  const std::vector<int> m = members_over_seeds(batch, 0, n);
+  std::array<int, 3> count{};
+  for (int k = 0; k < n; ++k) {
+    ASSERT_EQ(m[std::size_t(4 * k)], -1);
+    ASSERT_EQ(m[std::size_t(4 * k + 1)], -1);
+    ASSERT_EQ(m[std::size_t(4 * k + 2)], m[std::size_t(4 * k + 3)]) << "seed " << k;
+    ++count[std::size_t(m[std::size_t(4 * k + 2)])];
+  }
+  EXPECT_EQ(count[2], 0);
+  EXPECT_NEAR(double(count[0]) / n, 0.75, 5 * std::sqrt(0.75 * 0.25 / n));
+
+  // Within one game the draw changes from episode to episode (not once per game), from the seed alone.
+  batch.reset(5);
+  std::array<int, 2> per_episode{};
+  for (int e = 0; e < 400; ++e) {
+    ++per_episode[std::size_t(batch.member(0, 2))];
+    batch.reset();
+  }
+  EXPECT_NEAR(per_episode[0] / 400.0, 0.75, 5 * std::sqrt(0.75 * 0.25 / 400));
+}
+
+TEST(EnvBatch, AgentsNamedOneByOneDrawTheirMixturesApartAndTheDrawsFollowTheSeedNotTheThreads) {
+  // evader_1 overrides the role's mixture with its own: the two evaders draw apart (they differ in some
+  // episodes). Five games on 1 and on 3 threads draw the same members, episode after episode.
+  std::vector<std::vector<int>> runs;
+  for (const int threads : {1, 3}) {
+    BatchSettings s = settings(5, threads, 77);
+    s.controllers = {{"evader", {{"flee", 1.0}, {"random", 1.0}}}, {"evader_1", {{"flee", 1.0}, {"random", 1.0}}}};
+    Batch batch(arena(), standing_evaders(), s);
+    std::vector<int> seen;
+    const std::vector<double> zero(std::size_t(5 * 4 * 2), 0.0);
+    for (int k = 0; k < 3 * kLimitSteps; ++k) {
+      batch.step(zero.data());
+      for (int g = 0; g < 5; ++g) {
+        for (int i = 0; i < 4; ++i) seen.push_back(batch.member(g, i));
+      }
+    }
+    runs.push_back(seen);
+  }
+  EXPECT_EQ(runs[0], runs[1]);
+  int apart = 0;
+  for (std::size_t k = 0; k < runs[0].size(); k += 4) apart += runs[0][k + 2] != runs[0][k + 3];
+  EXPECT_GT(apart, 0);
+}
+
+TEST(EnvBatch, AMixturesDrawnMemberPlaysAsThatPlayerAlone) {
+  // Evaders drawn from {flee, random}: in the episodes that drew flee, every step equals a batch whose evaders
+  // all flee (the same episode seeds); in those that drew random, the evaders go elsewhere.
+  game::GameConfig c = standing_evaders();
+  c.evader.speed = 1.0;
+  BatchSettings s = settings(1, 1, 3);
+  s.scenarios = {"timeout"};
+  BatchSettings alone = s;
+  s.controllers = {{"evader", {{"flee", 1.0}, {"random", 1.0}}}};
+  alone.controllers = {{"evader", {{"flee"}}}};
+  Batch mixed(arena(), c, s), flee(arena(), c, alone);
+  std::array<int, 2> same{}, episodes{};
+  const std::vector<double> zero(std::size_t(4 * 2), 0.0);
+  for (int seed = 0; seed < 12; ++seed) {
+    mixed.reset_game(0, std::uint64_t(seed));
+    flee.reset_game(0, std::uint64_t(seed));
+    const int member = mixed.member(0, 2);
+    ASSERT_EQ(flee.member(0, 2), 0);
+    bool equal = true;
+    for (int k = 0; k < 30; ++k) {
+      mixed.step(zero.data());
+      flee.step(zero.data());
+      equal = equal && positions(mixed.state(0)) == positions(flee.state(0));
+    }
+    ++episodes[std::size_t(member)];
+    same[std::size_t(member)] += equal;
+  }
+  ASSERT_GT(episodes[0], 0);
+  ASSERT_GT(episodes[1], 0);
+  EXPECT_EQ(same[0], episodes[0]);
+  EXPECT_EQ(same[1], 0);
+}
+
+TEST(EnvBatch, AMixtureIsRefusedNamingTheMemberOrWeightAtFault) {
+  const std::string dir = std::string(PEG3D_TEST_DATA_DIR) + "/policies/";
+  const auto refused = [](std::vector<MixtureEntry> mixture) {
+    BatchSettings s = settings(1);
+    s.controllers = {{"evader", std::move(mixture)}};
+    try {
+      Batch batch(arena(), standing_evaders(), s);
+    } catch (const InvalidParameter& e) {
+      return e.parameter();
+    } catch (const InputError& e) {
+      return std::string("input error: ") + e.what();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused({{"flee", 1.0}, {"random", -1.0}}), "opponents.evader.1.weight");
+  EXPECT_EQ(refused({{"flee", 1.0}, {"random", kNaN}}), "opponents.evader.1.weight");
+  EXPECT_EQ(refused({{"flee", 1.0}, {"random", std::numeric_limits<double>::infinity()}}), "opponents.evader.1.weight");
+  EXPECT_EQ(refused({{"flee", 0.0}, {"random", 0.0}}), "opponents.evader");
+  EXPECT_EQ(refused({{"flee", 1e308}, {"random", 1e308}}), "opponents.evader");  // the total overflows
+  EXPECT_EQ(refused({{"flee", 1.0}, {"no-such-player", 1.0}}), "opponents.evader.1");
+  EXPECT_EQ(refused({{"flee", 1.0}, {"pure-pursuit", 1.0}}), "opponents.evader.1");  // a pursuer's player
+  EXPECT_EQ(refused({{"flee", 1.0}, {"", 1.0}}), "opponents.evader.1");
+  EXPECT_EQ(refused(std::vector<MixtureEntry>(std::size_t(kMaxMixtureEntries) + 1, MixtureEntry{"flee", 1.0})),
+            "opponents.evader");
+  EXPECT_EQ(refused(std::vector<MixtureEntry>(std::size_t(kMaxMixtureEntries), MixtureEntry{"flee", 1.0})), "accepted");
+  // Two FACL files of different agent configurations cannot play one agent; the same file twice can.
+  nlohmann::json doc;
+  std::ifstream(dir + "robust_evader.json") >> doc;
+  doc["config"]["speed"] = doc["config"]["speed"].get<double>() * 0.5;
+  const std::filesystem::path slower = std::filesystem::path(::testing::TempDir()) / "slower_evader.json";
+  std::ofstream(slower) << doc.dump();
+  EXPECT_EQ(refused({{dir + "robust_evader.json", 1.0}, {"flee", 1.0}, {slower.string(), 1.0}}), "opponents.evader.2");
+  EXPECT_EQ(refused({{dir + "robust_evader.json", 1.0}, {"flee", 1.0}, {dir + "robust_evader.json", 2.0}}), "accepted");
+  // A pursuer's file in the evaders' mixture names the file.
+  EXPECT_NE(refused({{"flee", 1.0}, {dir + "ppo_pursuer.json", 1.0}}).find("ppo_pursuer.json"), std::string::npos);
+}
+
 TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
   // An MLP file for both pursuers and a FACL file for both evaders: each game's first episode is play()'s with
   // greedy players of those files, from the game's episode seed.
@@ -566,7 +703,7 @@ TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
   c.initial_heading = game::InitialHeading::kRandom;  // from each game's episode seed
   BatchSettings s = settings(2, 2, 31);
   s.scenarios = {"capture"};
-  s.controllers = {{"pursuer", dir + "ppo_pursuer.json"}, {"evader", dir + "robust_evader.json"}};
+  s.controllers = {{"pursuer", {{dir + "ppo_pursuer.json"}}}, {"evader", {{dir + "robust_evader.json"}}}};
   Batch batch(arena(), c, s);
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(batch.controlled(i)) << "agent " << i;
   const auto mlp = players::load_saved_policy(dir + "ppo_pursuer.json", Role::kPursuer);
@@ -611,7 +748,7 @@ TEST(EnvBatch, ASampledMlpOpponentPlaysTheSameOnAnyThreadCount) {
   const auto play = [&](const std::string& file, int threads) {
     BatchSettings s = settings(4, threads, 9);
     s.scenarios = {"timeout"};  // the same start in every game
-    s.controllers = {{"pursuer", file}};
+    s.controllers = {{"pursuer", {{file}}}};
     game::GameConfig c = standing_evaders();
     c.pursuer.motion_space = false;  // its cone about the line to a standing evader would take the draws away
     Batch batch(arena(), c, s);
@@ -647,7 +784,7 @@ TEST(EnvBatch, APlayedPolicyWhoseCommandIsRefusedNamesItsFileAndGame) {
   }
   BatchSettings s = settings(3, 1, 5);
   s.scenarios = {"timeout"};
-  s.controllers = {{"evader_1", file.string()}};
+  s.controllers = {{"evader_1", {{file.string()}}}};
   Batch batch(arena(), standing_evaders(), s);
   const std::vector<double> actions(std::size_t(3 * 4 * 2), 0.0);
   const game::CommandError e = refusal(batch, actions);
@@ -681,7 +818,7 @@ TEST(EnvBatch, AGameReseededAlonePlaysAsGameZeroOfABatchOfThatSeedAndTheOthersGo
   c.initial_heading = game::InitialHeading::kRandom;
   c.evader.speed = 1.0;
   BatchSettings s = settings(3, 1, 7);
-  s.controllers = {{"evader_1", "random"}};
+  s.controllers = {{"evader_1", {{"random"}}}};
   Batch mixed(arena(), c, s), untouched(arena(), c, s);
   s.games = 1;
   s.seed = 99;
@@ -727,7 +864,7 @@ HashedRun hashed_run(std::shared_ptr<const world::Arena> a, int threads, int ste
   c.evader.speed = 1.0;
   c.initial_heading = game::InitialHeading::kRandom;
   BatchSettings s = settings(13, threads, 41);
-  s.controllers = {{"evader_1", "random"}};
+  s.controllers = {{"evader_1", {{"random"}}}};
   Batch batch(std::move(a), c, s);
   const std::size_t n = std::size_t(batch.games()) * std::size_t(batch.agents());
   HashedRun run;
