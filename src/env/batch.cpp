@@ -32,6 +32,7 @@ std::size_t allocated_bytes() {
 
 constexpr std::uint64_t kPolicyStream = 0x706f6c6963790000ULL;  // "policy": the C++ policies' seeds below the root
 constexpr std::uint64_t kMixtureStream = 0x6d69787475726500ULL;  // "mixture": which member plays an episode
+constexpr std::uint64_t kTeamStream = 0x7465616d00000000ULL;     // "team": a mixture file's draws, shared by a key
 
 }  // namespace
 
@@ -156,6 +157,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     }
   }
   mixtures_.resize(std::size_t(agents_));
+  weights_.resize(std::size_t(agents_));
   for (int i = 0; i < agents_; ++i) {
     const int k = mixture_key_[std::size_t(i)];
     if (k < 0) continue;
@@ -199,6 +201,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
         }
         own = mine;
       }
+      weights_[std::size_t(i)].push_back(c.weight);
       mixture.push_back(std::move(c));
     }
     if (own != nullptr) config.set_agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_), *own);
@@ -311,11 +314,14 @@ void Batch::build_policies(int g) {
       const std::uint64_t seed =
           mixture.size() == 1 ? derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)})
                               : derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i), std::uint64_t(e)});
+      const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+      game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
       if (c.saved) {
-        game.players[std::size_t(i)].push_back(c.saved->make(seed));
+        // A mixture file's draws are its key's: the agents of one key play the same member of it.
+        const std::uint64_t team = derive_seed(
+            game.seed, {game.slot, kTeamStream, std::uint64_t(mixture_key_[std::size_t(i)]), std::uint64_t(e)});
+        game.players[std::size_t(i)].push_back(c.saved->make(seed, a, role, team));
       } else {
-        const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
-        game::AgentConfig a = sim_->config().agent(role, i < pursuers_ ? i : i - pursuers_);
         a.policy = c.player;
         game.players[std::size_t(i)].push_back(players::make_player(a, role, seed));
       }
@@ -334,17 +340,7 @@ void Batch::choose_members(int g) {
       const int key = mixture_key_[std::size_t(i)];
       const std::uint64_t bits = derive_seed(
           game.seed, {game.slot, kMixtureStream, std::uint64_t(game.episode), std::uint64_t(key)});
-      double total = 0.0;
-      for (const Controller& c : mixture) total += c.weight;
-      const double u = double(bits >> 11) * 0x1.0p-53 * total;
-      double sum = 0.0;
-      chosen = -1;
-      for (std::size_t e = 0; e < mixture.size(); ++e) {
-        if (mixture[e].weight <= 0.0) continue;
-        chosen = int(e);  // the last member of positive weight takes what rounding leaves above the sum
-        sum += mixture[e].weight;
-        if (u < sum) break;
-      }
+      chosen = players::draw_member(weights_[std::size_t(i)], bits);
     }
     game.member[std::size_t(i)] = chosen;
     game.policies[std::size_t(i)] = game.players[std::size_t(i)][std::size_t(chosen)].get();

@@ -40,7 +40,7 @@ struct MixtureEntry {
 };
 
 /// The most members one mixture may have: every game builds a player of each for each of its agents.
-inline constexpr int kMaxMixtureEntries = 256;
+inline constexpr int kMaxMixtureEntries = players::kMaxMixtureMembers;
 
 /// How a batch is built. Every field a user sets is validated by Batch (InvalidParameter naming it).
 struct BatchSettings {
@@ -203,6 +203,7 @@ class Batch {
   // Per agent: its mixture's members (empty: the caller's agent), and which key of settings_.controllers gave it
   // (the agents of one key draw together).
   std::vector<std::vector<Controller>> mixtures_;
+  std::vector<std::vector<double>> weights_;  // per agent, its mixture's weights (players::draw_member's)
   std::vector<int> mixture_key_;
   std::vector<Game> games_;
   std::vector<float> observations_, rewards_, terms_;

@@ -286,14 +286,16 @@ void League::play_start(const Start& st, std::span<Game> games) const {
       const game::Sim& sim = sim_of(st.map, group_of(P), group_of(E));
       players::Lineup lineup;
       if (P.saved >= 0) {
-        players::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, np, derive_seed(seed, {1}));
+        players::add_saved(lineup, *s.saved_pursuers[std::size_t(P.saved)].policy, sim.config(), game::Role::kPursuer, np,
+                           derive_seed(seed, {1}));
       } else if (P.algorithm >= 0) {
         players::add_frozen(lineup, models(P.algorithm, P.train_seed, game::Role::kPursuer), np);
       } else {
         players::add_configured(lineup, sim.config(), game::Role::kPursuer, np, derive_seed(seed, {1}));
       }
       if (E.saved >= 0) {
-        players::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, ne, derive_seed(seed, {2}));
+        players::add_saved(lineup, *s.saved_evaders[std::size_t(E.saved)].policy, sim.config(), game::Role::kEvader, ne,
+                           derive_seed(seed, {2}));
       } else if (E.algorithm >= 0) {
         players::add_frozen(lineup, models(E.algorithm, E.train_seed, game::Role::kEvader), ne);
       } else {

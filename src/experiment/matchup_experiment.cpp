@@ -145,14 +145,14 @@ class MatchupRun {
     const std::uint64_t pseed = derive_seed(seed, {10, p, e});
     players::Lineup lineup;
     if (s_.pursuers[p] == players::kFacl && s_.pursuer_policy) {
-      players::add_saved(lineup, *s_.pursuer_policy, pursuers, pseed);
+      players::add_saved(lineup, *s_.pursuer_policy, sim.config(), game::Role::kPursuer, pursuers, pseed);
     } else if (s_.pursuers[p] == players::kFacl) {
       players::add_frozen(lineup, facl_pursuers, pursuers);
     } else {
       players::add_configured(lineup, sim.config(), game::Role::kPursuer, pursuers, pseed);
     }
     if (s_.evaders[e] == players::kFacl && s_.evader_policy) {
-      players::add_saved(lineup, *s_.evader_policy, evaders, derive_seed(pseed, {1}));
+      players::add_saved(lineup, *s_.evader_policy, sim.config(), game::Role::kEvader, evaders, derive_seed(pseed, {1}));
     } else if (s_.evaders[e] == players::kFacl) {
       players::add_frozen(lineup, facl_evaders, evaders);
     } else {

@@ -262,7 +262,8 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
   for (int i = 0; i < n; ++i) {
     const game::Role role = game::role_at(i, p);
     const int rank = game::rank_at(i, p);
-    const std::uint64_t seed = players::agent_seed(derive_seed(c.seed, {role == game::Role::kPursuer ? 1u : 2u}), rank);
+    const std::uint64_t team_seed = derive_seed(c.seed, {role == game::Role::kPursuer ? 1u : 2u});
+    const std::uint64_t seed = players::agent_seed(team_seed, rank);
     const AgentDriver* d = driver_of[std::size_t(i)];
     if (d == nullptr) {
       lineup.add(players::make_player(config.agent(role, rank), role, seed));
@@ -271,7 +272,7 @@ CasePlay play_case(const CollisionCase& c, bool use_cache) {
     } else if (d->kind == AgentDriver::Kind::kWaypoints) {
       lineup.add(std::make_unique<game::WaypointFollower>(d->waypoints));
     } else if (d->kind == AgentDriver::Kind::kPolicy) {
-      lineup.add(saved[std::size_t(i)]->make(seed));
+      lineup.add(saved[std::size_t(i)]->make(seed, config.agent(role, rank), role, team_seed));
     } else {
       game::AgentConfig a = config.agent(role, rank);
       a.policy = d->scripted;

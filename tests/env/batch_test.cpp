@@ -716,7 +716,10 @@ TEST(EnvBatch, SavedPolicyFilesPlayTheirRolesWithTheirOwnConfiguration) {
   std::vector<game::Trace> traces(2);
   for (int g = 0; g < 2; ++g) {
     game::SimState ref(batch.sim());
-    const auto p0 = mlp->make(0), p1 = mlp->make(0), e0 = facl->make(0), e1 = facl->make(0);
+    const game::AgentConfig& pa = batch.sim().config().pursuer;
+    const game::AgentConfig& ea = batch.sim().config().evader;
+    const auto p0 = mlp->make(0, pa, Role::kPursuer, 0), p1 = mlp->make(0, pa, Role::kPursuer, 0);
+    const auto e0 = facl->make(0, ea, Role::kEvader, 0), e1 = facl->make(0, ea, Role::kEvader, 0);
     game::Policy* policies[] = {p0.get(), p1.get(), e0.get(), e1.get()};
     game::play(batch.sim(), ref, arena()->map().scenarios[kCapture], policies, false,
                derive_seed(31, {std::uint64_t(g), 0}), &traces[std::size_t(g)]);

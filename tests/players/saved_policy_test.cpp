@@ -14,6 +14,7 @@
 #include "game/observation.hpp"
 #include "game/episode.hpp"
 #include "players/policy_io.hpp"
+#include "players/registry.hpp"
 #include "view_writer.hpp"
 #include "game/sim.hpp"
 #include "game/test_arena.hpp"
@@ -74,7 +75,7 @@ TEST(SavedPolicy, AFaclFilePlaysAsItsModelWithItsOwnConfiguration) {
   ASSERT_NE(saved->config(), nullptr);
   EXPECT_EQ(*saved->config(), model->config());
   FaclPolicy reference(model);
-  const auto player = saved->make(0);
+  const auto player = saved->make(0, game::AgentConfig{}, Role::kPursuer, 0);
   reference.begin_episode({}, false);
   player->begin_episode({}, false);
   Rng rng(2);
@@ -97,7 +98,7 @@ TEST(SavedPolicy, AnMlpFilePlaysAsTheMlpWithTheGamesConfiguration) {
   EXPECT_STREQ(saved->kind_name(), "mlp");
   EXPECT_EQ(saved->config(), nullptr);
   MlpPolicy reference(load_mlp_policy(file, Role::kEvader), 0);
-  const auto player = saved->make(0);
+  const auto player = saved->make(0, AgentConfig{}, Role::kEvader, 0);
   Rng rng(3);
   for (int i = 0; i < 200; ++i) {
     const testing::WrittenView w(random_view(rng));
@@ -143,7 +144,7 @@ TEST(SavedPolicy, AddSavedGivesEachAgentItsOwnPlayer) {
   const auto file = temp("lineup_mlp.json");
   write_mlp(file, "pursuer");
   Lineup lineup;
-  add_saved(lineup, *load_saved_policy(file, Role::kPursuer), 3, 0);
+  add_saved(lineup, *load_saved_policy(file, Role::kPursuer), game::GameConfig{}, Role::kPursuer, 3, 0);
   ASSERT_EQ(lineup.size(), 3);
   EXPECT_NE(&lineup[0], &lineup[1]);
   EXPECT_NE(&lineup[1], &lineup[2]);
@@ -169,7 +170,7 @@ TEST(SavedPolicy, AnOverflowingNetworkIsStoppedAtItsFirstStepNamingItsFile) {
   c.evader.policy = "flee";
   const Sim sim(testing::make_arena(Vec3(35, 35, 20), {}, {s}), c);
   Lineup lineup;
-  add_saved(lineup, *saved, 1, 0);
+  add_saved(lineup, *saved, game::GameConfig{}, Role::kPursuer, 1, 0);
   add_configured(lineup, c, Role::kEvader, 1, 3);
   SimState state(sim);
   try {
@@ -231,6 +232,121 @@ TEST(SavedPolicy, TheShippedTeamThatSeesItsTeammatesReadsThemOnOpenWall) {
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("sight.visible"), std::string::npos) << e.what();
+  }
+}
+
+// A mixture file at `file`: role and members as given.
+void write_mixture(const std::filesystem::path& file, const std::string& role, const nlohmann::json& members) {
+  std::ofstream(file) << nlohmann::json{{"format", "peg3d-mixture"}, {"version", 1}, {"role", role}, {"members", members}}.dump(1);
+}
+
+TEST(SavedPolicy, AMixtureFileDrawsAMemberByWeightEachEpisodeTheSameForATeam) {
+  // pure-pursuit 3, pn 1, an MLP file of weight 0 (read relative to the mixture's folder, never drawn). Two agents
+  // of one team seed play the same member in each of 4000 episodes; pure-pursuit's share is 0.75 within 5 sd.
+  const std::filesystem::path dir = temp("mixture_draws");
+  std::filesystem::create_directories(dir);
+  write_mlp(dir / "net.json", "pursuer");
+  write_mixture(dir / "mix.json", "pursuer",
+                {{{"policy", "pure-pursuit"}, {"weight", 3}}, {{"policy", "pn"}, {"weight", 1}}, {{"policy", "net.json"}, {"weight", 0}}});
+  const auto saved = load_saved_policy(dir / "mix.json", Role::kPursuer);
+  EXPECT_STREQ(saved->kind_name(), "mixture");
+  ASSERT_EQ(saved->members.size(), 3u);
+  EXPECT_EQ(saved->config(), nullptr);
+  AgentConfig agent = agent_preset("peg3d", Role::kPursuer);
+  agent.pn_gain = 4.5;  // the game's own gain: the member is made with the agent's configuration
+  const auto a = saved->make(1, agent, Role::kPursuer, 77), b = saved->make(2, agent, Role::kPursuer, 77);
+  AgentConfig pp = agent, pn = agent, net = agent;
+  pp.policy = "pure-pursuit";
+  pn.policy = "pn";
+  const auto pure = make_player(pp, Role::kPursuer, 0), prop = make_player(pn, Role::kPursuer, 0);
+  pn.pn_gain = 3.0;
+  const auto default_gain = make_player(pn, Role::kPursuer, 0);
+  Rng rng(9);
+  const int n = 4000;
+  int pursuit = 0, gain_differs = 0;
+  int told = 0;  // episodes whose second step tells pure pursuit from pn (pn steers by the sight line's turn)
+  for (int e = 0; e < n; ++e) {
+    AgentView first = random_view(rng);
+    first.self_speed = 1.0, first.other_speed = 0.8;  // pn steers by the sight line's turn: relative motion
+    first.self.heading = {std::uniform_real_distribution<double>(-kPi, kPi)(rng), 1.2};
+    first.other.heading = {std::uniform_real_distribution<double>(-kPi, kPi)(rng), 1.9};
+    AgentView second = first;
+    second.other.position += Vec3(0.3, -0.2, 0.1);
+    second.time = first.time + first.dt;
+    const testing::WrittenView w1(first), w2(second);
+    Steering sa, sb, sp, sn, sd;
+    for (const testing::WrittenView* w : {&w1, &w2}) {
+      if (w == &w1) {
+        for (game::Policy* p : {a.get(), b.get(), pure.get(), prop.get(), default_gain.get()}) p->begin_episode(w->view, false);
+      }
+      sa = a->act(w->view), sb = b->act(w->view), sp = pure->act(w->view), sn = prop->act(w->view);
+      sd = default_gain->act(w->view);
+      ASSERT_EQ(sa.d_alpha, sb.d_alpha) << "episode " << e;
+      ASSERT_EQ(sa.d_theta, sb.d_theta) << "episode " << e;
+    }
+    const bool is_pursuit = sa.d_alpha == sp.d_alpha && sa.d_theta == sp.d_theta;
+    const bool is_pn = sa.d_alpha == sn.d_alpha && sa.d_theta == sn.d_theta;
+    ASSERT_TRUE(is_pursuit || is_pn) << "episode " << e;
+    if (is_pursuit == is_pn) continue;
+    ++told;
+    pursuit += is_pursuit;
+    gain_differs += is_pn && (sd.d_alpha != sn.d_alpha || sd.d_theta != sn.d_theta);
+  }
+  ASSERT_GT(told, n / 4);
+  EXPECT_NEAR(double(pursuit) / told, 0.75, 5 * std::sqrt(0.75 * 0.25 / told));
+  EXPECT_GT(gain_differs, 0);  // pn played with the agent's gain 4.5, not the default
+  // Another team seed draws otherwise.
+  const auto c = saved->make(1, agent, Role::kPursuer, 78);
+  Rng again(9);
+  int differ = 0;
+  const auto a2 = saved->make(1, agent, Role::kPursuer, 77);
+  for (int e = 0; e < 200; ++e) {
+    const testing::WrittenView w(random_view(again));
+    a2->begin_episode(w.view, false);
+    c->begin_episode(w.view, false);
+    const Steering x = a2->act(w.view), y = c->act(w.view);
+    differ += x.d_alpha != y.d_alpha || x.d_theta != y.d_theta;
+  }
+  EXPECT_GT(differ, 0);
+}
+
+TEST(SavedPolicy, ABadMixtureFileIsRefusedNamingItsField) {
+  const std::filesystem::path dir = temp("mixture_refusals");
+  std::filesystem::create_directories(dir);
+  write_mlp(dir / "net.json", "pursuer");
+  write_mixture(dir / "inner.json", "pursuer", nlohmann::json::array({{{"policy", "pn"}, {"weight", 1}}}));
+  const auto field_of = [&](const std::string& role, const nlohmann::json& members) {
+    write_mixture(dir / "mix.json", role, members);
+    try {
+      load_saved_policy(dir / "mix.json", Role::kPursuer);
+    } catch (const PolicyFormatError& e) {
+      EXPECT_EQ(e.file(), dir / "mix.json") << e.what();
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  const nlohmann::json pn = {{"policy", "pn"}, {"weight", 1}};
+  EXPECT_EQ(field_of("pursuer", nlohmann::json::array({pn})), "accepted");
+  EXPECT_EQ(field_of("evader", nlohmann::json::array({pn})), "role");
+  EXPECT_EQ(field_of("pursuer", nlohmann::json::array()), "members");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "flee"}, {"weight", 1}}}), "members.1.policy");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "no-such-player"}, {"weight", 1}}}), "members.1.policy");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "facl"}, {"weight", 1}}}), "members.1.policy");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "inner.json"}, {"weight", 1}}}), "members.1.policy");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "net.json"}, {"weight", -1}}}), "members.1.weight");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "net.json"}, {"weight", "1"}}}), "members.1.weight");
+  EXPECT_EQ(field_of("pursuer", {pn, {{"policy", "net.json"}}}), "members.1.weight");
+  EXPECT_EQ(field_of("pursuer", nlohmann::json::array({{{"policy", "pn"}, {"weight", 0}}})), "members");
+  EXPECT_EQ(field_of("pursuer", {{{"policy", "pn"}, {"weight", 1e308}}, {{"policy", "pn"}, {"weight", 1e308}}}), "members");
+  EXPECT_EQ(field_of("pursuer", std::vector<nlohmann::json>(std::size_t(kMaxMixtureMembers) + 1, pn)), "members");
+  EXPECT_EQ(field_of("pursuer", std::vector<nlohmann::json>(std::size_t(kMaxMixtureMembers), pn)), "accepted");
+  // A member file that is not there names that file.
+  write_mixture(dir / "mix.json", "pursuer", {pn, {{"policy", "missing.json"}, {"weight", 1}}});
+  try {
+    load_saved_policy(dir / "mix.json", Role::kPursuer);
+    ADD_FAILURE() << "a missing member file was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.json"), std::string::npos) << e.what();
   }
 }
 
