@@ -23,7 +23,8 @@ import numpy as np
 import torch
 from torch import nn
 
-from ppo_pursuer import RunningStats, add_training_arguments, load_policy, make_games, mlp, save_policy
+from peg3d.mappo import RunningStats, mlp, ppo_epochs, rollout_advantages
+from ppo_pursuer import add_training_arguments, load_policy, make_games, save_policy
 
 
 def main():
@@ -76,34 +77,13 @@ def main():
             x, s = x2, s2
         done_steps += N * T
         b = {k: np.asarray(v) for k, v in buf.items()}  # (T, N, K, ...)
-        with torch.no_grad():
-            v = critic(torch.as_tensor(b["c"])).squeeze(-1).numpy()
-            v2 = critic(torch.as_tensor(b["c2"])).squeeze(-1).numpy()
-        adv = np.zeros((T, N, K))
-        last = np.zeros((N, K))
-        for t in reversed(range(T)):
-            cont = 1.0 - (b["term"][t] | b["trunc"][t])
-            delta = b["r"][t] + gamma * v2[t] * (1.0 - b["term"][t]) - v[t]
-            last = np.where(b["valid"][t], delta + gamma * lam * cont * last, 0.0)
-            adv[t] = last
-        ret = adv + v
+        adv, ret = rollout_advantages(critic, b, "c", "c2", gamma, lam)
         keep = b["valid"].reshape(-1)
         flat = lambda z: torch.as_tensor(z.reshape((T * N * K,) + z.shape[3:])[keep])  # noqa: E731
-        xs, acts, logps, cs = flat(b["x"]), flat(b["a"]), flat(b["logp"]), flat(b["c"])
-        adv_t = torch.as_tensor(adv.reshape(-1)[keep], dtype=torch.float32)
-        ret_t = torch.as_tensor(ret.reshape(-1)[keep], dtype=torch.float32)
-        adv_t = (adv_t - adv_t.mean()) / (adv_t.std() + 1e-8)
-        m = adv_t.shape[0]
-        for _ in range(4):
-            for chunk in torch.randperm(m).split(max(1, m // 4)):
-                dist = torch.distributions.Normal(bound * torch.tanh(actor(xs[chunk])), log_std.exp())
-                ratio = (dist.log_prob(acts[chunk]).sum(-1) - logps[chunk]).exp()
-                pg = -torch.min(ratio * adv_t[chunk], ratio.clamp(1 - clip, 1 + clip) * adv_t[chunk]).mean()
-                vl = ((critic(cs[chunk]).squeeze(-1) - ret_t[chunk]) ** 2).mean()
-                opt.zero_grad()
-                ((pg if update >= args.critic_warmup else 0.0 * pg) + 0.5 * vl).backward()
-                nn.utils.clip_grad_norm_(list(actor.parameters()) + list(critic.parameters()), 0.5)
-                opt.step()
+        ppo_epochs(actor, critic, log_std, opt, bound, flat(b["x"]), flat(b["a"]), flat(b["logp"]), flat(b["c"]),
+                   torch.as_tensor(adv.reshape(-1)[keep], dtype=torch.float32),
+                   torch.as_tensor(ret.reshape(-1)[keep], dtype=torch.float32), clip=clip,
+                   train_actor=update >= args.critic_warmup)
         update += 1
         if update % 10 == 0 or done_steps >= args.steps:
             rate = captures / games if games else float("nan")

@@ -29,37 +29,7 @@ import torch
 from torch import nn
 
 import peg3d
-
-
-class RunningStats:
-    def __init__(self, n):
-        self.count, self.mean, self.m2 = 1e-4, np.zeros(n), np.ones(n)
-        self.frozen = False
-
-    def update(self, x):
-        if self.frozen:
-            return
-        x = np.asarray(x, dtype=np.float64).reshape(-1, self.mean.size)
-        n = x.shape[0]
-        delta = x.mean(0) - self.mean
-        total = self.count + n
-        self.mean = self.mean + delta * n / total
-        self.m2 = self.m2 + x.var(0) * n + delta**2 * self.count * n / total
-        self.count = total
-
-    @property
-    def std(self):
-        return np.sqrt(self.m2 / self.count + 1e-8)
-
-
-def mlp(sizes, out_scale=1.0):
-    layers = []
-    for i in range(len(sizes) - 1):
-        lin = nn.Linear(sizes[i], sizes[i + 1])
-        nn.init.orthogonal_(lin.weight, math.sqrt(2) if i < len(sizes) - 2 else out_scale)
-        nn.init.zeros_(lin.bias)
-        layers += [lin] + ([nn.Tanh()] if i < len(sizes) - 2 else [])
-    return nn.Sequential(*layers)
+from peg3d.mappo import RunningStats, mlp, ppo_epochs, rollout_advantages
 
 
 def save_policy(path, actor, stats, bound, observation, opponents, log_std, play="mean",
@@ -216,36 +186,13 @@ def main():
             x = x2
         done_steps += N * T
         b = {k: np.asarray(v) for k, v in buf.items()}  # (T, N, ...)
-        with torch.no_grad():
-            v = critic(torch.as_tensor(b["x"])).squeeze(-1).numpy()
-            v2 = critic(torch.as_tensor(b["x2"])).squeeze(-1).numpy()
-        adv = np.zeros((T, N))
-        last = np.zeros(N)
-        for t in reversed(range(T)):
-            cont = 1.0 - (b["term"][t] | b["trunc"][t])
-            delta = b["r"][t] + gamma * v2[t] * (1.0 - b["term"][t]) - v[t]
-            last = np.where(b["valid"][t], delta + gamma * lam * cont * last, 0.0)
-            adv[t] = last
-        ret = adv + v
+        adv, ret = rollout_advantages(critic, b, "x", "x2", gamma, lam)
         keep = b["valid"].reshape(-1)
-        data = [torch.as_tensor(z.reshape((T * N,) + z.shape[2:])[keep]) for z in (b["x"], b["a"], b["logp"])]
-        adv_t = torch.as_tensor(adv.reshape(-1)[keep], dtype=torch.float32)
-        ret_t = torch.as_tensor(ret.reshape(-1)[keep], dtype=torch.float32)
-        adv_t = (adv_t - adv_t.mean()) / (adv_t.std() + 1e-8)
-        m = adv_t.shape[0]
-        for _ in range(4):
-            perm = torch.randperm(m)
-            for chunk in perm.split(max(1, m // 4)):
-                xb, ab, lb = data[0][chunk], data[1][chunk], data[2][chunk]
-                dist = torch.distributions.Normal(bound * torch.tanh(actor(xb)), log_std.exp())
-                ratio = (dist.log_prob(ab).sum(-1) - lb).exp()
-                pg = -torch.min(ratio * adv_t[chunk], ratio.clamp(1 - clip, 1 + clip) * adv_t[chunk]).mean()
-                vl = ((critic(xb).squeeze(-1) - ret_t[chunk]) ** 2).mean()
-                loss = (pg if update >= args.critic_warmup else 0.0 * pg) + 0.5 * vl
-                opt.zero_grad()
-                loss.backward()
-                nn.utils.clip_grad_norm_(list(actor.parameters()) + list(critic.parameters()), 0.5)
-                opt.step()
+        xs, acts, logps = [torch.as_tensor(z.reshape((T * N,) + z.shape[2:])[keep]) for z in (b["x"], b["a"], b["logp"])]
+        ppo_epochs(actor, critic, log_std, opt, bound, xs, acts, logps, xs,
+                   torch.as_tensor(adv.reshape(-1)[keep], dtype=torch.float32),
+                   torch.as_tensor(ret.reshape(-1)[keep], dtype=torch.float32), clip=clip,
+                   train_actor=update >= args.critic_warmup)
         update += 1
         if update % 10 == 0 or done_steps >= args.steps:
             rate = captures / episodes if episodes else float("nan")

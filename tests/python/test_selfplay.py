@@ -1,0 +1,149 @@
+"""peg3d.selfplay: the meta-game solver against analytic equilibria, the payoffs of pairings played on the C++ side,
+and two tiny iterations: their files, the same results from the same seed, and a resumed run equal to one never
+stopped. Training runs are not tests: the budgets here are seconds."""
+
+import csv
+import filecmp
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import peg3d
+from peg3d import selfplay
+from conftest import BIN
+from peg3d.mappo import Budget
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.parametrize("matrix, x, y, value", [
+    ([[1, 0], [0, 1]], [0.5, 0.5], [0.5, 0.5], 0.5),                        # matching pennies, shifted
+    ([[0.5, 0, 1], [1, 0.5, 0], [0, 1, 0.5]], [1 / 3] * 3, [1 / 3] * 3, 0.5),  # rock-paper-scissors
+    ([[0.9, 0.6], [0.3, 0.2]], [1, 0], [0, 1], 0.6),                        # a saddle point: row 0, column 1
+    ([[0.2, 0.8], [0.6, 0.4]], [0.25, 0.75], [0.5, 0.5], 0.5),              # mixed, unequal weights
+])
+def test_fictitious_play_finds_the_equilibrium(matrix, x, y, value):
+    gx, gy, low, high = selfplay.solve_zero_sum(matrix, 20000)
+    assert low <= value + 1e-12 and value - 1e-12 <= high
+    assert high - low < 0.01
+    assert np.allclose(gx, x, atol=0.02) and np.allclose(gy, y, atol=0.02)
+
+
+def test_the_solver_refuses_what_is_not_a_matrix():
+    for bad in ([], [[np.nan]], [1, 2]):
+        with pytest.raises(ValueError, match="matrix"):
+            selfplay.solve_zero_sum(bad)
+
+
+def test_a_pairing_is_played_by_both_sides_on_the_cpp_side():
+    # A standing evader (speed 0) is caught by pure pursuit in every game; early catches pay the tie-break.
+    s = selfplay.Settings(map="maps/paper.yaml", set={"time_limit": 60.0, "evader.speed": 0.0})
+    r = selfplay.play_pairing(s, "pure-pursuit", "flee", 6, 5)
+    assert r["games"] == 6 and r["capture_rate"] == 1.0
+    assert 1.0 < r["payoff"] <= 1.0 + selfplay.TIE_BREAK
+    assert selfplay.play_pairing(s, "pure-pursuit", "flee", 6, 5) == r  # the seed decides
+    slow = selfplay.Settings(map="maps/paper.yaml", set={"time_limit": 1.0})
+    r = selfplay.play_pairing(slow, "pure-pursuit", "flee", 4, 5)
+    assert r["capture_rate"] == 0.0 and r["payoff"] == 0.0 and r["mean_steps"] == 10
+
+
+def tiny(**kw):
+    return selfplay.Settings(map="maps/paper.yaml", set={"time_limit": 3.0, "initial_heading": "random"}, pursuers=["pure-pursuit", "pn"],
+                             evaders=["flee", "random"], iterations=2, eval_games=4, solver_iterations=500,
+                             budget=Budget(steps=256, num_envs=4, rollout=32), seed=3, **kw)
+
+
+def run(out, **kw):
+    return selfplay.SelfPlay(tiny(), out, log=lambda *_: None, **kw).run()
+
+
+def test_two_tiny_iterations_write_their_files_and_repeat_from_the_seed(tmp_path):
+    pytest.importorskip("torch")
+    a = run(tmp_path / "a")
+    files = sorted(os.path.relpath(os.path.join(r, f), tmp_path / "a") for r, _, fs in os.walk(tmp_path / "a") for f in fs)
+    assert files == ["best_response_evader.json", "best_response_pursuer.json", "exploitability.json",
+                     "final_evader.json", "final_pursuer.json", "iteration_0/evader.json", "iteration_0/pursuer.json", "iteration_0/state.json",
+                     "iteration_1/evader.json", "iteration_1/pursuer.json", "iteration_1/state.json",
+                     "log.jsonl", "settings.json", "summary.json"]
+    assert a["members"]["pursuer"] == ["pure-pursuit", "pn", "iteration_0/pursuer.json", "iteration_1/pursuer.json"]
+    assert np.array(a["payoff"]).shape == (4, 4)
+    assert len(a["curve"]) == 3 and all(c["exploitability"] >= -1e-12 for c in a["curve"])
+    assert abs(sum(a["pursuer_mixture"]) - 1) < 1e-9
+    low, high = a["value"]
+    assert a["fresh_best_responses"]["exploitability"] >= high - low - 1e-12
+    # A trained network plays in C++ as any policy file: against a mixture of the classic evaders.
+    net = peg3d.read_policy(tmp_path / "a" / "iteration_1" / "evader.json")
+    assert net["role"] == "evader"
+    # The final mixtures play in the C++ programs and as opponents: peg-league's entrants, a batch's opponents.
+    out = tmp_path / "league"
+    league = subprocess.run([str(BIN / "peg-league"), "--map", "maps/paper.yaml", "--algorithms", "baseline",
+                             "--train-seeds", "1", "--eval-seeds", "2", "--episodes", "1", "--no-plots", "--plain-progress",
+                             "--no-cache", "--set", "time_limit=3", "--out", str(out),
+                             "--pursuer-entrant", f"final={tmp_path / 'a' / 'final_pursuer.json'}",
+                             "--evader-entrant", f"final={tmp_path / 'a' / 'final_evader.json'}"],
+                            cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert league.returncode == 0, league.stderr[-800:]
+    with open(out / "games.csv") as f:
+        games = list(csv.DictReader(f))
+    assert any(g["pursuer"] == "final" and g["evader"] == "final" for g in games)
+    env = peg3d.vector_env(map="maps/paper.yaml", num_envs=2, set={"time_limit": 3.0},
+                           opponents={"evader": str(tmp_path / "a" / "final_evader.json")})
+    env.reset(seed=1)
+    assert env.controlled["evader"].all()
+    b = run(tmp_path / "b")
+    assert a == b
+    for name in files:
+        if name != "log.jsonl":  # wall-clock times
+            assert filecmp.cmp(tmp_path / "a" / name, tmp_path / "b" / name, shallow=False), name
+
+
+def test_a_run_stopped_after_an_iteration_resumes_as_if_never_stopped(tmp_path):
+    pytest.importorskip("torch")
+    whole = run(tmp_path / "whole")
+    shutil.copytree(tmp_path / "whole", tmp_path / "stopped")
+    # As if stopped during iteration 1: its files half written, no record of it.
+    for name in ("iteration_1/state.json", "summary.json", "exploitability.json", "best_response_pursuer.json",
+                 "best_response_evader.json"):
+        os.remove(tmp_path / "stopped" / name)
+    with open(tmp_path / "stopped" / "iteration_1" / "pursuer.json", "w") as f:
+        f.write("{")
+    with pytest.raises(FileExistsError, match="resume"):
+        run(tmp_path / "stopped")
+    assert run(tmp_path / "stopped", resume=True) == whole
+    other = tiny()
+    other.seed = 4
+    with pytest.raises(ValueError, match="seed"):
+        selfplay.SelfPlay(other, tmp_path / "stopped", resume=True)
+
+
+@pytest.mark.parametrize("change, error, message", [
+    ({"pursuers": ["pure-pursuit", "no-such-player"]}, peg3d.InputError, r"pursuers\.1"),
+    ({"evaders": ["flee", "pn"]}, peg3d.InputError, r"evaders\.1"),
+    ({"evaders": []}, ValueError, "evaders: at least one"),
+    ({"iterations": 0}, ValueError, "iterations"),
+    ({"budget": Budget(steps=0)}, ValueError, "budget.steps"),
+])
+def test_bad_settings_are_refused_before_any_training(tmp_path, change, error, message):
+    s = tiny()
+    for k, v in change.items():
+        setattr(s, k, v)
+    with pytest.raises(error, match=message):
+        selfplay.SelfPlay(s, tmp_path / "run")
+    assert not (tmp_path / "run").exists()
+
+
+def test_a_policy_file_of_the_other_role_is_refused_naming_it(tmp_path):
+    file = os.path.join(os.path.dirname(__file__), "..", "data", "policies", "robust_evader.json")
+    s = tiny()
+    s.pursuers = ["pn", file]
+    with pytest.raises(peg3d.InputError, match="robust_evader.json"):
+        selfplay.SelfPlay(s, tmp_path / "run")
+
+
+def test_the_command_line_exits_2_on_bad_input(tmp_path, capsys):
+    assert selfplay.main(["--out", str(tmp_path / "x"), "--pursuer", "nobody", "--map", "maps/paper.yaml"]) == 2
+    assert "nobody" in capsys.readouterr().err
