@@ -94,6 +94,12 @@ def test_two_tiny_iterations_write_their_files_and_repeat_from_the_seed(tmp_path
                            opponents={"evader": str(tmp_path / "a" / "final_evader.json")})
     env.reset(seed=1)
     assert env.controlled["evader"].all()
+    # The figure of docs/learning.md is drawn from the summary.
+    plot = subprocess.run(["/usr/bin/python3", str(ROOT / "tools/plot_selfplay.py"), str(tmp_path / "a")],
+                          capture_output=True, text=True, timeout=300)
+    assert plot.returncode == 0, plot.stderr
+    assert (tmp_path / "a" / "selfplay.png").stat().st_size > 10000
+    os.remove(tmp_path / "a" / "selfplay.png")
     b = run(tmp_path / "b")
     assert a == b
     for name in files:
