@@ -85,13 +85,6 @@ class Settings:
         d["pursuers"], d["evaders"] = [str(m) for m in self.pursuers], [str(m) for m in self.evaders]
         return d
 
-    @classmethod
-    def from_json(cls, d):
-        d = dict(d)
-        d["budget"] = Budget(**d["budget"])
-        d["final_budget"] = None if d.get("final_budget") is None else Budget(**d["final_budget"])
-        return cls(**d)
-
 
 def derive_seed(root, *path):
     """A 63-bit seed below `root` for `path` (names and numbers): independent streams for every job."""
