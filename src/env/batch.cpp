@@ -255,7 +255,20 @@ void Batch::check_memory_budget(std::size_t state_bytes) const {
   std::size_t maps = 0;
   for (int i = 0; i < agents_; ++i) {
     const game::AgentConfig& a = sim_->config().agent_at(i, pursuers_);
-    if (a.map.enabled) maps += sense::ScanMap::bytes_for(a.map, sim_->arena().bounds().lo, sim_->arena().bounds().hi);
+    if (!a.map.enabled) continue;
+    // A map holds the bricks its scans reach: at most those of an episode's scans (a reset's and one a period),
+    // or with map.persist those of every episode, so the whole arena's.
+    int rays = 0, period = 0;
+    double range = 0.0;
+    const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
+    for (const sense::Sensor* s : sim_->sensors(role, i < pursuers_ ? i : i - pursuers_)) {
+      if (s->map_range() <= 0.0) continue;
+      rays += s->map_points_max();
+      range = std::max(range, s->map_range());
+      period = period == 0 ? s->period() : std::min(period, s->period());
+    }
+    const long long scans = a.map.persist || period == 0 ? -1 : sim_->max_steps() / period + 2;
+    maps += sense::ScanMap::bytes_most(a.map, sim_->arena().bounds().lo, sim_->arena().bounds().hi, rays, range, scans);
   }
   const std::size_t arrays = std::size_t(agents_) * (std::size_t(stride_) * sizeof(float) + 8 * sizeof(float));
   const std::size_t per_game = state_bytes + maps + arrays;

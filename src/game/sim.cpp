@@ -122,7 +122,7 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     const long long cells = a->map.enabled ? sense::ScanMap::cells(a->map, lo, hi) : 0;
     if (cells > sense::kMaxMapCells) {
       throw InvalidParameter(name + ".map.resolution", fmt::format("{}", a->map.resolution),
-                             fmt::format("gives this arena's map {} cells, more than 2^26 (256 MB): choose a coarser one", cells));
+                             fmt::format("gives this arena's map {} cells, more than 2^36: choose a coarser one", cells));
     }
   }
   if (!carrying.empty()) {

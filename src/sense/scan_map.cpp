@@ -3,6 +3,7 @@
 #include <octomap/OcTree.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -35,45 +36,34 @@ ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
     throw InvalidParameter("resolution", std::to_string(config.resolution),
                            "OctoMap's keys do not reach the arena: it lies more than 32768 cells from the origin");
   }
-  const CellKey a = key_of(lo), b = key_of(hi);
-  long long cells = 1;
-  for (int d = 0; d < 3; ++d) {
-    k0_[std::size_t(d)] = a[std::size_t(d)];
-    n_[std::size_t(d)] = std::size_t(b[std::size_t(d)] - a[std::size_t(d)] + 1);
-    cells *= static_cast<long long>(n_[std::size_t(d)]);
-  }
-  if (cells > kMaxMapCells) {
+  const long long total = cells(config, lo, hi);
+  if (total > kMaxMapCells) {
     throw InvalidParameter("resolution", std::to_string(config.resolution),
-                           "gives the arena's map " + std::to_string(cells) + " cells, more than 2^26 (256 MB): choose a coarser one");
+                           "gives the arena's map " + std::to_string(total) + " cells, more than 2^36: choose a coarser one");
   }
-  for (int d = 0; d < 3; ++d) bricks_[std::size_t(d)] = (n_[std::size_t(d)] + kBrick - 1) / kBrick;
-  const std::size_t bricks = bricks_[0] * bricks_[1] * bricks_[2];
-  cells_.resize(bricks * kBrickCells);
-  brick_occupied_.resize(bricks);
-  bits_.assign(bricks, BrickBits{});
-  brick_touched_.assign(bricks, 0);
-  touched_.reserve(bricks);
+  const CellKey a = key_of(lo), b = key_of(hi);
+  for (std::size_t d = 0; d < 3; ++d) {
+    k0_[d] = a[d];
+    n_[d] = std::size_t(b[d] - a[d] + 1);
+    bricks_[d] = (n_[d] + kBrick - 1) / kBrick;
+    chunks_[d] = (bricks_[d] + kChunk - 1) / kChunk;
+  }
+  chunk_.assign(chunks_[0] * chunks_[1] * chunks_[2], kNone);
   corner_ = centre(k0_) - Vec3::Constant(0.5 * config.resolution);
-  // Every cell unknown; the cells of the last bricks that lie beyond the box are marked kOutside, never known.
-  std::fill(cells_.begin(), cells_.end(), kUnknown);
-  for (std::size_t bx = 0; bx < bricks_[0]; ++bx) {
-    for (std::size_t by = 0; by < bricks_[1]; ++by) {
-      for (std::size_t bz = 0; bz < bricks_[2]; ++bz) {
-        const std::size_t b = (bx * bricks_[1] + by) * bricks_[2] + bz;
-        int inside = kBrickCells;
-        if (!whole_brick(bx, by, bz)) {
-          inside = 0;
-          for (std::size_t l = 0; l < kBrickCells; ++l) {
-            const bool in = bx * kBrick + (l >> 4) < n_[0] && by * kBrick + ((l >> 2) & 3) < n_[1] && bz * kBrick + (l & 3) < n_[2];
-            if (!in) cells_[b * kBrickCells + l] = kOutside;
-            inside += in;
-          }
-        }
-        // The brick's count of blocked cells: none is occupied; with unknown_is_occupied every inside one is.
-        brick_occupied_[b] = config_.unknown_is_occupied ? std::uint8_t(inside) : 0;
-      }
+  if (bricks_[0] * bricks_[1] * bricks_[2] <= kDenseCountBricks) {
+    // No brick held: none has an occupied cell; with unknown_is_occupied each has its cells inside the box.
+    brick_blocked_.assign(bricks_[0] * bricks_[1] * bricks_[2], 0);
+    if (config_.unknown_is_occupied) {
+      for (std::size_t b = 0; b < brick_blocked_.size(); ++b) brick_blocked_[b] = std::uint8_t(inside_cells(b));
     }
   }
+}
+
+int ScanMap::inside_cells(std::size_t b) const {
+  const auto [bx, by, bz] = brick_at(b);
+  int inside = 1;
+  for (std::size_t d = 0, at[3] = {bx, by, bz}; d < 3; ++d) inside *= int(std::min(kBrick, n_[d] - at[d] * kBrick));
+  return inside;
 }
 
 ScanMap::~ScanMap() = default;
@@ -86,15 +76,26 @@ long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3
   return cells;
 }
 
-std::size_t ScanMap::bytes_for(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
-  // As the constructor lays the cells out: whole bricks of kBrick^3 cells, a float each, and per brick its flags.
+std::size_t ScanMap::bytes_most(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi, int rays, double range,
+                                long long scans) {
+  // As the constructor and hold() lay the map out: the chunk table, then per brick reached its cells, bits, count
+  // and place, and per chunk reached its block of slots.
   const double factor = 1.0 / config.resolution;
-  std::size_t bricks = 1;
+  double bricks = 1.0, chunks = 1.0;
   for (int d = 0; d < 3; ++d) {
-    const auto n = std::size_t(std::floor(factor * hi[d]) - std::floor(factor * lo[d])) + 1;
-    bricks *= (n + kBrick - 1) / kBrick;
+    const double n = std::floor(factor * hi[d]) - std::floor(factor * lo[d]) + 1.0;
+    bricks *= std::ceil(n / double(kBrick));
+    chunks *= std::ceil(n / double(kBrick * kChunk));
   }
-  return bricks * (kBrickCells * sizeof(float) + 2 + sizeof(BrickBits));
+  // A ray of length L crosses at most 3 L / e + 4 bricks of edge e (one per face it passes, and its ends').
+  const double per_ray = 3.0 * std::ceil(range / (double(kBrick) * config.resolution)) + 4.0;
+  const double reached = scans < 0 ? bricks : std::min(bricks, double(scans) * double(rays) * per_ray);
+  const double per_brick = double(kBrickCells * sizeof(float) + sizeof(BrickBits) + 1 + 2 * sizeof(std::uint32_t));
+  const double cells_per_ray = 3.0 * std::ceil(range / config.resolution) + 4.0;
+  const double lists = double(rays) * cells_per_ray * 3.0 * sizeof(std::uint32_t);
+  const double dense = bricks <= double(kDenseCountBricks) ? bricks : 0.0;
+  return std::size_t(chunks * sizeof(std::uint32_t) + dense + reached * per_brick +
+                     std::min(chunks, reached) * double(kChunkBricks * sizeof(std::uint32_t)) + lists);
 }
 
 bool ScanMap::keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
@@ -108,28 +109,75 @@ bool ScanMap::keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3
   return true;
 }
 
-void ScanMap::clear() {
-  // Only the bricks a scan made a cell known in differ from a new map's: each goes back to unknown cells (those
-  // beyond the box stay kOutside), no cell at the clamp, and its count of blocked cells.
-  for (const std::uint32_t b : touched_) {
-    float* cell = cells_.data() + std::size_t(b) * kBrickCells;
-    const auto [bx, by, bz] = brick_at(b);
-    int inside = kBrickCells;
-    if (whole_brick(bx, by, bz)) {
-      std::fill(cell, cell + kBrickCells, kUnknown);  // a brick wholly inside the box (most): a plain fill
-    } else {
-      inside = 0;
-      for (std::size_t l = 0; l < kBrickCells; ++l) {
-        const bool in = cell[l] != kOutside;
-        if (in) cell[l] = kUnknown;
-        inside += in;
-      }
-    }
-    bits_[b].at_min = 0;
-    brick_occupied_[b] = config_.unknown_is_occupied ? std::uint8_t(inside) : 0;
-    brick_touched_[b] = 0;
+template <class T>
+void ScanMap::grow(std::vector<T>& v, std::size_t n) {
+  if (n <= v.capacity()) return;
+  v.reserve(std::max(n, 2 * v.capacity()));
+  ++allocations_;
+}
+
+std::uint32_t ScanMap::hold(std::size_t bx, std::size_t by, std::size_t bz) {
+  const std::size_t chunk = ((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk;
+  if (chunk_[chunk] == kNone) {
+    grow(slot_, slot_.size() + kChunkBricks);
+    grow(held_chunks_, held_chunks_.size() + 1);
+    chunk_[chunk] = std::uint32_t(slot_.size() / kChunkBricks);
+    slot_.resize(slot_.size() + kChunkBricks, kNone);
+    held_chunks_.push_back(std::uint32_t(chunk));
   }
-  touched_.clear();
+  std::uint32_t& entry = slot_[std::size_t(chunk_[chunk]) * kChunkBricks + ((bx % kChunk) << 6 | (by % kChunk) << 3 | (bz % kChunk))];
+  if (entry != kNone) return entry;
+  const std::size_t slot = brick_of_.size();
+  if ((slot + 1) * kBrickCells > std::size_t(kMaxMapHeldCells)) {
+    throw std::length_error("an own map would hold more than 2^32 cells");
+  }
+  if (slot == brick_of_.capacity()) {
+    const std::size_t n = std::max<std::size_t>(64, 2 * slot);
+    grow(brick_of_, n);
+    grow(cells_, n * kBrickCells);
+    grow(bits_, n);
+    grow(brick_occupied_, n);
+    grow(sorted_, n);
+  }
+  entry = std::uint32_t(slot);
+  brick_of_.push_back(std::uint32_t((bx * bricks_[1] + by) * bricks_[2] + bz));
+  bits_.push_back(BrickBits{});
+  // Every cell unknown; those of the last bricks that lie beyond the box are marked kOutside, never known.
+  cells_.resize(cells_.size() + kBrickCells, kUnknown);
+  int inside = kBrickCells;
+  if (!whole_brick(bx, by, bz)) {
+    inside = 0;
+    float* cell = cells_.data() + slot * kBrickCells;
+    for (std::size_t l = 0; l < kBrickCells; ++l) {
+      const bool in = bx * kBrick + (l >> 4) < n_[0] && by * kBrick + ((l >> 2) & 3) < n_[1] && bz * kBrick + (l & 3) < n_[2];
+      if (!in) cell[l] = kOutside;
+      inside += in;
+    }
+  }
+  // The brick's count of blocked cells: none is occupied; with unknown_is_occupied every inside one is.
+  brick_occupied_.push_back(config_.unknown_is_occupied ? std::uint8_t(inside) : 0);
+  return entry;
+}
+
+std::span<const std::uint32_t> ScanMap::sorted_slots() const {
+  // sorted_ has brick_of_'s capacity: filling it allocates nothing.
+  sorted_.resize(brick_of_.size());
+  for (std::size_t s = 0; s < sorted_.size(); ++s) sorted_[s] = std::uint32_t(s);
+  std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) { return brick_of_[a] < brick_of_[b]; });
+  return sorted_;
+}
+
+void ScanMap::clear() {
+  if (!brick_blocked_.empty()) {
+    for (const std::uint32_t b : brick_of_) brick_blocked_[b] = config_.unknown_is_occupied ? std::uint8_t(inside_cells(b)) : 0;
+  }
+  for (const std::uint32_t chunk : held_chunks_) chunk_[chunk] = kNone;
+  held_chunks_.clear();
+  slot_.clear();
+  cells_.clear();
+  bits_.clear();
+  brick_occupied_.clear();
+  brick_of_.clear();
   known_ = occupied_ = 0;
   flips_.clear();
   obstacles_moved_ = false;
@@ -148,11 +196,13 @@ void ScanMap::reserve(int rays, double range) {
   // A ray crosses at most 3 cells per resolution of its length, and a few at its ends; a scan's lists hold each
   // cell once.
   const double per_ray = 3.0 * std::ceil(range / config_.resolution) + 4.0;
-  const auto most = std::size_t(std::min(double(cells_.size()), double(rays) * per_ray));
-  free_list_.reserve(most);
-  crossed_.reserve(most);
-  hit_list_.reserve(std::min(cells_.size(), std::size_t(rays)));
-  flips_.reserve(free_list_.capacity() + hit_list_.capacity());  // every changed cell is in one of the lists
+  const auto total = double(n_[0]) * double(n_[1]) * double(n_[2]);
+  const auto most = std::size_t(std::min(total, double(rays) * per_ray));
+  grow(free_list_, most);
+  grow(crossed_, most);
+  crossed_.resize(crossed_.capacity());  // written through a pointer: its size is its room
+  grow(hit_list_, std::min(most, std::size_t(rays)));
+  grow(flips_, free_list_.capacity() + hit_list_.capacity());  // every changed cell is in one of the lists
 }
 
 CellKey ScanMap::key_of(const Vec3& p) const {
@@ -167,50 +217,40 @@ Vec3 ScanMap::centre(const CellKey& key) const {
 
 CellKey ScanMap::key_at(std::size_t c) const {
   const std::size_t l = c % kBrickCells;
-  const auto [bx, by, bz] = brick_at(c / kBrickCells);
+  const auto [bx, by, bz] = brick_at(brick_of_[c / kBrickCells]);
   return {std::uint16_t(k0_[0] + bx * kBrick + (l >> 4)), std::uint16_t(k0_[1] + by * kBrick + ((l >> 2) & 3)),
           std::uint16_t(k0_[2] + bz * kBrick + (l & 3))};
 }
 
 float ScanMap::log_odds(const CellKey& key) const {
-  std::size_t c = 0;
-  return index_of(key, c) ? cells_[c] : kUnknown;
+  std::size_t x = 0, y = 0, z = 0;
+  if (!place_of(key, x, y, z)) return kUnknown;
+  const std::uint32_t slot = slot_of(x / kBrick, y / kBrick, z / kBrick);
+  return slot == kNone ? kUnknown : cells_[cell_index(slot, x, y, z)];
 }
 
-template <class F>
-void ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& end, F&& visit) const {
+std::uint32_t* ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& end, std::uint32_t* out) {
   // OcTreeBaseImpl::computeRayKeys (Amanatides and Woo's traversal) step for step, in the same types and the same
-  // operations, so that it meets the same keys; each is visited as it is met instead of stored.
+  // operations, so that it meets the same keys; each is written as it is met instead of stored as a key. The state
+  // is kept per axis in scalars, not arrays indexed by the step's axis, so that it stays in registers.
   octomap::OcTreeKey key_origin, key_end;
-  if (!keys_->coordToKeyChecked(origin, key_origin) || !keys_->coordToKeyChecked(end, key_end)) return;
-  if (key_origin == key_end) return;
-  // The cell's storage index follows the key: per axis, its place in the grid and that axis's share of the index
-  // (index_of's brick and place in the brick), updated on the axis each step moves along.
-  const std::size_t stride[3] = {bricks_[1] * bricks_[2] * kBrickCells, bricks_[2] * kBrickCells, kBrickCells};
-  long place[3];
-  std::size_t share[3];
-  unsigned outside = 0;  // bit i: the cell lies beyond the box on axis i
-  const auto locate = [&](unsigned i) {
-    // A place below the box wraps to a huge unsigned value, beyond it too; its share is then never used.
-    share[i] = std::size_t(place[i] >> 2) * stride[i] + (std::size_t(place[i] & 3) << (4 - 2 * i));
-    outside = std::size_t(place[i]) >= n_[i] ? outside | 1u << i : outside & ~(1u << i);
-  };
-  for (unsigned i = 0; i < 3; ++i) {
-    place[i] = long(key_origin[i]) - long(k0_[i]);
-    locate(i);
-  }
-  if (outside == 0) visit(share[0] + share[1] + share[2]);
+  if (!keys_->coordToKeyChecked(origin, key_origin) || !keys_->coordToKeyChecked(end, key_end)) return out;
+  if (key_origin == key_end) return out;
   octomap::point3d direction = end - origin;
   const float length = float(direction.norm());
   direction /= length;
   const double resolution = keys_->getResolution();
+  // Per axis: the cell's place in the grid (below the box: negative; keys and places move together, and both ends
+  // lie inside the keys' range), the end's, the step, the next border's t and the t between borders.
+  long place[3], last[3];
   int step[3];
   double t_max[3], t_delta[3];
-  octomap::OcTreeKey key = key_origin;
   for (unsigned i = 0; i < 3; ++i) {
+    place[i] = long(key_origin[i]) - long(k0_[i]);
+    last[i] = long(key_end[i]) - long(k0_[i]);
     step[i] = direction(i) > 0.0 ? 1 : direction(i) < 0.0 ? -1 : 0;
     if (step[i] != 0) {
-      double border = keys_->keyToCoord(key[i]);
+      double border = keys_->keyToCoord(key_origin[i]);
       border += float(step[i] * resolution * 0.5);
       t_max[i] = (border - origin(i)) / direction(i);
       t_delta[i] = resolution / std::fabs(direction(i));
@@ -218,15 +258,106 @@ void ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& 
       t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
     }
   }
+  long px = place[0], py = place[1], pz = place[2];
+  double tx = t_max[0], ty = t_max[1], tz = t_max[2];
+  const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
+  const int sx = step[0], sy = step[1], sz = step[2];
+  // A place's first cell in its brick when entered along a step (0 going up, 3 going down).
+  const long fx = sx > 0 ? 0 : 3, fy = sy > 0 ? 0 : 3, fz = sz > 0 ? 0 : 3;
+  const long nx = long(n_[0]), ny = long(n_[1]), nz = long(n_[2]);
+  const long ebx = last[0] >> 2, eby = last[1] >> 2, ebz = last[2] >> 2;
+  const auto inside = [&] { return std::size_t(px) < std::size_t(nx) && std::size_t(py) < std::size_t(ny) && std::size_t(pz) < std::size_t(nz); };
+  // The slot of the cell's brick, found (and held) when the traversal enters a brick with a cell inside the box;
+  // whether that brick's cells are all at the lower clamp (so it lies wholly inside the box) and the end's cell is
+  // not among them: then the traversal may cross it without a visit.
+  std::uint32_t slot = kNone;
+  std::size_t base = 0;
+  bool entered = true, crossable = false;
+  // The chunk last entered and its block of slots (a ray crosses several bricks of a chunk).
+  std::size_t chunk = std::size_t(-1);
+  const std::uint32_t* block = nullptr;
+  const auto enter = [&] {
+    entered = false;
+    const std::size_t bx = std::size_t(px) >> 2, by = std::size_t(py) >> 2, bz = std::size_t(pz) >> 2;
+    const std::size_t ch = ((bx >> 3) * chunks_[1] + (by >> 3)) * chunks_[2] + (bz >> 3);
+    if (ch != chunk || block == nullptr) {
+      chunk = ch;
+      block = chunk_[ch] == kNone ? nullptr : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
+    }
+    const std::uint32_t got = block == nullptr ? kNone : block[(bx & 7) << 6 | (by & 7) << 3 | (bz & 7)];
+    if (got != kNone) {
+      slot = got;
+    } else {
+      slot = hold(bx, by, bz);
+      block = nullptr;  // slot_ may have moved
+    }
+    base = std::size_t(slot) * kBrickCells;
+    crossable = bits_[slot].at_min == ~std::uint64_t{0} &&
+                !(long(bx) == ebx && long(by) == eby && long(bz) == ebz);
+  };
+  const auto write = [&] {
+    const std::size_t c = base + (std::size_t(px & 3) << 4 | std::size_t(py & 3) << 2 | std::size_t(pz & 3));
+    __builtin_prefetch(&cells_[c]);
+    *out++ = std::uint32_t(c);
+  };
+  bool in = inside();
+  if (in) {
+    enter();
+    write();
+  }
   for (;;) {
-    const unsigned dim = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
-    key[dim] = octomap::key_type(key[dim] + step[dim]);
-    t_max[dim] += t_delta[dim];
-    if (key == key_end) return;
-    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) return;  // missed the end's cell: stop
-    place[dim] += step[dim];
-    locate(dim);
-    if (outside == 0) visit(share[0] + share[1] + share[2]);
+    if (crossable && in && !entered) {
+      // The steps the traversal would take through this brick, whose cells no miss can change, taken at once. Its
+      // steps along axis i come at t_max[i], t_max[i] + t_delta[i], ... (the same additions), and it takes the
+      // least, on a tie the higher axis. The step that leaves the brick is the first, in that order, of each
+      // axis's step out of it; every other axis takes its steps that come before that one.
+      place[0] = px, place[1] = py, place[2] = pz;
+      t_max[0] = tx, t_max[1] = ty, t_max[2] = tz;
+      double leave[3];
+      int steps_out[3];
+      for (unsigned i = 0; i < 3; ++i) {
+        leave[i] = t_max[i];
+        steps_out[i] = step[i] > 0 ? 4 - int(place[i] & 3) : int(place[i] & 3) + 1;
+        if (step[i] != 0) {
+          for (int k = 1; k < steps_out[i]; ++k) leave[i] += t_delta[i];
+        }
+      }
+      const unsigned e = leave[0] < leave[1] ? (leave[0] < leave[2] ? 0 : 2) : (leave[1] < leave[2] ? 1 : 2);
+      for (unsigned i = 0; i < 3; ++i) {
+        int taken = 0;
+        if (i == e) {
+          taken = steps_out[i];
+          t_max[i] = leave[i] + t_delta[i];
+        } else if (step[i] != 0) {
+          while (taken < steps_out[i] && (t_max[i] < leave[e] || (t_max[i] == leave[e] && i > e))) {
+            t_max[i] += t_delta[i];
+            ++taken;
+          }
+        }
+        place[i] += taken * step[i];
+      }
+      px = place[0], py = place[1], pz = place[2];
+      tx = t_max[0], ty = t_max[1], tz = t_max[2];
+      entered = true;
+      ++skipped_;
+    } else if (tx < ty ? tx < tz : false) {
+      px += sx, tx += dx;
+      entered = entered || (px & 3) == fx;
+    } else if (!(tx < ty) && ty < tz) {
+      py += sy, ty += dy;
+      entered = entered || (py & 3) == fy;
+    } else {
+      pz += sz, tz += dz;
+      entered = entered || (pz & 3) == fz;
+    }
+    // After the skipped steps the traversal would have stopped at the first of them that ended it: none reached
+    // the end's cell (not in the brick), and the least t grows with every step, so this check covers them.
+    if (px == last[0] && py == last[1] && pz == last[2]) return out;
+    if (std::min(std::min(tx, ty), tz) > length) return out;  // missed the end's cell: stop
+    in = inside();
+    if (!in) continue;
+    if (entered) enter();
+    write();
   }
 }
 
@@ -238,12 +369,14 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   obstacles_moved_ = false;
   // A brick's 64 cells have one word of each set: bit l of word b is cell b * 64 + l.
   const auto mark_hit = [&](const octomap::OcTreeKey& k) {
-    std::size_t c = 0;
-    if (!index_of({k[0], k[1], k[2]}, c)) return;
+    std::size_t x = 0, y = 0, z = 0;
+    if (!place_of({k[0], k[1], k[2]}, x, y, z)) return;
+    const std::size_t c = cell_index(hold(x / kBrick, y / kBrick, z / kBrick), x, y, z);
     std::uint64_t& word = bits_[c / kBrickCells].hit;
     const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
     if ((word & bit) != 0) return;
     word |= bit;
+    grow(hit_list_, hit_list_.size() + 1);
     hit_list_.push_back(std::uint32_t(c));
   };
   // updateNode(key, occupied): log-odds in float, clamped.
@@ -259,10 +392,6 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     std::uint64_t& at_min = bits_[c / kBrickCells].at_min;
     at_min = next == min_ ? at_min | bit : at_min & ~bit;
     known_ += !was_known;
-    if (!was_known && brick_touched_[c / kBrickCells] == 0) {
-      brick_touched_[c / kBrickCells] = 1;
-      touched_.push_back(std::uint32_t(c / kBrickCells));
-    }
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
     occupied_ += change_occupied;
     if (change_occupied != 0) flips_.push_back(c);
@@ -270,10 +399,11 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
     if (change_blocked != 0) {
       brick_occupied_[c / kBrickCells] = std::uint8_t(brick_occupied_[c / kBrickCells] + change_blocked);
+      if (!brick_blocked_.empty()) brick_blocked_[brick_of_[c / kBrickCells]] = brick_occupied_[c / kBrickCells];
       obstacles_moved_ = true;
     }
   };
-  // OccupancyOcTreeBase::computeUpdate with the key sets as bits over the grid, and each cell updated once, as
+  // OccupancyOcTreeBase::computeUpdate with the key sets as bits over the bricks, and each cell updated once, as
   // insertPointCloud updates it. First the occupied set: the endpoints within max_range (they win over free).
   for (const Vec3& pd : points) {
     const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
@@ -286,21 +416,29 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
   // at the lower clamp (OctoMap's early abort). The rays are traversed first, each cell's value prefetched as it
   // is found, and the cells updated after, in the same order: the traversal's arithmetic then overlaps the cache
   // misses of a map whose lines other work has evicted (a game's, between scans).
-  crossed_.clear();
-  const auto cross = [&](std::size_t c) {
-    __builtin_prefetch(&cells_[c]);
-    crossed_.push_back(std::uint32_t(c));
+  // Room for every ray's cells before it is traversed: at most 3 a resolution of its length and 4 at its ends.
+  std::size_t crossed = 0;
+  const auto traverse = [&](const octomap::point3d& end) {
+    const std::size_t most = std::size_t(3.0 * std::ceil(double((end - origin).norm()) / config_.resolution)) + 8;
+    if (crossed + most > crossed_.size()) {
+      grow(crossed_, crossed + most);
+      crossed_.resize(crossed_.capacity());
+    }
+    crossed = std::size_t(ray_cells(origin, end, crossed_.data() + crossed) - crossed_.data());
+    assert(crossed <= crossed_.size());
   };
   for (const Vec3& pd : points) {
     const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
     if (max_range < 0.0 || (p - origin).norm() <= max_range) {
-      ray_cells(origin, p, cross);
+      traverse(p);
     } else {
       const octomap::point3d direction = (p - origin).normalized();
-      ray_cells(origin, origin + direction * float(max_range), cross);
+      traverse(origin + direction * float(max_range));
     }
   }
-  for (const std::uint32_t c : crossed_) {
+  grow(free_list_, crossed);
+  grow(flips_, crossed + hit_list_.size());
+  for (const std::uint32_t c : std::span(crossed_.data(), crossed)) {
     BrickBits& brick = bits_[c / kBrickCells];
     const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
     if (((brick.free | brick.hit | brick.at_min) & bit) != 0) continue;  // met, an endpoint, or no change
@@ -329,25 +467,42 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
   const Vec3 rel = (p - corner_) / edge;
   const long b0[3] = {long(std::floor(rel.x())), long(std::floor(rel.y())), long(std::floor(rel.z()))};
   const long nb[3] = {long(bricks_[0]), long(bricks_[1]), long(bricks_[2])};
-  std::size_t best_cell = 0;
-  // Visits brick (bx, by, bz): its cubes, when the brick holds occupied cells and could hold a nearer one.
+  CellKey best_key{};
+  // Visits brick (bx, by, bz): its cubes, when the brick holds blocked cells and could hold a nearer one. A brick
+  // not held has every cell inside the box unknown.
+  std::size_t chunk = std::size_t(-1);  // the chunk last looked in, and its block of slots (null: none)
+  const std::uint32_t* block = nullptr;
+  const bool dense = !brick_blocked_.empty();
   const auto visit = [&](long bx, long by, long bz) {
     if (bx < 0 || by < 0 || bz < 0 || bx >= nb[0] || by >= nb[1] || bz >= nb[2]) return;
-    if (brick_occupied_[(std::size_t(bx) * bricks_[1] + std::size_t(by)) * bricks_[2] + std::size_t(bz)] == 0) return;
+    if (dense && brick_blocked_[(std::size_t(bx) * bricks_[1] + std::size_t(by)) * bricks_[2] + std::size_t(bz)] == 0) return;
+    const std::size_t ch = ((std::size_t(bx) >> 3) * chunks_[1] + (std::size_t(by) >> 3)) * chunks_[2] + (std::size_t(bz) >> 3);
+    if (ch != chunk) {
+      chunk = ch;
+      block = chunk_[ch] == kNone ? nullptr : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
+    }
+    const std::uint32_t slot = block == nullptr ? kNone : block[(bx & 7) << 6 | (by & 7) << 3 | (bz & 7)];
+    if (slot == kNone ? !unknown_blocks : brick_occupied_[slot] == 0) return;
     const Vec3 lo = corner_ + edge * Vec3(double(bx), double(by), double(bz));
     const Vec3 q = p.cwiseMax(lo).cwiseMin(lo + Vec3::Constant(edge));
     if ((q - p).norm() > best.distance) return;
-    const std::size_t b = (std::size_t(bx) * bricks_[1] + std::size_t(by)) * bricks_[2] + std::size_t(bz);
+    const float* cell = slot == kNone ? nullptr : cells_.data() + std::size_t(slot) * kBrickCells;
     for (std::size_t l = 0; l < kBrickCells; ++l) {
-      const std::size_t c = b * kBrickCells + l;
-      const float v = cells_[c];
-      if (!(v > 0.0f) && !(unknown_blocks && v != v)) continue;
+      const std::size_t x = std::size_t(bx) * kBrick + (l >> 4), y = std::size_t(by) * kBrick + ((l >> 2) & 3),
+                        z = std::size_t(bz) * kBrick + (l & 3);
+      if (cell != nullptr) {
+        const float v = cell[l];
+        if (!(v > 0.0f) && !(unknown_blocks && v != v)) continue;
+      } else if (x >= n_[0] || y >= n_[1] || z >= n_[2]) {
+        continue;  // beyond the box
+      }
       const Vec3 centre = lo + res * Vec3(double(l >> 4), double((l >> 2) & 3), double(l & 3)) + Vec3::Constant(half);
       const Vec3 point = p.cwiseMax(centre - Vec3::Constant(half)).cwiseMin(centre + Vec3::Constant(half));
       const double d = (point - p).norm();
-      if (d < best.distance || (d == best.distance && best.found && key_before(c, best_cell))) {
+      const CellKey key{std::uint16_t(k0_[0] + x), std::uint16_t(k0_[1] + y), std::uint16_t(k0_[2] + z)};
+      if (d < best.distance || (d == best.distance && best.found && key < best_key)) {
         best = {d, point, true};
-        best_cell = c;
+        best_key = key;
       }
     }
   };
@@ -379,11 +534,9 @@ void ScanMap::write_bt(const std::filesystem::path& file) const {
 }
 
 std::size_t ScanMap::bytes() const {
-  return cells_.capacity() * sizeof(float) + brick_occupied_.capacity() +
-         bits_.capacity() * sizeof(BrickBits) +
-         (free_list_.capacity() + crossed_.capacity() + hit_list_.capacity() + flips_.capacity() + touched_.capacity()) *
-             sizeof(std::uint32_t) +
-         brick_touched_.capacity();
+  const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return held(chunk_) + held(slot_) + held(held_chunks_) + held(cells_) + held(bits_) + held(brick_occupied_) + held(brick_blocked_) +
+         held(brick_of_) + held(sorted_) + held(free_list_) + held(hit_list_) + held(crossed_) + held(flips_);
 }
 
 }  // namespace peg3d::sense

@@ -11,12 +11,16 @@
 // same scans (tests/sense/scan_map_test.cpp compares them cell by cell). What differs: cells outside the arena's
 // box are not kept (no agent goes there), and a cell is found by an index computation, not a tree descent.
 //
-// Cells are stored in bricks of 4 x 4 x 4, 64 floats each, so that a ray's consecutive cells share cache lines.
-// Cost: 4 bytes a cell of the arena's box at the resolution, rounded up to whole bricks, plus per brick a byte
-// (its occupied count, for nearest_occupied) and 32 bytes (a scan's two sets, and the cells at the lower clamp,
-// which a ray crosses without an update, in one aligned block): the paper's 35 x 35 x 20 m arena at 0.25 m is
-// 141 x 141 x 81 cells in 36 x 36 x 21 bricks, 8.0 MB with the scan lists (bytes()). Built once; clear()
-// forgets every cell (a fill) and allocates nothing.
+// Cells are stored in bricks of 4 x 4 x 4, 64 floats each, so that a ray's consecutive cells share cache lines,
+// and a brick is allocated when a scan first reaches one of its cells (issue 53): a map holds what its agent saw,
+// not the arena. Bricks are found through two tables: per chunk of 8 x 8 x 8 bricks (4 bytes each, made with the
+// map) the chunk's block of 512 brick slots (2 KB, made when the chunk is first reached). Per allocated brick: 256
+// bytes of cells, 32 of bits (a scan's two sets, and the cells at the lower clamp, which a ray crosses without an
+// update, in one aligned block), its count of occupied cells and its place (bytes()); arenas of up to 2^22 bricks
+// also keep a byte per brick of the grid, its count of occupied cells, for nearest_occupied. A ray crosses a brick whose
+// 64 cells are all at the lower clamp without visiting them: no miss can change such a cell, and the step that
+// leaves the brick is found by the traversal's own additions, so the cells met after it are OctoMap's.
+// clear() forgets every brick and keeps the memory, so a map that has held as many bricks allocates nothing.
 
 #include <array>
 #include <cstdint>
@@ -38,8 +42,11 @@ class OcTree;
 
 namespace peg3d::sense {
 
-/// The most cells an agent's map may have (4 bytes each: 256 MB).
-inline constexpr long long kMaxMapCells = 1LL << 26;
+/// The most cells the box of an agent's map may have (its chunk table then takes 8 MB; only what scans reach is
+/// allocated): 1 km x 1 km x 100 m at 0.25 m is 6.4e9.
+inline constexpr long long kMaxMapCells = 1LL << 36;
+/// The most cells a map may hold at once (bricks reached, 64 cells each): 2^32, about 20 GB.
+inline constexpr long long kMaxMapHeldCells = 1LL << 32;
 
 struct ScanMapConfig {
   bool enabled = false;       ///< the agent builds a map from its lidar's scans (needs a lidar)
@@ -92,7 +99,7 @@ struct OccupiedPoint {
 class ScanMap {
  public:
   /// An empty map of the box [lo, hi] (m). Throws InvalidParameter naming "resolution" when the box has more than
-  /// kMaxMapCells cells at that resolution.
+  /// kMaxMapCells cells at that resolution or lies beyond OctoMap's keys.
   ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
   ~ScanMap();
   ScanMap(const ScanMap&) = delete;
@@ -100,23 +107,28 @@ class ScanMap {
 
   const ScanMapConfig& config() const { return config_; }
 
-  /// The cells a map of the box [lo, hi] has at the configuration's resolution.
+  /// The cells the box [lo, hi] has at the configuration's resolution.
   static long long cells(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
-  /// The bytes a new map of the box [lo, hi] holds (bytes() before any scan): what a batch of games budgets.
-  static std::size_t bytes_for(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
+  /// The most bytes a map of the box [lo, hi] can come to: its tables, scan lists for scans of `rays` rays of at
+  /// most `range` m, and the bricks reached by at most `scans` such scans (every brick of the box when `scans` is
+  /// negative, or when they could reach more): what a batch of games budgets.
+  static std::size_t bytes_most(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi, int rays, double range,
+                                long long scans);
   /// Whether OctoMap's 16-bit keys reach the box [lo, hi]: they number the cells -32768 to 32767 about the origin
   /// on each axis (+-8192 m at 0.25 m); a point beyond wraps to another cell.
   static bool keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi);
 
-  /// Forgets every cell: the bricks scans touched go back to a new map's state (a fill of those only).
+  /// Forgets every cell: no brick is held, and their memory is kept for the next scans.
   void clear();
 
-  /// Makes room for scans of `rays` rays of at most `range` m, so that inserting them allocates nothing.
+  /// Makes room for scans of `rays` rays of at most `range` m, so that inserting them allocates nothing but the
+  /// bricks they are first to reach.
   void reserve(int rays, double range);
 
   /// Inserts one scan as insertPointCloud(points, origin, max_range) would (points and origin taken as float, as
-  /// an octomap::Pointcloud holds them). A ray that met nothing is passed as an endpoint beyond max_range. No
-  /// allocation once the map has seen scans as large.
+  /// an octomap::Pointcloud holds them). A ray that met nothing is passed as an endpoint beyond max_range.
+  /// Allocates only when the scan reaches more bricks than the map has held since it was made (allocations()).
+  /// Throws std::length_error when the map would hold more than kMaxMapHeldCells.
   void insert(const Vec3& origin, std::span<const Vec3> points, double max_range);
 
   /// The cell's log-odds (float, as OctoMap keeps it), or NaN when no scan has touched it or it lies outside.
@@ -136,12 +148,20 @@ class ScanMap {
   long long known_cells() const { return known_; }
   /// Cells whose occupancy probability is above 0.5 (log-odds > 0, OctoMap's isNodeOccupied at its default).
   long long occupied_cells() const { return occupied_; }
-  /// Calls f(key, log_odds) for every known cell, brick by brick.
+  /// Bricks (4 x 4 x 4 cells) the map holds: those a scan reached since it was made or cleared.
+  std::size_t held_bricks() const { return brick_of_.size(); }
+  /// Bricks whose cells a ray crossed without visiting them (all at the lower clamp), since the map was made.
+  long long skipped_bricks() const { return skipped_; }
+  /// Calls f(key, log_odds) for every known cell in key order by brick (bricks x slowest, then the brick's cells
+  /// x slowest). Allocates nothing.
   template <class F>
   void for_each_known(F&& f) const {
-    for (std::size_t c = 0; c < cells_.size(); ++c) {
-      const float v = cells_[c];
-      if (v == v && v != -std::numeric_limits<float>::infinity()) f(key_at(c), v);  // neither unknown nor beyond
+    for (const std::uint32_t slot : sorted_slots()) {
+      const float* cell = cells_.data() + std::size_t(slot) * kBrickCells;
+      for (std::size_t l = 0; l < kBrickCells; ++l) {
+        const float v = cell[l];
+        if (v == v && v != -std::numeric_limits<float>::infinity()) f(key_at(std::size_t(slot) * kBrickCells + l), v);
+      }
     }
   }
   /// Whether the latest insert changed any cell nearest_occupied counts (an occupied one, or with
@@ -163,59 +183,96 @@ class ScanMap {
   /// (as core/atomic_file.hpp does).
   void write_bt(const std::filesystem::path& file) const;
 
-  /// Bytes the map holds (cells, scan sets and key buffer).
+  /// Bytes the map holds (tables, bricks and scan lists, as allocated).
   std::size_t bytes() const;
+  /// The allocations the map has made since it was made (each growth of one of its arrays is one): the rest of a
+  /// step loop allocates nothing, and tests tell the map's growth from anything else.
+  long long allocations() const { return allocations_; }
 
  private:
+  static constexpr std::size_t kBrick = 4;        // cells per brick edge
+  static constexpr std::size_t kBrickCells = 64;  // cells per brick
+  static constexpr std::size_t kChunk = 8;        // bricks per chunk edge
+  static constexpr std::size_t kChunkBricks = 512;
+  static constexpr std::uint32_t kNone = 0xffffffffu;  // no chunk block, no brick slot
+
   CellKey key_at(std::size_t c) const;
   /// Brick b's place in the grid of bricks (x, y, z).
   std::array<std::size_t, 3> brick_at(std::size_t b) const {
     return {b / (bricks_[2] * bricks_[1]), (b / bricks_[2]) % bricks_[1], b % bricks_[2]};
   }
+  /// The cells of brick b that lie inside the box.
+  int inside_cells(std::size_t b) const;
   /// Whether every cell of the brick at (bx, by, bz) lies inside the box.
   bool whole_brick(std::size_t bx, std::size_t by, std::size_t bz) const {
     return (bx + 1) * kBrick <= n_[0] && (by + 1) * kBrick <= n_[1] && (bz + 1) * kBrick <= n_[2];
   }
-  /// The storage index of a cell inside the box: bricks of 4 x 4 x 4 cells (x slowest), 64 floats each.
-  bool index_of(const CellKey& k, std::size_t& c) const {
-    // Unsigned differences: a key below the grid's first wraps to a large value and fails the bound too.
-    const std::size_t x = std::uint16_t(k[0] - k0_[0]), y = std::uint16_t(k[1] - k0_[1]), z = std::uint16_t(k[2] - k0_[2]);
-    if (x >= n_[0] || y >= n_[1] || z >= n_[2]) return false;
-    c = (((x / kBrick) * bricks_[1] + y / kBrick) * bricks_[2] + z / kBrick) * kBrickCells +
-        ((x % kBrick) << 4 | (y % kBrick) << 2 | (z % kBrick));
-    return true;
+  /// The brick's entry in its chunk's block of slots, or nullptr when no scan has reached its chunk.
+  const std::uint32_t* slot_entry(std::size_t bx, std::size_t by, std::size_t bz) const {
+    const std::uint32_t block = chunk_[((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk];
+    if (block == kNone) return nullptr;
+    return slot_.data() + std::size_t(block) * kChunkBricks + ((bx % kChunk) << 6 | (by % kChunk) << 3 | (bz % kChunk));
   }
-  /// Calls visit(c) with the storage index of each cell computeRayKeys(origin, end) gives, in its order, that
-  /// lies inside the box; none when it fails.
-  template <class F>
-  void ray_cells(const octomath::Vector3& origin, const octomath::Vector3& end, F&& visit) const;
-  /// Whether cell a comes before cell b in key order (x slowest).
-  bool key_before(std::size_t a, std::size_t b) const { return key_at(a) < key_at(b); }
+  /// The slot of the brick at (bx, by, bz) inside the grid, or kNone when it is not held.
+  std::uint32_t slot_of(std::size_t bx, std::size_t by, std::size_t bz) const {
+    const std::uint32_t* e = slot_entry(bx, by, bz);
+    return e == nullptr ? kNone : *e;
+  }
+  /// The slot of the brick at (bx, by, bz), allocated (its cells unknown) when it is not held yet.
+  std::uint32_t hold(std::size_t bx, std::size_t by, std::size_t bz);
+  /// The storage index (slot * 64 + place in the brick) of the cell at (x, y, z) inside the grid, its brick held.
+  std::size_t cell_index(std::uint32_t slot, std::size_t x, std::size_t y, std::size_t z) const {
+    return std::size_t(slot) * kBrickCells + ((x % kBrick) << 4 | (y % kBrick) << 2 | (z % kBrick));
+  }
+  /// The cell's place in the grid when key k lies inside it.
+  bool place_of(const CellKey& k, std::size_t& x, std::size_t& y, std::size_t& z) const {
+    // Unsigned differences: a key below the grid's first wraps to a large value and fails the bound too.
+    x = std::uint16_t(k[0] - k0_[0]), y = std::uint16_t(k[1] - k0_[1]), z = std::uint16_t(k[2] - k0_[2]);
+    return x < n_[0] && y < n_[1] && z < n_[2];
+  }
+  /// Grows v's capacity to at least n (doubling), counting the allocation.
+  template <class T>
+  void grow(std::vector<T>& v, std::size_t n);
+  /// The held bricks' slots in the order of their places in the grid (x slowest), in a scratch array.
+  std::span<const std::uint32_t> sorted_slots() const;
+  /// Writes to out the storage index of each cell computeRayKeys(origin, end) gives, in its order, that lies
+  /// inside the box, holding its brick; none when it fails. Bricks whose cells are all at the lower clamp are
+  /// crossed without a visit. Returns the end of what it wrote; out has room for 3 cells a resolution of the ray's
+  /// length and 4 more.
+  std::uint32_t* ray_cells(const octomath::Vector3& origin, const octomath::Vector3& end, std::uint32_t* out);
 
   ScanMapConfig config_;
   std::unique_ptr<octomap::OcTree> keys_;     // an empty tree: OctoMap's key arithmetic and ray keys
   CellKey k0_{};                              // the key of the grid's first cell
   std::array<std::size_t, 3> n_{};            // cells per axis
-  static constexpr std::size_t kBrick = 4;       // cells per brick edge
-  static constexpr std::size_t kBrickCells = 64;  // cells per brick
-  std::vector<float> cells_;                  // log-odds by brick (index_of); NaN: unknown; -inf: beyond the box
   std::array<std::size_t, 3> bricks_{};       // bricks per axis
-  std::vector<std::uint8_t> brick_occupied_;  // occupied cells per brick (with unknown_is_occupied: or unknown)
+  std::array<std::size_t, 3> chunks_{};       // chunks per axis
   Vec3 corner_ = Vec3::Zero();                // m, the lower corner of the grid's first cell
+  std::vector<std::uint32_t> chunk_;          // per chunk (x slowest): its block in slot_, or kNone
+  std::vector<std::uint32_t> slot_;           // per held chunk, 512 entries (x slowest): each brick's slot or kNone
+  std::vector<std::uint32_t> held_chunks_;    // the chunks with a block, to forget them in clear()
+  // Per slot (a held brick):
+  std::vector<float> cells_;                  // 64 log-odds (x slowest); NaN: unknown; -inf: beyond the box
   /// A brick's cells as bits (bit l: cell l of the brick): a scan's two sets, and the cells at the lower clamp.
   /// Side by side, so that a ray's step into a brick reads one cache line of them.
   struct alignas(32) BrickBits {
     std::uint64_t free = 0, hit = 0, at_min = 0;
   };
-  std::vector<BrickBits> bits_;                      // per brick
-  std::vector<std::uint32_t> free_list_, hit_list_;  // ... and their cells
-  std::vector<std::uint32_t> crossed_;               // every cell a scan's rays cross, in order (repeats kept)
+  std::vector<BrickBits> bits_;
+  std::vector<std::uint8_t> brick_occupied_;  // occupied cells (with unknown_is_occupied: or unknown)
+  /// The same count per brick of the grid, held or not, when the grid has at most kDenseCountBricks bricks (1 byte
+  /// a brick: 27 KB for the paper arena at 0.25 m): nearest_occupied then passes an empty brick with one load.
+  std::vector<std::uint8_t> brick_blocked_;
+  static constexpr std::size_t kDenseCountBricks = std::size_t{1} << 22;
+  std::vector<std::uint32_t> brick_of_;       // its place in the grid of bricks, (bx * by_count + by) * bz_count + bz
+  mutable std::vector<std::uint32_t> sorted_;  // scratch of sorted_slots(), as large as brick_of_'s capacity
+  std::vector<std::uint32_t> free_list_, hit_list_;  // a scan's sets' cells
+  std::vector<std::uint32_t> crossed_;               // every cell a scan's rays cross, in order (repeats kept); its
+                                                     // size is its capacity
   std::vector<std::uint32_t> flips_;                 // the cells whose occupancy the latest insert changed
   bool obstacles_moved_ = false;                     // the latest insert changed a brick's count of blocked cells
-  std::vector<std::uint32_t> touched_;               // the bricks with a known cell, since the map was made or cleared
-  std::vector<std::uint8_t> brick_touched_;          // ... 1 for those bricks
   float hit_ = 0.0f, miss_ = 0.0f, min_ = 0.0f, max_ = 0.0f;  // log-odds
-  long long known_ = 0, occupied_ = 0;
+  long long known_ = 0, occupied_ = 0, skipped_ = 0, allocations_ = 0;
 };
 
 }  // namespace peg3d::sense

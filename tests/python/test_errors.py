@@ -121,10 +121,13 @@ def test_a_list_of_seeds_refuses_what_a_single_seed_refuses_naming_its_place(bad
 def test_a_batch_over_its_memory_budget_is_refused_before_its_games_are_made():
     fine_maps = dict(SHORT, **{"pursuer.lidar.azimuth_rays": 8, "pursuer.lidar.elevation_rays": 1,
                                "pursuer.map.enabled": True, "pursuer.map.resolution": 0.08})
-    # 2048 games with 0.08 m maps of the paper's arena: about 220 MB each, 450 GB in all (it once allocated on)
-    with pytest.raises(peg3d.MemoryBudgetError, match=r"2048 games of about 2\d\d\.\d MB each .* own maps\) would "
-                                                      r"take about 4\d{5}\.\d MB, more than the memory budget of "
-                                                      r"1000\.0 MB") as refused:
+    # 2048 games with 0.08 m maps of the paper's arena (it once allocated on). A map is budgeted at the bricks an
+    # episode's scans can reach: 32 scans (3 s at 10 Hz, and the resets') of 8 rays, each crossing at most 100
+    # bricks of 0.32 m, 297 bytes a brick (7.6 MB), the blocks of all 1568 chunks (3.2 MB) and a byte per brick
+    # (0.8 MB): about 11.6 MB a game, 24 GB in all (dense, they were 220 MB each)
+    with pytest.raises(peg3d.MemoryBudgetError, match=r"2048 games of about 11\.\d MB each .* 11\.6 MB for its "
+                                                      r"agents' own maps\) would take about 24\d{3}\.\d MB, more than "
+                                                      r"the memory budget of 1000\.0 MB") as refused:
         peg3d.vector_env(num_envs=2048, set=fine_maps, memory_budget=10**9)
     assert isinstance(refused.value, MemoryError)
     with pytest.raises(MemoryError, match="65536 games"):

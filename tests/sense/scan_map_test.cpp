@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <set>
 
 #include "core/error.hpp"
 #include "core/random.hpp"
@@ -314,14 +315,98 @@ TEST(ScanMap, ASavedMapReadsBackWithOctomapAsTheCellsTheScansMade) {
   EXPECT_THROW(map.write_bt("/nonexistent-dir/map.bt"), std::runtime_error);
 }
 
-TEST(ScanMap, ABoxTooFineForMemoryIsRefused) {
+TEST(ScanMap, ABoxTooFineForItsTablesIsRefused) {
   ScanMapConfig c;
-  c.resolution = 0.02;
-  EXPECT_THROW(ScanMap(c, Vec3::Zero(), Vec3(35, 35, 20)), InvalidParameter);
+  c.resolution = 0.02;  // 2.5e11 cells: more than 2^36
+  EXPECT_THROW(ScanMap(c, Vec3::Zero(), Vec3(1000, 1000, 100)), InvalidParameter);
   c.resolution = 0.25;
   const ScanMap paper(c, Vec3::Zero(), Vec3(35, 35, 20));
-  std::printf("paper arena at 0.25 m: %.1f MB\n", double(paper.bytes()) / 1e6);
-  EXPECT_LT(paper.bytes(), 8u << 20);
+  std::printf("paper arena at 0.25 m, no scan yet: %zu bytes\n", paper.bytes());
+  EXPECT_LT(paper.bytes(), 28u << 10);  // 5 x 5 x 3 chunks, and a byte for each of its 36 x 36 x 21 bricks
+}
+
+// Scans from points about one place, in every direction and along the axes, diagonals and brick faces: after a few
+// scans the bricks about it are all at the lower clamp and rays cross them without visiting their cells. Every cell
+// still equals OctoMap's, so the step that leaves such a brick is the one the traversal takes.
+TEST(ScanMap, RaysCrossingBricksAtTheLowerClampMeetOctomapsCells) {
+  for (const double resolution : {0.25, 0.1, 0.4}) {
+    SCOPED_TRACE(resolution);
+    ScanMapConfig c;
+    c.resolution = resolution;
+    const Vec3 lo(-3.3, -2.2, -1.1), hi(9.9, 11.1, 6.6);
+    ScanMap map(c, lo, hi);
+    octomap::OcTree tree(resolution);
+    Rng rng(std::uint64_t(resolution * 1000));
+    std::vector<Vec3> directions;
+    for (int x = -1; x <= 1; ++x) {
+      for (int y = -1; y <= 1; ++y) {
+        for (int z = -1; z <= 1; ++z) {
+          if (x != 0 || y != 0 || z != 0) directions.push_back(Vec3(x, y, z).normalized());
+        }
+      }
+    }
+    const Vec3 middle(3.1, 4.4, 2.7);
+    for (int s = 0; s < 160; ++s) {
+      // Now and then from a cell's corner or centre, where the traversal's ties between axes fall.
+      Vec3 o = middle + Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -0.5, 0.5));
+      if (s % 4 == 1) o = (o / resolution).array().round().matrix() * resolution;
+      if (s % 4 == 3) o = ((o / resolution).array().floor() + 0.5).matrix() * resolution;
+      std::vector<Vec3> points;
+      octomap::Pointcloud cloud;
+      for (int k = 0; k < 60; ++k) {
+        const Vec3 d = k < int(directions.size())
+                           ? directions[std::size_t(k)]
+                           : Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)).normalized();
+        const double range = k % 5 == 0 ? 7.5 : uniform(rng, 1.0, 7.0);  // some beyond the 6 m max range
+        points.push_back(o + range * d);
+        cloud.push_back(float(points.back().x()), float(points.back().y()), float(points.back().z()));
+      }
+      map.insert(o, points, 6.0);
+      tree.insertPointCloud(cloud, octomap::point3d(float(o.x()), float(o.y()), float(o.z())), 6.0);
+      if (s % 40 == 39) expect_same_cells(map, tree, lo, hi, "about one place");
+      if (::testing::Test::HasFailure()) return;
+    }
+    std::printf("at %.2f m: %lld bricks crossed without a visit, %zu held\n", resolution, map.skipped_bricks(),
+                map.held_bricks());
+    EXPECT_GT(map.skipped_bricks(), 50);
+  }
+}
+
+// A map holds the bricks its scans reached and no other: a 1 km x 1 km x 100 m box at 0.25 m (6.4e9 cells) takes
+// its chunk table, then grows with the walk; clear() keeps the memory, so the same scans again allocate nothing.
+TEST(ScanMap, AMapHoldsTheBricksItsScansReached) {
+  const Vec3 lo(-500, -500, 0), hi(500, 500, 100);
+  ScanMapConfig c;
+  ScanMap map(c, lo, hi);
+  EXPECT_LT(map.bytes(), 1u << 20);
+  Rng rng(9);
+  std::vector<std::pair<Vec3, std::vector<Vec3>>> scans;
+  Vec3 at(0, 0, 3);
+  for (int s = 0; s < 200; ++s) {
+    at += Vec3(uniform(rng, -1, 1), uniform(rng, -1, 1), 0.0);
+    std::vector<Vec3> points;
+    for (int k = 0; k < 64; ++k) {
+      const double a = 2 * kPi * k / 64.0, e = uniform(rng, -0.4, 0.4);
+      points.push_back(at + uniform(rng, 2, 12) * Vec3(std::cos(a) * std::cos(e), std::sin(a) * std::cos(e), std::sin(e)));
+    }
+    scans.emplace_back(at, points);
+  }
+  for (const auto& [o, points] : scans) map.insert(o, points, 10.0);
+  std::set<std::array<int, 3>> bricks;
+  const CellKey k0 = map.key_of(lo);
+  map.for_each_known([&](const CellKey& k, float) { bricks.insert({(k[0] - k0[0]) / 4, (k[1] - k0[1]) / 4, (k[2] - k0[2]) / 4}); });
+  EXPECT_EQ(map.held_bricks(), bricks.size());
+  std::printf("1 km box: %zu bricks held after %zu scans, %.1f MB\n", map.held_bricks(), scans.size(), double(map.bytes()) / 1e6);
+  EXPECT_LT(map.bytes(), 50u << 20);
+  // Resident memory follows the bricks: tables and lists aside, at most twice the bricks' own bytes.
+  EXPECT_LT(double(map.bytes()), 2.0 * double(map.held_bricks()) * 300.0 + (4u << 20));
+  const long long grown = map.allocations();
+  const auto known = map.known_cells();
+  map.clear();
+  EXPECT_EQ(map.held_bricks(), 0u);
+  for (const auto& [o, points] : scans) map.insert(o, points, 10.0);
+  EXPECT_EQ(map.allocations(), grown);
+  EXPECT_EQ(map.known_cells(), known);
 }
 
 TEST(ScanMap, OctoMapsKeysReachAnArenaWithin32768CellsOfTheOriginAndNoFurther) {
