@@ -19,7 +19,7 @@ from gymnasium.spaces import Box
 from ._loading import Segment
 from .learner import LearnerEnv, LearnerVectorEnv, register
 from .parallel import ParallelEnv, aec_env
-from .policy import read_policy, save_policy, upgrade_policy
+from .policy import MIXTURE_FORMAT, read_policy, save_policy, upgrade_policy
 from .vector import VectorEnv
 
 register()
@@ -45,5 +45,5 @@ def vector_env(map="maps/paper.yaml", num_envs=1, threads=1, **kwargs):
 
 
 __all__ = ["Box", "InputError", "LearnerEnv", "MemoryBudgetError", "LearnerVectorEnv", "OBSERVATION", "OBSERVATION_ENTRIES", "PLAYERS", "PRESETS",
-           "ParallelEnv", "Segment", "VectorEnv", "env", "parallel_env", "read_policy", "save_policy", "upgrade_policy",
+           "MIXTURE_FORMAT", "ParallelEnv", "Segment", "VectorEnv", "env", "parallel_env", "read_policy", "save_policy", "upgrade_policy",
            "vector_env"]

@@ -163,48 +163,30 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     if (k < 0) continue;
     const auto& [key, entries] = settings_.controllers[std::size_t(k)];
     const std::string field = "opponents." + key;
-    if (entries.size() == 1 && entries.front().policy.empty()) {
+    if (entries.empty() || (entries.size() == 1 && entries.front().policy.empty())) {
       mixture_key_[std::size_t(i)] = -1;  // given back to the caller
-      continue;
-    }
-    if (entries.empty()) {
-      mixture_key_[std::size_t(i)] = -1;
       continue;
     }
     if (entries.size() > std::size_t(kMaxMixtureEntries)) {
       throw InvalidParameter(field, std::to_string(entries.size()) + " members",
                              "a mixture has at most " + std::to_string(kMaxMixtureEntries));
     }
-    double total = 0.0;
-    for (std::size_t e = 0; e < entries.size(); ++e) {
-      const double w = entries[e].weight;
-      if (!std::isfinite(w) || w < 0.0) {
-        throw InvalidParameter(field + "." + std::to_string(e) + ".weight", fmt::format("{}", w),
-                               "a member's weight is finite and >= 0");
-      }
-      total += w;
+    // A member's field: the key's for a lone member, else the key's and its place.
+    const auto member_field = [&](std::size_t e) { return entries.size() == 1 ? field : field + "." + std::to_string(e); };
+    std::vector<Member>& mixture = mixtures_[std::size_t(i)];
+    for (std::size_t e = 0; e < entries.size(); ++e) mixture.push_back(resolve_member(i, entries[e], member_field(e)));
+    if (const players::MixtureProblem problem = players::check_mixture(mixture); !problem.message.empty()) {
+      if (problem.member < 0) throw InvalidParameter(field, "", problem.message);
+      const auto e = std::size_t(problem.member);
+      throw InvalidParameter(problem.field == "weight" ? member_field(e) + ".weight" : member_field(e),
+                             problem.field == "weight" ? fmt::format("{}", entries[e].weight) : entries[e].policy,
+                             problem.message);
     }
-    if (!(total > 0.0) || !std::isfinite(total)) {
-      throw InvalidParameter(field, fmt::format("total weight {}", total), "a mixture's weights sum to a finite number > 0");
-    }
+    for (const Member& m : mixture) weights_[std::size_t(i)].push_back(m.weight);
     // A mixture's FACL files carry their agent configuration; the agent plays under it, whichever member plays.
-    const game::AgentConfig* own = nullptr;
-    std::vector<Controller>& mixture = mixtures_[std::size_t(i)];
-    for (std::size_t e = 0; e < entries.size(); ++e) {
-      const std::string member = entries.size() == 1 ? field : field + "." + std::to_string(e);
-      Controller c = resolve_controller(i, entries[e], member);
-      if (const game::AgentConfig* mine = c.saved ? c.saved->config() : nullptr) {
-        if (own != nullptr && !(*own == *mine)) {
-          throw InvalidParameter(member, entries[e].policy,
-                                 "carries another agent configuration than the mixture's first FACL policy: "
-                                 "a mixture's FACL policies must play under one configuration");
-        }
-        own = mine;
-      }
-      weights_[std::size_t(i)].push_back(c.weight);
-      mixture.push_back(std::move(c));
+    if (const game::AgentConfig* own = players::mixture_config(mixture)) {
+      config.set_agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_), *own);
     }
-    if (own != nullptr) config.set_agent(game::role_at(i, pursuers_), game::rank_at(i, pursuers_), *own);
   }
   sim_ = std::make_shared<const game::Sim>(std::move(arena), std::move(config));
   for (int i = 0; i < agents_; ++i) {
@@ -213,7 +195,7 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
     tables_.push_back(game::observation_table(*sim_, role, rank, settings_.neighbours));
     stride_ = std::max(stride_, tables_.back().size());
     // A C++-played network reads what this batch would give its agent: refused before any game when it cannot.
-    for (const Controller& c : mixtures_[std::size_t(i)]) {
+    for (const Member& c : mixtures_[std::size_t(i)]) {
       if (c.saved) c.saved->check_fits(*sim_, role, rank);
     }
   }
@@ -285,23 +267,23 @@ void Batch::check_memory_budget(std::size_t state_bytes) const {
   }
 }
 
-Batch::Controller Batch::resolve_controller(int i, const MixtureEntry& entry, const std::string& field) const {
+Batch::Member Batch::resolve_member(int i, const MixtureEntry& entry, const std::string& field) const {
   const game::Role role = i < pursuers_ ? game::Role::kPursuer : game::Role::kEvader;
   const std::string& source = entry.policy;
-  Controller c;
-  c.weight = entry.weight;
+  Member m;
+  m.weight = entry.weight;
   std::error_code ec;
   if (source.find('/') != std::string::npos || source.ends_with(".json") || std::filesystem::exists(source, ec)) {
-    c.saved = players::load_saved_policy(source, role);
-    return c;
+    m.saved = players::load_saved_policy(source, role);
+    return m;
   }
   if (source.empty()) throw InvalidParameter(field, source, "a mixture's member names a policy or a policy file");
   const players::PlayerInfo& player = players::player_named(source, role, field);
-  c.player = std::string(player.name);
+  m.player = std::string(player.name);
   if (player.learns()) {
     throw InvalidParameter(field, source, "a FACL opponent plays a saved policy: give its file");
   }
-  return c;
+  return m;
 }
 
 std::vector<MixtureEntry> Batch::mixture(int i) const {
@@ -320,9 +302,9 @@ void Batch::build_policies(int g) {
   game.policies.assign(std::size_t(agents_), nullptr);
   game.commands.assign(std::size_t(agents_), Steering{});
   for (int i = 0; i < agents_; ++i) {
-    const std::vector<Controller>& mixture = mixtures_[std::size_t(i)];
+    const std::vector<Member>& mixture = mixtures_[std::size_t(i)];
     for (std::size_t e = 0; e < mixture.size(); ++e) {
-      const Controller& c = mixture[e];
+      const Member& c = mixture[e];
       // A lone member keeps the seed a single C++ player has always had; a mixture's members have their own.
       const std::uint64_t seed =
           mixture.size() == 1 ? derive_seed(game.seed, {game.slot, kPolicyStream, std::uint64_t(i)})
@@ -345,7 +327,7 @@ void Batch::build_policies(int g) {
 void Batch::choose_members(int g) {
   Game& game = games_[std::size_t(g)];
   for (int i = 0; i < agents_; ++i) {
-    const std::vector<Controller>& mixture = mixtures_[std::size_t(i)];
+    const std::vector<Member>& mixture = mixtures_[std::size_t(i)];
     if (mixture.empty()) continue;
     int chosen = 0;
     if (mixture.size() > 1) {

@@ -193,16 +193,12 @@ class Batch {
   int agents_ = 0, pursuers_ = 0;
   std::vector<std::string> names_;
   // How a C++-played agent plays: a classic strategy, or a model read once from its file and shared, read-only,
-  // by every game's policy.
-  struct Controller {
-    std::string player;  // a player of the registry (players/registry.hpp)
-    std::shared_ptr<const players::SavedPolicy> saved;  // a policy file of either kind
-    double weight = 1.0;
-  };
-  Controller resolve_controller(int agent, const MixtureEntry& entry, const std::string& field) const;
+  // by every game's policy; with its weight in the agent's mixture (a mixture file's members are the same).
+  using Member = players::SavedPolicy::Member;
+  Member resolve_member(int agent, const MixtureEntry& entry, const std::string& field) const;
   // Per agent: its mixture's members (empty: the caller's agent), and which key of settings_.controllers gave it
   // (the agents of one key draw together).
-  std::vector<std::vector<Controller>> mixtures_;
+  std::vector<std::vector<Member>> mixtures_;
   std::vector<std::vector<double>> weights_;  // per agent, its mixture's weights (players::draw_member's)
   std::vector<int> mixture_key_;
   std::vector<Game> games_;

@@ -60,8 +60,6 @@ void read_mixture(SavedPolicy& p, const PolicyDocument& d, const std::filesystem
   if (doc["members"].size() > std::size_t(kMaxMixtureMembers)) {
     fail("members", fmt::format("{} members: a mixture has at most {}", doc["members"].size(), kMaxMixtureMembers));
   }
-  double total = 0.0;
-  const game::AgentConfig* own = nullptr;
   for (std::size_t k = 0; k < doc["members"].size(); ++k) {
     const nlohmann::json& m = doc["members"][k];
     const std::string field = fmt::format("members.{}", k);
@@ -69,20 +67,12 @@ void read_mixture(SavedPolicy& p, const PolicyDocument& d, const std::filesystem
     if (!m.contains("weight") || !m["weight"].is_number()) fail(field + ".weight", "missing: a number >= 0");
     SavedPolicy::Member member;
     member.weight = m["weight"].get<double>();
-    if (!std::isfinite(member.weight) || member.weight < 0.0) fail(field + ".weight", "a finite number >= 0");
-    total += member.weight;
     const std::string source = m["policy"].get<std::string>();
     if (source.ends_with(".json") || source.find('/') != std::string::npos) {
       const std::filesystem::path path = std::filesystem::path(source).is_absolute() ? std::filesystem::path(source)
                                                                                      : file.parent_path() / source;
       member.saved = load_saved_policy(path, role);
       if (!member.saved->members.empty()) fail(field + ".policy", source + " is a mixture: a member is a player or a FACL or MLP file");
-      if (const game::AgentConfig* mine = member.saved->config()) {
-        if (own != nullptr && !(*own == *mine)) {
-          fail(field + ".policy", source + " carries another agent configuration than the mixture's first FACL member");
-        }
-        own = mine;
-      }
     } else {
       const PlayerInfo* player = find_player(source);
       if (player == nullptr || !player->plays(role) || player->learns()) {
@@ -93,13 +83,47 @@ void read_mixture(SavedPolicy& p, const PolicyDocument& d, const std::filesystem
     }
     p.members.push_back(std::move(member));
   }
-  if (!(total > 0.0) || !std::isfinite(total)) fail("members", "the members' weights sum to a finite number > 0");
+  if (const MixtureProblem problem = check_mixture(p.members); !problem.message.empty()) {
+    if (problem.member < 0) fail("members", problem.message);
+    fail(fmt::format("members.{}.{}", problem.member, problem.field), problem.message);
+  }
   std::string canonical = doc.dump();
   for (const SavedPolicy::Member& m : p.members) canonical += "|" + (m.saved ? m.saved->content_hash : m.player);
   p.content_hash = hash_of(canonical);
 }
 
 }  // namespace
+
+MixtureProblem check_mixture(std::span<const SavedPolicy::Member> members) {
+  double total = 0.0;
+  const game::AgentConfig* own = nullptr;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const SavedPolicy::Member& m = members[k];
+    if (!std::isfinite(m.weight) || m.weight < 0.0) {
+      return {int(k), "weight", fmt::format("{}: a member's weight is a finite number >= 0", m.weight)};
+    }
+    total += m.weight;
+    if (!m.saved) continue;
+    const std::string name = m.saved->file.filename().string();
+    if (const game::AgentConfig* mine = m.saved->config()) {
+      if (own != nullptr && !(*own == *mine)) {
+        return {int(k), "policy",
+                name + " carries another agent configuration than the mixture's first FACL member: a mixture's FACL "
+                       "members play under one configuration"};
+      }
+      own = mine;
+    }
+  }
+  if (!(total > 0.0) || !std::isfinite(total)) return {-1, "", fmt::format("total weight {}: the members' weights sum to a finite number > 0", total)};
+  return {};
+}
+
+const game::AgentConfig* mixture_config(std::span<const SavedPolicy::Member> members) {
+  for (const SavedPolicy::Member& m : members) {
+    if (const game::AgentConfig* c = m.saved ? m.saved->config() : nullptr) return c;
+  }
+  return nullptr;
+}
 
 int draw_member(std::span<const double> weights, std::uint64_t bits) {
   double total = 0.0;
@@ -118,11 +142,7 @@ int draw_member(std::span<const double> weights, std::uint64_t bits) {
 }
 
 const game::AgentConfig* SavedPolicy::config() const {
-  if (facl) return &facl->config();
-  for (const Member& m : members) {
-    if (m.saved && m.saved->facl) return &m.saved->facl->config();
-  }
-  return nullptr;
+  return facl ? &facl->config() : mixture_config(members);
 }
 
 std::unique_ptr<game::Policy> SavedPolicy::make(std::uint64_t seed, const game::AgentConfig& agent, game::Role role,

@@ -59,6 +59,20 @@ struct SavedPolicy {
   void check_fits(const game::Sim& sim, game::Role role) const;
 };
 
+/// What is wrong with a mixture's members (a peg3d-mixture file's, or a batch's opponents'), found by the one check
+/// both use: a weight not finite or negative (`member`, "weight"), weights that do not sum to a finite number > 0
+/// (member -1), or FACL files of differing agent configurations (`member`, "policy"). Each caller throws its own
+/// error, naming its own field. (A file's member may not be a mixture; a batch's opponent may be a mixture file.)
+struct MixtureProblem {
+  int member = -1;      ///< the member at fault; -1: the mixture as a whole
+  std::string field;    ///< "weight", "policy" or "" (the whole)
+  std::string message;
+};
+/// The first problem of `members` in their order, or none (message empty).
+MixtureProblem check_mixture(std::span<const SavedPolicy::Member> members);
+/// The agent configuration a checked mixture's FACL members carry (one for all), or null when it has none.
+const game::AgentConfig* mixture_config(std::span<const SavedPolicy::Member> members);
+
 /// Which member a mixture of `weights` (finite, >= 0, summing to > 0) plays for 64 random `bits`: the member whose
 /// share of the cumulative weights holds bits' uniform in [0, 1); never one of weight 0.
 int draw_member(std::span<const double> weights, std::uint64_t bits);

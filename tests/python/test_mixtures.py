@@ -1,6 +1,7 @@
 """Mixtures of C++ players (`opponents={"evader": {"flee": 3, "random": 1}}`): one member drawn per episode by
 weight, a role's agents together, from the seed alone; refused with the member or weight named."""
 
+import json
 import math
 import pickle
 
@@ -69,3 +70,23 @@ def test_a_learner_meets_a_mixture_and_it_pickles():
 def test_a_bad_mixture_is_refused_naming_it(mixture, error, message):
     with pytest.raises(error, match=message):
         peg3d.vector_env(opponents={"evader": mixture})
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"version": 2}, "version"), ({"role": "referee"}, "role"), ({"members": []}, "members"),
+    ({"members": [{"policy": "flee", "weight": -1}]}, r"members\.0\.weight"),
+    ({"members": [{"policy": "flee", "weight": float("nan")}]}, r"members\.0\.weight"),
+    ({"members": [{"policy": "flee", "weight": True}]}, r"members\.0\.weight"),
+    ({"members": [{"policy": "flee", "weight": 0}]}, "members: the members' weights sum"),
+    ({"members": [{"policy": "flee", "weight": 1}, {"policy": 3, "weight": 1}]}, r"members\.1\.policy"),
+    ({"members": [{"policy": "inner.json", "weight": 1}]}, r"members\.0\.policy: inner\.json is a mixture"),
+    ({"members": [{"policy": "flee", "weight": 1}] * 257}, "members: 257 members: a mixture has at most 256"),
+])
+def test_read_policy_refuses_a_bad_mixture_file_naming_its_field(tmp_path, change, field):
+    doc = {"format": "peg3d-mixture", "version": 1, "role": "evader", "members": [{"policy": "flee", "weight": 1}]}
+    (tmp_path / "inner.json").write_text(json.dumps(doc))
+    (tmp_path / "mix.json").write_text(json.dumps({**doc, **change}))
+    with pytest.raises(ValueError, match=rf"mix\.json: {field}"):
+        peg3d.read_policy(tmp_path / "mix.json")
+    assert peg3d.read_policy(tmp_path / "inner.json")["members"][0] == {"policy": "flee", "weight": 1, "path": None,
+                                                                       "document": None}

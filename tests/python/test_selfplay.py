@@ -78,6 +78,15 @@ def test_two_tiny_iterations_write_their_files_and_repeat_from_the_seed(tmp_path
     # A trained network plays in C++ as any policy file: against a mixture of the classic evaders.
     net = peg3d.read_policy(tmp_path / "a" / "iteration_1" / "evader.json")
     assert net["role"] == "evader"
+    # The final mixtures read back from Python too: their members, weights and the networks' documents.
+    final = peg3d.read_policy(tmp_path / "a" / "final_pursuer.json")
+    assert final["format"] == peg3d.MIXTURE_FORMAT and final["role"] == "pursuer"
+    weights = {m["policy"]: m["weight"] for m in final["members"]}
+    assert abs(sum(weights.values()) - 1) < 1e-9
+    for m in final["members"]:
+        assert (m["document"] is None) == (m["policy"] in ("pure-pursuit", "pn"))
+        if m["document"] is not None:
+            assert m["document"] == peg3d.read_policy(m["path"])
     # The final mixtures play in the C++ programs and as opponents: peg-league's entrants, a batch's opponents.
     out = tmp_path / "league"
     league = subprocess.run([str(BIN / "peg-league"), "--map", "maps/paper.yaml", "--algorithms", "baseline",
