@@ -1,6 +1,6 @@
 #pragma once
 // An agent's own occupancy map, built only from its scans (issue 38, part 2): OctoMap's sensor model, with its
-// cells in a dense grid over the arena instead of a tree.
+// cells in bricks over the arena's box instead of a tree.
 //
 // Each scan is inserted as OctoMap's OccupancyOcTreeBase::insertPointCloud(scan, origin, max_range) inserts it:
 // the same float point cloud, the same keys (OctoMap's coordToKeyChecked, and its computeRayKeys traversal step for
@@ -17,8 +17,8 @@
 // map) the chunk's block of 512 brick slots (2 KB, made when the chunk is first reached). Per allocated brick: 256
 // bytes of cells, 32 of bits (a scan's two sets, and the cells at the lower clamp, which a ray crosses without an
 // update, in one aligned block), its count of occupied cells and its place (bytes()); arenas of up to 2^22 bricks
-// also keep a byte per brick of the grid, its count of occupied cells, for nearest_occupied. A ray crosses a brick whose
-// 64 cells are all at the lower clamp without visiting them: no miss can change such a cell, and the step that
+// also keep a byte per brick of the grid, its count of occupied cells, for nearest_occupied. A ray crosses a brick
+// whose 64 cells are all at the lower clamp without visiting them: no miss can change such a cell, and the step that
 // leaves the brick is found by the traversal's own additions, so the cells met after it are OctoMap's.
 // clear() forgets every brick and keeps the memory, so a map that has held as many bricks allocates nothing.
 
