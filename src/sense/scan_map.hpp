@@ -153,7 +153,8 @@ class ScanMap {
   /// Bricks whose cells a ray crossed without visiting them (all at the lower clamp), since the map was made.
   long long skipped_bricks() const { return skipped_; }
   /// Calls f(key, log_odds) for every known cell in key order by brick (bricks x slowest, then the brick's cells
-  /// x slowest). Allocates nothing.
+  /// x slowest). Allocates nothing: it sorts the bricks in a scratch array of the map's, so two threads must not
+  /// call it on one map at once (a map belongs to one game state).
   template <class F>
   void for_each_known(F&& f) const {
     for (const std::uint32_t slot : sorted_slots()) {
