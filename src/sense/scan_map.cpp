@@ -79,7 +79,7 @@ long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3
 std::size_t ScanMap::bytes_most(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi, int rays, double range,
                                 long long scans) {
   // As the constructor and hold() lay the map out: the chunk table, then per brick reached its cells, bits, count
-  // and place, and per chunk reached its block of slots.
+  // and place, and per chunk reached its block of slots, its count of occupied cells and its place in a list.
   const double factor = 1.0 / config.resolution;
   double bricks = 1.0, chunks = 1.0;
   for (int d = 0; d < 3; ++d) {
@@ -95,7 +95,7 @@ std::size_t ScanMap::bytes_most(const ScanMapConfig& config, const Vec3& lo, con
   const double lists = double(rays) * cells_per_ray * 3.0 * sizeof(std::uint32_t);
   const double dense = bricks <= double(kDenseCountBricks) ? bricks : 0.0;
   return std::size_t(chunks * sizeof(std::uint32_t) + dense + reached * per_brick +
-                     std::min(chunks, reached) * double(kChunkBricks * sizeof(std::uint32_t)) + lists);
+                     std::min(chunks, reached) * double((kChunkBricks + 2) * sizeof(std::uint32_t)) + lists);
 }
 
 bool ScanMap::keys_reach(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi) {
@@ -121,9 +121,11 @@ std::uint32_t ScanMap::hold(std::size_t bx, std::size_t by, std::size_t bz) {
   if (chunk_[chunk] == kNone) {
     grow(slot_, slot_.size() + kChunkBricks);
     grow(held_chunks_, held_chunks_.size() + 1);
+    grow(block_occupied_, block_occupied_.size() + 1);
     chunk_[chunk] = std::uint32_t(slot_.size() / kChunkBricks);
     slot_.resize(slot_.size() + kChunkBricks, kNone);
     held_chunks_.push_back(std::uint32_t(chunk));
+    block_occupied_.push_back(0);
   }
   std::uint32_t& entry = slot_[std::size_t(chunk_[chunk]) * kChunkBricks + ((bx % kChunk) << 6 | (by % kChunk) << 3 | (bz % kChunk))];
   if (entry != kNone) return entry;
@@ -173,6 +175,7 @@ void ScanMap::clear() {
   }
   for (const std::uint32_t chunk : held_chunks_) chunk_[chunk] = kNone;
   held_chunks_.clear();
+  block_occupied_.clear();
   slot_.clear();
   cells_.clear();
   bits_.clear();
@@ -394,7 +397,12 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     known_ += !was_known;
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
     occupied_ += change_occupied;
-    if (change_occupied != 0) flips_.push_back(c);
+    if (change_occupied != 0) {
+      flips_.push_back(c);
+      const auto [bx, by, bz] = brick_at(brick_of_[c / kBrickCells]);
+      const std::size_t chunk = ((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk;
+      block_occupied_[chunk_[chunk]] = std::uint32_t(int(block_occupied_[chunk_[chunk]]) + change_occupied);
+    }
     // The brick's count of blocked cells: occupied ones, and with unknown_is_occupied the unknown ones too.
     const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
     if (change_blocked != 0) {
@@ -479,8 +487,12 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
     const std::size_t ch = ((std::size_t(bx) >> 3) * chunks_[1] + (std::size_t(by) >> 3)) * chunks_[2] + (std::size_t(bz) >> 3);
     if (ch != chunk) {
       chunk = ch;
-      block = chunk_[ch] == kNone ? nullptr : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
+      // A chunk without occupied cells holds no nearer one unless unknown cells count.
+      block = chunk_[ch] == kNone || (!unknown_blocks && block_occupied_[chunk_[ch]] == 0)
+                  ? nullptr
+                  : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
     }
+    if (block == nullptr && !unknown_blocks) return;
     const std::uint32_t slot = block == nullptr ? kNone : block[(bx & 7) << 6 | (by & 7) << 3 | (bz & 7)];
     if (slot == kNone ? !unknown_blocks : brick_occupied_[slot] == 0) return;
     const Vec3 lo = corner_ + edge * Vec3(double(bx), double(by), double(bz));
@@ -535,7 +547,7 @@ void ScanMap::write_bt(const std::filesystem::path& file) const {
 
 std::size_t ScanMap::bytes() const {
   const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return held(chunk_) + held(slot_) + held(held_chunks_) + held(cells_) + held(bits_) + held(brick_occupied_) + held(brick_blocked_) +
+  return held(chunk_) + held(slot_) + held(held_chunks_) + held(block_occupied_) + held(cells_) + held(bits_) + held(brick_occupied_) + held(brick_blocked_) +
          held(brick_of_) + held(sorted_) + held(free_list_) + held(hit_list_) + held(crossed_) + held(flips_);
 }
 

@@ -252,6 +252,7 @@ class ScanMap {
   std::vector<std::uint32_t> chunk_;          // per chunk (x slowest): its block in slot_, or kNone
   std::vector<std::uint32_t> slot_;           // per held chunk, 512 entries (x slowest): each brick's slot or kNone
   std::vector<std::uint32_t> held_chunks_;    // the chunks with a block, to forget them in clear()
+  std::vector<std::uint32_t> block_occupied_;  // per block (held chunk): its occupied cells, for nearest_occupied
   // Per slot (a held brick):
   std::vector<float> cells_;                  // 64 log-odds (x slowest); NaN: unknown; -inf: beyond the box
   /// A brick's cells as bits (bit l: cell l of the brick): a scan's two sets, and the cells at the lower clamp.

@@ -377,6 +377,7 @@ TEST(ScanMap, RaysCrossingBricksAtTheLowerClampMeetOctomapsCells) {
 TEST(ScanMap, AMapHoldsTheBricksItsScansReached) {
   const Vec3 lo(-500, -500, 0), hi(500, 500, 100);
   ScanMapConfig c;
+  const double c_resolution = c.resolution;
   ScanMap map(c, lo, hi);
   EXPECT_LT(map.bytes(), 1u << 20);
   Rng rng(9);
@@ -400,13 +401,41 @@ TEST(ScanMap, AMapHoldsTheBricksItsScansReached) {
   EXPECT_LT(map.bytes(), 50u << 20);
   // Resident memory follows the bricks: tables and lists aside, at most twice the bricks' own bytes.
   EXPECT_LT(double(map.bytes()), 2.0 * double(map.held_bricks()) * 300.0 + (4u << 20));
+  // Nearest occupied cells in a box of more bricks than get a byte each (there the chunks' counts pass the empty
+  // ones) equal testing every occupied cell, before and after a clear().
+  const auto expect_nearest = [&] {
+    std::vector<Vec3> occupied;
+    map.for_each_known([&](const CellKey& k, float v) {
+      if (v > 0.0f) occupied.push_back(map.centre(k));
+    });
+    ASSERT_GT(occupied.size(), 100u);
+    Rng q(11);
+    int found = 0;
+    for (int i = 0; i < 100; ++i) {
+      const Vec3 p = scans[std::size_t(2 * i)].first + Vec3(uniform(q, -20, 20), uniform(q, -20, 20), uniform(q, -3, 3));
+      double want = 3.0;
+      for (const Vec3& c : occupied) {
+        const Vec3 h = Vec3::Constant(0.5 * c_resolution);
+        want = std::min(want, (p.cwiseMax(c - h).cwiseMin(c + h) - p).norm());
+      }
+      const OccupiedPoint got = map.nearest_occupied(p, 3.0);
+      ASSERT_EQ(got.found, want < 3.0) << i;
+      ASSERT_NEAR(got.distance, want, 1e-12) << i;
+      found += got.found;
+    }
+    EXPECT_GT(found, 10);
+    EXPECT_LT(found, 100);
+  };
+  expect_nearest();
   const long long grown = map.allocations();
   const auto known = map.known_cells();
   map.clear();
   EXPECT_EQ(map.held_bricks(), 0u);
+  EXPECT_FALSE(map.nearest_occupied(scans.front().first, 3.0).found);
   for (const auto& [o, points] : scans) map.insert(o, points, 10.0);
   EXPECT_EQ(map.allocations(), grown);
   EXPECT_EQ(map.known_cells(), known);
+  expect_nearest();
 }
 
 TEST(ScanMap, OctoMapsKeysReachAnArenaWithin32768CellsOfTheOriginAndNoFurther) {
