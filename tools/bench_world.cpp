@@ -22,9 +22,11 @@
 //                                   items_per_second is pairs per second; counter share_seen
 //   BM_MapInsert/<method>           one 64-ray scan of BM_StaticScan/1 (forest) at 10 m range inserted into an agent's
 //                                   map at 0.25 m: method 0 sense::ScanMap::insert, 1 OctoMap's
-//                                   OcTree::insertPointCloud (the same scans: the same cells); the walk's 2000 scans,
-//                                   then the walk again into the same map; items_per_second is rays per second;
-//                                   counter free_cells_per_ray
+//                                   OcTree::insertPointCloud (the same scans: the same cells), 2 OctoMap's
+//                                   computeRayKeys alone for the same rays (the traversal, no cell updated: what
+//                                   visiting every crossed cell costs at least); the walk's 2000 scans, then the
+//                                   walk again into the same map; items_per_second is rays per second; counter
+//                                   free_cells_per_ray
 //   BM_MapNearest/<cap_m>           the nearest occupied cell of that map (all 2000 scans in) from the walk's points,
 //                                   within cap_m
 //   BM_CameraImage/<map>/<range_m>/<by_ray>  one 64 x 48 depth image (sense::DepthCamera, 90 deg wide: 3 072
@@ -363,7 +365,7 @@ BENCHMARK(BM_SightTest)->Arg(1)->Arg(5)->Arg(9)->Unit(benchmark::kMicrosecond);
 
 // BM_MapInsert/<method>: the scans' endpoints (an echo's, or one beyond the range) along the forest walk.
 void BM_MapInsert(benchmark::State& state) {
-  const bool octomap_tree = state.range(0) == 1;
+  const bool octomap_tree = state.range(0) == 1, keys_only = state.range(0) == 2;
   const auto arena = scan_arena(1);
   const sense::StaticRayScene scene(*arena);
   constexpr double kRange = 10.0;
@@ -391,10 +393,19 @@ void BM_MapInsert(benchmark::State& state) {
     }
   }
   long scans = 0;
+  octomap::KeyRay ray_keys;
   for (auto _ : state) {
     const auto s = std::size_t(scans % kScans);
     const Vec3& o = origins[s];
-    if (octomap_tree) {
+    if (keys_only) {
+      // As insertPointCloud traces them: each endpoint, or the point at the range along its ray.
+      const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
+      for (const octomap::point3d& q : clouds[s]) {
+        const octomap::point3d end = (q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange);
+        tree.computeRayKeys(origin, end, ray_keys);
+        benchmark::DoNotOptimize(ray_keys.size());
+      }
+    } else if (octomap_tree) {
       tree.insertPointCloud(clouds[s], octomap::point3d(float(o.x()), float(o.y()), float(o.z())), kRange);
     } else {
       map.insert(o, std::span<const Vec3>(points).subspan(s * kRays, kRays), kRange);
@@ -415,7 +426,7 @@ void BM_MapInsert(benchmark::State& state) {
   }
   state.counters["free_cells_per_ray"] = double(free_cells) / (100.0 * kRays);
 }
-BENCHMARK(BM_MapInsert)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MapInsert)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 // BM_MapNearest/<cap_m>: the nearest occupied cell of the map BM_MapInsert/0 builds from the walk's 2000 scans, from
 // each scan's origin in turn, within cap_m.

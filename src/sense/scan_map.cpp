@@ -117,7 +117,7 @@ void ScanMap::grow(std::vector<T>& v, std::size_t n) {
 }
 
 std::uint32_t ScanMap::hold(std::size_t bx, std::size_t by, std::size_t bz) {
-  const std::size_t chunk = ((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk;
+  const std::size_t chunk = chunk_of(bx, by, bz);
   if (chunk_[chunk] == kNone) {
     grow(slot_, slot_.size() + kChunkBricks);
     grow(held_chunks_, held_chunks_.size() + 1);
@@ -127,7 +127,7 @@ std::uint32_t ScanMap::hold(std::size_t bx, std::size_t by, std::size_t bz) {
     held_chunks_.push_back(std::uint32_t(chunk));
     block_occupied_.push_back(0);
   }
-  std::uint32_t& entry = slot_[std::size_t(chunk_[chunk]) * kChunkBricks + ((bx % kChunk) << 6 | (by % kChunk) << 3 | (bz % kChunk))];
+  std::uint32_t& entry = slot_[std::size_t(chunk_[chunk]) * kChunkBricks + place_in_chunk(bx, by, bz)];
   if (entry != kNone) return entry;
   const std::size_t slot = brick_of_.size();
   if ((slot + 1) * kBrickCells > std::size_t(kMaxMapHeldCells)) {
@@ -282,12 +282,12 @@ std::uint32_t* ScanMap::ray_cells(const octomap::point3d& origin, const octomap:
   const auto enter = [&] {
     entered = false;
     const std::size_t bx = std::size_t(px) >> 2, by = std::size_t(py) >> 2, bz = std::size_t(pz) >> 2;
-    const std::size_t ch = ((bx >> 3) * chunks_[1] + (by >> 3)) * chunks_[2] + (bz >> 3);
+    const std::size_t ch = chunk_of(bx, by, bz);
     if (ch != chunk || block == nullptr) {
       chunk = ch;
       block = chunk_[ch] == kNone ? nullptr : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
     }
-    const std::uint32_t got = block == nullptr ? kNone : block[(bx & 7) << 6 | (by & 7) << 3 | (bz & 7)];
+    const std::uint32_t got = block == nullptr ? kNone : block[place_in_chunk(bx, by, bz)];
     if (got != kNone) {
       slot = got;
     } else {
@@ -400,8 +400,8 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     if (change_occupied != 0) {
       flips_.push_back(c);
       const auto [bx, by, bz] = brick_at(brick_of_[c / kBrickCells]);
-      const std::size_t chunk = ((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk;
-      block_occupied_[chunk_[chunk]] = std::uint32_t(int(block_occupied_[chunk_[chunk]]) + change_occupied);
+      std::uint32_t& count = block_occupied_[chunk_[chunk_of(bx, by, bz)]];
+      count = std::uint32_t(int(count) + change_occupied);
     }
     // The brick's count of blocked cells: occupied ones, and with unknown_is_occupied the unknown ones too.
     const int change_blocked = config_.unknown_is_occupied ? int(next > 0.0f) - int(!was_known || was_occupied) : change_occupied;
@@ -484,7 +484,7 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
   const auto visit = [&](long bx, long by, long bz) {
     if (bx < 0 || by < 0 || bz < 0 || bx >= nb[0] || by >= nb[1] || bz >= nb[2]) return;
     if (dense && brick_blocked_[(std::size_t(bx) * bricks_[1] + std::size_t(by)) * bricks_[2] + std::size_t(bz)] == 0) return;
-    const std::size_t ch = ((std::size_t(bx) >> 3) * chunks_[1] + (std::size_t(by) >> 3)) * chunks_[2] + (std::size_t(bz) >> 3);
+    const std::size_t ch = chunk_of(std::size_t(bx), std::size_t(by), std::size_t(bz));
     if (ch != chunk) {
       chunk = ch;
       // A chunk without occupied cells holds no nearer one unless unknown cells count.
@@ -493,7 +493,7 @@ OccupiedPoint ScanMap::nearest_occupied(const Vec3& p, double cap) const {
                   : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
     }
     if (block == nullptr && !unknown_blocks) return;
-    const std::uint32_t slot = block == nullptr ? kNone : block[(bx & 7) << 6 | (by & 7) << 3 | (bz & 7)];
+    const std::uint32_t slot = block == nullptr ? kNone : block[place_in_chunk(std::size_t(bx), std::size_t(by), std::size_t(bz))];
     if (slot == kNone ? !unknown_blocks : brick_occupied_[slot] == 0) return;
     const Vec3 lo = corner_ + edge * Vec3(double(bx), double(by), double(bz));
     const Vec3 q = p.cwiseMax(lo).cwiseMin(lo + Vec3::Constant(edge));

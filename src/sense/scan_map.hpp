@@ -208,16 +208,18 @@ class ScanMap {
   bool whole_brick(std::size_t bx, std::size_t by, std::size_t bz) const {
     return (bx + 1) * kBrick <= n_[0] && (by + 1) * kBrick <= n_[1] && (bz + 1) * kBrick <= n_[2];
   }
-  /// The brick's entry in its chunk's block of slots, or nullptr when no scan has reached its chunk.
-  const std::uint32_t* slot_entry(std::size_t bx, std::size_t by, std::size_t bz) const {
-    const std::uint32_t block = chunk_[((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk];
-    if (block == kNone) return nullptr;
-    return slot_.data() + std::size_t(block) * kChunkBricks + ((bx % kChunk) << 6 | (by % kChunk) << 3 | (bz % kChunk));
+  /// The chunk (8 x 8 x 8 bricks; chunks x slowest) of the brick at (bx, by, bz).
+  std::size_t chunk_of(std::size_t bx, std::size_t by, std::size_t bz) const {
+    return ((bx / kChunk) * chunks_[1] + by / kChunk) * chunks_[2] + bz / kChunk;
+  }
+  /// The brick's entry in its chunk's block of 512 slots (x slowest).
+  static std::size_t place_in_chunk(std::size_t bx, std::size_t by, std::size_t bz) {
+    return (bx % kChunk) << 6 | (by % kChunk) << 3 | (bz % kChunk);
   }
   /// The slot of the brick at (bx, by, bz) inside the grid, or kNone when it is not held.
   std::uint32_t slot_of(std::size_t bx, std::size_t by, std::size_t bz) const {
-    const std::uint32_t* e = slot_entry(bx, by, bz);
-    return e == nullptr ? kNone : *e;
+    const std::uint32_t block = chunk_[chunk_of(bx, by, bz)];
+    return block == kNone ? kNone : slot_[std::size_t(block) * kChunkBricks + place_in_chunk(bx, by, bz)];
   }
   /// The slot of the brick at (bx, by, bz), allocated (its cells unknown) when it is not held yet.
   std::uint32_t hold(std::size_t bx, std::size_t by, std::size_t bz);
