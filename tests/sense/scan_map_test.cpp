@@ -377,7 +377,6 @@ TEST(ScanMap, RaysCrossingBricksAtTheLowerClampMeetOctomapsCells) {
 TEST(ScanMap, AMapHoldsTheBricksItsScansReached) {
   const Vec3 lo(-500, -500, 0), hi(500, 500, 100);
   ScanMapConfig c;
-  const double c_resolution = c.resolution;
   ScanMap map(c, lo, hi);
   EXPECT_LT(map.bytes(), 1u << 20);
   Rng rng(9);
@@ -410,14 +409,12 @@ TEST(ScanMap, AMapHoldsTheBricksItsScansReached) {
     });
     ASSERT_GT(occupied.size(), 100u);
     Rng q(11);
+    const Vec3 half = Vec3::Constant(0.5 * c.resolution);
     int found = 0;
     for (int i = 0; i < 100; ++i) {
       const Vec3 p = scans[std::size_t(2 * i)].first + Vec3(uniform(q, -20, 20), uniform(q, -20, 20), uniform(q, -3, 3));
       double want = 3.0;
-      for (const Vec3& c : occupied) {
-        const Vec3 h = Vec3::Constant(0.5 * c_resolution);
-        want = std::min(want, (p.cwiseMax(c - h).cwiseMin(c + h) - p).norm());
-      }
+      for (const Vec3& cell : occupied) want = std::min(want, (p.cwiseMax(cell - half).cwiseMin(cell + half) - p).norm());
       const OccupiedPoint got = map.nearest_occupied(p, 3.0);
       ASSERT_EQ(got.found, want < 3.0) << i;
       ASSERT_NEAR(got.distance, want, 1e-12) << i;
