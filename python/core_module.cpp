@@ -18,9 +18,13 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
+#include "core/validation.hpp"
 #include "env/batch.hpp"
+#include "experiment/facl_response.hpp"
 #include "game/config_file.hpp"
+#include "players/policy_io.hpp"
 #include "players/registry.hpp"
+#include "players/saved_policy.hpp"
 #include "game/observation.hpp"
 #include "sense/scan_map.hpp"
 #include "view/frame_renderer.hpp"
@@ -326,6 +330,42 @@ PYBIND11_MODULE(_core, m) {
       return numpy_view(self, (b.*flags)(), {b.games(), b.agents()}, "bool");
     });
   }
+
+  // A FACL best response (experiment/facl_response.hpp) against `opponent`, a policy file of the other role (a
+  // classic player goes in a one-member peg3d-mixture file), saved to `out` as a FACL policy file.
+  m.def(
+      "train_facl",
+      [](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
+         const std::vector<std::string>& scenarios, const std::string& role_name, const std::string& opponent,
+         int episodes, std::uint64_t seed, const std::string& out, bool cache) {
+        const game::Role role = role_name == "pursuer" ? game::Role::kPursuer
+                                : role_name == "evader" ? game::Role::kEvader
+                                                        : throw InvalidParameter("role", role_name, "must be pursuer or evader");
+        py::gil_scoped_release unlocked;  // building the world and training take seconds to hours
+        game::GameConfig c = game::apply_game_overrides(game::load_game_config(config), sets, players::check_players);
+        const game::Role other = role == game::Role::kPursuer ? game::Role::kEvader : game::Role::kPursuer;
+        const auto saved = players::load_saved_policy(opponent, other);
+        world::BuildOptions options;
+        if (cache) options.cache_dir = world::default_cache_dir();
+        auto arena = world::Arena::build(world::load_map(map), options);
+        std::size_t opponents = 0;
+        for (const world::Scenario& s : arena->map().scenarios) {
+          opponents = std::max(opponents, other == game::Role::kPursuer ? s.pursuers.size() : s.evaders.size());
+        }
+        c = experiment::with_opponent_config(std::move(c), other, int(opponents), *saved);
+        const auto sim = std::make_shared<const game::Sim>(std::move(arena), std::move(c));
+        saved->check_fits(*sim, other);
+        experiment::FaclResponseSettings s;
+        s.episodes = episodes, s.scenarios = scenarios, s.seed = seed;
+        const players::RoleModels models = experiment::train_facl_response(*sim, role, *saved, s);
+        // A team of equal settings learns one model; one file holds one.
+        if (models.models.size() != 1) {
+          throw InvalidParameter(role_name + ".policy", "facl", "a team whose agents' settings differ learns several models");
+        }
+        players::save_policy(out, *models.models.front());
+      },
+      py::arg("map"), py::arg("config"), py::arg("sets"), py::arg("scenarios"), py::arg("role"), py::arg("opponent"),
+      py::arg("episodes"), py::arg("seed"), py::arg("out"), py::arg("cache") = true);
 
   // Images of a batch's games (render_mode "rgb_array"): the camera and the map's fixed solids are drawn once.
   py::class_<view::FrameRenderer>(m, "FrameRenderer")

@@ -10,7 +10,9 @@ Each role's population starts from classic players (and any policy files given).
 2. solves the zero-sum meta-game of that matrix by fictitious play (`solve_zero_sum`): a mixture per role;
 3. trains one best response per role against the other role's mixture (peg3d.mappo: a shared actor for the
    role's team, which sees its teammates and nearest opponents, and a centralised critic), the opponents drawn
-   per episode from the mixture inside the C++ batch; both join their populations.
+   per episode from the mixture inside the C++ batch; both join their populations. With `facl_episodes`, the
+   paper's learner trains one more best response per role, in C++ (`_core.train_facl`): FACL tables whose inputs
+   include the sight entries (`facl_set`), against the same mixture; they join the populations too.
 An iteration's files are written before its record (`iteration_K/state.json`), so an interrupted run resumes
 from its last finished iteration (`resume=True`) with the same results as one never stopped. After the last
 iteration a fresh best response per role, trained against the final mixtures, measures their exploitability.
@@ -55,6 +57,12 @@ class Settings:
     iterations: int = 4               # best responses per role, >= 1
     budget: Budget = Budget()         # each best response's training
     final_budget: Budget | None = None  # the exploitability's fresh best responses (None: budget)
+    # FACL best responses: training episodes per role and iteration, in [0, 10^7] (0: none, MAPPO's alone), and
+    # the FACL learners' own settings, key -> value under their role (pursuer.KEY or evader.KEY): by default the
+    # sight entries are two more fuzzy inputs (in sight now: sets at 0 and 1; the sighting's age: observation.sets
+    # sets over [0, 10 s]).
+    facl_episodes: int = 0
+    facl_set: dict = field(default_factory=lambda: {"observation.sight_inputs": "true"})
     eval_games: int = 64              # held-out games per pairing, in [1, 65536]
     eval_threads: int = 1             # C++ threads playing them, >= 1
     solver_iterations: int = 20000    # fictitious play's rounds, >= 1
@@ -64,7 +72,8 @@ class Settings:
         if not isinstance(self.map, (str, os.PathLike)):
             raise TypeError("map: a map file")
         for name, low, high in (("neighbours", 0, 16), ("iterations", 1, 10_000), ("eval_games", 1, 65536),
-                                ("eval_threads", 1, 256), ("solver_iterations", 1, 10**7), ("seed", 0, 2**63 - 1)):
+                                ("eval_threads", 1, 256), ("solver_iterations", 1, 10**7), ("seed", 0, 2**63 - 1),
+                                ("facl_episodes", 0, 10**7)):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or not low <= v <= high:
                 raise ValueError(f"{name}: an integer in [{low}, {high}], not {v!r}")
@@ -75,6 +84,8 @@ class Settings:
             for k, m in enumerate(members):
                 if not isinstance(m, (str, os.PathLike)) or not str(m):
                     raise TypeError(f"{role}s.{k}: a player's name or a policy file, not {m!r}")
+        if not isinstance(self.facl_set, dict) or not all(isinstance(k, str) and k for k in self.facl_set):
+            raise TypeError("facl_set: a dict of setting -> value")
         self.budget.check()
         if self.final_budget is not None:
             self.final_budget.check()
@@ -162,6 +173,27 @@ def _train(settings, role, opponents, budget, seed):
     return mappo.train(role, env, budget, seed)
 
 
+def _facl_sets(settings, role):
+    """The configuration overrides of a FACL best response of `role`: the run's, then its learners' own."""
+    sets = dict(settings.set, **{f"{role}.policy": "facl"})
+    sets.update({f"{role}.{k}": v for k, v in settings.facl_set.items()})
+    return sets
+
+
+def _train_facl(settings, role, opponent, episodes, seed):
+    """A FACL best response of `role`, trained in C++ against `opponent` (a policy or mixture file of the other
+    role): its policy document's text."""
+    import tempfile
+    from . import _loading
+    with tempfile.TemporaryDirectory(prefix="peg3d-facl-") as tmp:
+        out = os.path.join(tmp, "policy.json")
+        _core.train_facl(_loading.resolve(settings.map), _loading.config_source("peg3d"),
+                         _loading.overrides(_facl_sets(settings, role)), list(settings.scenario or []), role,
+                         str(opponent), int(episodes), int(seed), out)
+        with open(out) as f:
+            return f.read()
+
+
 class _Runner:
     """Runs jobs in this process, or as Ray tasks on a cluster."""
 
@@ -184,16 +216,15 @@ class _Runner:
             except Exception as e:  # noqa: BLE001 - Ray raises several kinds for an unreachable cluster
                 raise ConnectionError(f"ray_address: no Ray cluster at {ray_address!r}: {e}") from e
             self.ray = ray
-            self._play = ray.remote(play_pairing)
-            self._train = ray.remote(_train)
+            self._remote = {kind: ray.remote(f) for kind, f in self.JOBS.items()}
+
+    JOBS = {"play": play_pairing, "train": _train, "train_facl": _train_facl}
 
     def map(self, kind, calls):
-        """Results of `kind` ("play" or "train") for each argument tuple, in order."""
+        """Results of `kind` ("play", "train" or "train_facl") for each argument tuple, in order."""
         if self.ray is None:
-            f = play_pairing if kind == "play" else _train
-            return [f(*c) for c in calls]
-        f = self._play if kind == "play" else self._train
-        return self.ray.get([f.remote(*c) for c in calls])
+            return [self.JOBS[kind](*c) for c in calls]
+        return self.ray.get([self._remote[kind].remote(*c) for c in calls])
 
 
 def _absolute(member, out):
@@ -216,6 +247,19 @@ def _mixture(members, weights, out):
     return {_absolute(m, out): float(w) for m, w in zip(members, weights) if w > 0}
 
 
+def _write_mixture(path, role, members, weights, out):
+    """A peg3d-mixture file (the C++ side draws one member per episode) of the members of weight > 0: the run's
+    files (named relative to `out`) named relative to the mixture file's folder, players by name."""
+    folder = os.path.dirname(os.path.abspath(path))
+    named = []
+    for m, w in zip(members, weights):
+        if w > 0:
+            file = _absolute(m, out)
+            named.append({"policy": os.path.relpath(file, folder) if file != str(m) else str(m), "weight": float(w)})
+    _write_json(path, {"format": "peg3d-mixture", "version": 1, "role": role, "trained_by": "peg3d.selfplay",
+                       "members": named})
+
+
 class SelfPlay:
     """A self-play run in folder `out` (see the module's help). `run()` plays it to the end and returns the
     summary it writes to out/summary.json."""
@@ -229,8 +273,11 @@ class SelfPlay:
                 saved = json.load(f)
             if not resume:
                 raise FileExistsError(f"{self.out}: a self-play run is there already (resume=True / --resume continues it)")
-            if saved != json.loads(json.dumps(settings.to_json())):
-                changed = sorted(k for k in saved if saved[k] != json.loads(json.dumps(settings.to_json())).get(k))
+            # A run made before a setting existed was made with its default.
+            now, defaults = json.loads(json.dumps(settings.to_json())), json.loads(json.dumps(Settings().to_json()))
+            saved = {k: saved.get(k, defaults[k]) for k in now}
+            if saved != now:
+                changed = sorted(k for k in saved if saved[k] != now.get(k))
                 raise ValueError(f"{path}: the run there was made with other settings ({', '.join(changed)})")
         self._check_members()
         self.runner = _Runner(ray_address)  # an unreachable cluster, before anything is written
@@ -248,6 +295,13 @@ class SelfPlay:
                     VectorEnv(num_envs=1, opponents={r: member}, **_env_keywords(s)).close()
                 except _core.InputError as e:
                     raise _core.InputError(f"{r}s.{k}: {member}: {e}") from None
+        if s.facl_episodes > 0:
+            # The FACL learners' settings, as their training reads them.
+            for r in ROLES:
+                try:
+                    VectorEnv(num_envs=1, **dict(_env_keywords(s), set=_facl_sets(s, r))).close()
+                except _core.InputError as e:
+                    raise _core.InputError(f"facl_set: {e}") from None
 
     # ---- state ----
     def _state_path(self, k):
@@ -304,11 +358,26 @@ class SelfPlay:
                 net.save(os.path.join(self.out, name), trained_by="peg3d.selfplay", iteration=k,
                          opponents=sorted(mixtures[ROLES[1 - ROLES.index(r)]]))
                 trained[r] = {"file": name, "history": net.history}
+            if s.facl_episodes > 0:
+                # The paper's learner against the same mixtures, from files the C++ side reads.
+                calls = []
+                for r in ROLES:
+                    o = ROLES[1 - ROLES.index(r)]
+                    mixture = os.path.join(folder, f"{o}_mixture.json")
+                    _write_mixture(mixture, o, members[o], x if o == "pursuer" else y, self.out)
+                    calls.append((s, r, os.path.abspath(mixture), s.facl_episodes, derive_seed(s.seed, "facl", k, r)))
+                for r, text in zip(ROLES, self.runner.map("train_facl", calls)):
+                    name = f"iteration_{k}/{r}_facl.json"
+                    with open(os.path.join(self.out, name), "w") as f:
+                        f.write(text)
+                    trained[r]["facl"] = name
             entry = {"iteration": k, "pursuer_mixture": x.tolist(), "evader_mixture": y.tolist(),
                      "value": [low, high], "members": {r: len(members[r]) for r in ROLES},
                      "trained": trained}
             for r in ROLES:
                 members[r].append(trained[r]["file"])
+                if "facl" in trained[r]:
+                    members[r].append(trained[r]["facl"])
             state = {"iteration": k, "members": members, "payoffs": payoffs, "history": state["history"] + [entry]}
             _write_json(self._state_path(k), state)
             line = json.dumps({"iteration": k, "value": [low, high], "pursuers": len(members["pursuer"]),
@@ -365,10 +434,7 @@ class SelfPlay:
         # The final mixtures as policy files the C++ side plays (peg-league --pursuer-entrant NAME=FILE, peg-matchup,
         # opponents=): one member drawn per episode, members named relative to the run's folder.
         for r, weights in (("pursuer", x), ("evader", y)):
-            _write_json(os.path.join(self.out, f"final_{r}.json"),
-                        {"format": "peg3d-mixture", "version": 1, "role": r, "trained_by": "peg3d.selfplay",
-                         "members": [{"policy": str(mem), "weight": float(w)}
-                                     for mem, w in zip(members[r], weights) if w > 0]})
+            _write_mixture(os.path.join(self.out, f"final_{r}.json"), r, members[r], weights, self.out)
         summary = {"members": members, "payoff": m.tolist(),
                    "capture_rate": self._matrix(members, payoffs, "capture_rate").tolist(),
                    "pursuer_mixture": x.tolist(), "evader_mixture": y.tolist(), "value": [low, high],
@@ -393,6 +459,10 @@ def main(argv=None):
     ap.add_argument("--num-envs", type=int, default=d.budget.num_envs)
     ap.add_argument("--rollout", type=int, default=d.budget.rollout)
     ap.add_argument("--threads", type=int, default=1, help="C++ threads for training and evaluation")
+    ap.add_argument("--facl-episodes", type=int, default=d.facl_episodes,
+                    help="episodes of each FACL best response (one per role and iteration; 0: none)")
+    ap.add_argument("--facl-set", action="append", default=[],
+                    help="a FACL learner's setting key=value under its role (default: observation.sight_inputs=true)")
     ap.add_argument("--eval-games", type=int, default=d.eval_games)
     ap.add_argument("--seed", type=int, default=d.seed)
     ap.add_argument("--out", required=True)
@@ -401,13 +471,15 @@ def main(argv=None):
     a = ap.parse_args(argv)
     try:
         sets = dict(d.set, **dict(kv.split("=", 1) for kv in a.set))
+        facl_set = dict(d.facl_set, **dict(kv.split("=", 1) for kv in a.facl_set))
     except ValueError:
-        ap.error("--set: key=value")
+        ap.error("--set and --facl-set: key=value")
     budget = Budget(steps=a.steps, num_envs=a.num_envs, rollout=a.rollout, threads=a.threads)
     settings = Settings(map=a.map, scenario=a.scenario, set=sets, neighbours=a.neighbours,
                         pursuers=a.pursuer or d.pursuers, evaders=a.evader or d.evaders, iterations=a.iterations,
                         budget=budget, final_budget=None if a.final_steps is None else dataclasses.replace(budget, steps=a.final_steps),
-                        eval_games=a.eval_games, eval_threads=a.threads, seed=a.seed)
+                        facl_episodes=a.facl_episodes, facl_set=facl_set, eval_games=a.eval_games,
+                        eval_threads=a.threads, seed=a.seed)
     try:
         summary = SelfPlay(settings, a.out, resume=a.resume, ray_address=a.ray).run()
     except (ValueError, TypeError, FileExistsError, ConnectionError, ImportError) as e:

@@ -64,14 +64,21 @@ struct AgentConfig {
 
 /// The most rules one FACL channel may have (2^20: 24 MB of tables); bounds what a config or policy can allocate.
 inline constexpr long long kMaxFaclRules = 1LL << 20;
-/// Rules of each FACL channel: sets^inputs, inputs 4 (azimuth, or one channel per angle) or 6 (joint
-/// azimuth-elevation), plus one per observed angle of the opponent's heading.
-constexpr long long facl_rules(const AgentConfig& c) {
+/// Inputs of each FACL channel: 4 (azimuth, or one channel per angle) or 6 (joint azimuth-elevation), plus one per
+/// observed angle of the opponent's heading, plus two with the sight inputs.
+constexpr int facl_inputs(const AgentConfig& c) {
   const bool joint_both =
       c.structure == FaclStructure::kJoint && c.observation.angles == AngleInputs::kAzimuthElevation;
-  const int inputs = (joint_both ? 6 : 4) + (c.observation.opponent_heading ? (joint_both ? 2 : 1) : 0);
-  long long rules = 1;
-  for (int i = 0; i < inputs; ++i) rules *= c.observation.sets;
+  return (joint_both ? 6 : 4) + (c.observation.opponent_heading ? (joint_both ? 2 : 1) : 0) +
+         (c.observation.sight_inputs ? 2 : 0);
+}
+/// The most inputs a FACL channel takes (fuzzy::kMaxInputs: 2^8 rules fire at once).
+inline constexpr int kMaxFaclInputs = 8;
+/// Rules of each FACL channel: the product of its inputs' set counts, `sets` each but the sight's visibility (2).
+constexpr long long facl_rules(const AgentConfig& c) {
+  const int inputs = facl_inputs(c);
+  long long rules = c.observation.sight_inputs ? 2 : 1;
+  for (int i = c.observation.sight_inputs ? 1 : 0; i < inputs; ++i) rules *= c.observation.sets;
   return rules;
 }
 
@@ -103,6 +110,8 @@ void visit_fields(V& v, C& c) {
   v.require(c.structure != FaclStructure::kPerAngle || c.observation.angles == AngleInputs::kAzimuthElevation,
             "structure", "per-angle", "needs observation.angles = azimuth-elevation");
   // sets^inputs rules, each a row of the actor and critic: without a bound, 64 sets over 6 inputs asks for 10^11.
+  v.require(facl_inputs(c) <= kMaxFaclInputs, "observation.sight_inputs", "true",
+            "gives more than 8 FACL inputs per channel (joint azimuth-elevation with opponent_heading takes 8 already)");
   v.require(facl_rules(c) <= kMaxFaclRules, "observation.sets", c.observation.sets,
             "gives more than 2^20 FACL rules per channel (sets^inputs: 4 inputs, or 6 with azimuth-elevation joint)");
 }

@@ -53,6 +53,11 @@ struct ObservationConfig {
   /// The nearest obstacle: the world's, or the agent's own map's (needs map.enabled). The arena's faces stay
   /// known to the agent either way (boundary_is_obstacle).
   ObstacleSource obstacles = ObstacleSource::kWorld;
+  /// Limited sight's two entries as inputs of each FACL channel: whether the opponent is in sight now (two sets,
+  /// at 0 and 1) and how old the sighting it steers by is (`sets` sets over [0, sight_age_range]). Without limited
+  /// sight the opponent is always in sight, aged 0. Adds two inputs per channel.
+  bool sight_inputs = false;
+  double sight_age_range = 10.0;     ///< s, the sighting's age partition [0, sight_age_range], > 0
   bool operator==(const ObservationConfig&) const = default;
 };
 
@@ -74,6 +79,10 @@ void visit_fields(V& v, C& c) {
   v.integer("sets", c.sets, 2, 64, "", "triangular fuzzy sets per input (paper 5)");
   v.choice("obstacles", c.obstacles, kObstacleSourceNames,
            "the nearest obstacle of the inputs and the guard: the world's, or the agent's own map's (needs map.enabled)");
+  v.flag("sight_inputs", c.sight_inputs,
+         "whether the opponent is in sight and how old its sighting is are two more inputs of each FACL channel");
+  v.number("sight_age_range", c.sight_age_range, Range::positive(), "s",
+           "the sighting's age is partitioned over [0, sight_age_range] (sight_inputs)");
 }
 
 /// Nearest obstacle as the world reports it (distance capped, point valid only when found).

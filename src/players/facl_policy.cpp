@@ -15,6 +15,8 @@ fuzzy::TriangularPartition partition_of(int feature, const game::ObservationConf
   switch (feature) {
     case 0: return {0.0, o.target_range, o.sets, "observation.target_range"};
     case 3: return {0.0, o.obstacle_range, o.sets, "observation.obstacle_range"};
+    case 8: return {0.0, 1.0, 2, "observation.sight_inputs"};
+    case 9: return {0.0, o.sight_age_range, o.sets, "observation.sight_age_range"};
     default: return {-kPi, kPi, o.sets, "observation.angle"};
   }
 }
@@ -27,10 +29,12 @@ fuzzy::RuleBase rule_base_of(const std::vector<int>& features, const game::Obser
 
 }  // namespace
 
-Features features_of(const game::Percept& p) {
+Features features_of(const game::AgentView& v) {
+  const game::Percept& p = v.percept;
   return {p.target_distance,   p.target.azimuth,      p.target.elevation,
           p.obstacle.distance,  p.to_obstacle.azimuth, p.to_obstacle.elevation,
-          p.opponent_heading.azimuth, p.opponent_heading.elevation};
+          p.opponent_heading.azimuth, p.opponent_heading.elevation,
+          v.other_visible ? 1.0 : 0.0, v.other_age};
 }
 
 FaclModel::FaclModel(const game::AgentConfig& config, game::Role role) : config_(config), role_(role) {
@@ -54,6 +58,9 @@ FaclModel::FaclModel(const game::AgentConfig& config, game::Role role) : config_
       if (azimuth) s.features.push_back(6);
       if (elevation) s.features.push_back(7);
     }
+  }
+  if (config.observation.sight_inputs) {
+    for (Spec& s : specs) s.features.insert(s.features.end(), {8, 9});
   }
   channels_.reserve(specs.size());
   for (const Spec& s : specs) {
@@ -96,7 +103,7 @@ void FaclPolicy::begin_episode(const game::AgentView&, bool learning) {
 
 Steering FaclPolicy::act(const game::AgentView& view) {
   double steering[2] = {0.0, 0.0};
-  const Features f = features_of(view.percept);
+  const Features f = features_of(view);
   const bool reuse = have_fired_ && f == fired_features_;
   for (Lane& l : lanes_) {
     if (!reuse) {
@@ -125,7 +132,7 @@ Steering FaclPolicy::act(const game::AgentView& view) {
 
 void FaclPolicy::learn(double reward, const game::AgentView& next, bool terminal) {
   assert(learning_ && trainable_ != nullptr);
-  const Features f = features_of(next.percept);
+  const Features f = features_of(next);
   for (Lane& l : lanes_) {
     const std::size_t n = std::size_t(l.actions);
     if (terminal) {

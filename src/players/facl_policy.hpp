@@ -12,12 +12,13 @@
 //   0 d_PE [0, target_range]   1 target azimuth error [-pi, pi]    2 target elevation error [-pi, pi]
 //   3 d_O  [0, obstacle_range] 4 obstacle azimuth error [-pi, pi]  5 obstacle elevation error [-pi, pi]
 //   6 opponent heading's azimuth error [-pi, pi]   7 its elevation error [-pi, pi]   (observation.opponent_heading)
+//   8 the opponent in sight now {0, 1}   9 the age of its sighting [0, sight_age_range] s   (observation.sight_inputs)
 // Channels by structure and angle inputs:
 //   joint,  azimuth            -> one learner over {0,1,3,4}       -> (d_alpha, d_theta)   (the paper)
 //   joint,  azimuth-elevation  -> one learner over {0,1,2,3,4,5}   -> (d_alpha, d_theta)
 //   per-angle                  -> {0,1,3,4} -> d_alpha  and  {0,2,3,5} -> d_theta
 // With opponent_heading, each channel also takes 6 (azimuth channels) or 7 (the elevation channel), or both
-// (joint azimuth-elevation).
+// (joint azimuth-elevation). With sight_inputs, every channel also takes 8 and 9.
 
 #include <array>
 #include <memory>
@@ -28,11 +29,11 @@
 
 namespace peg3d::players {
 
-inline constexpr int kFeatureCount = 8;
+inline constexpr int kFeatureCount = 10;
 using Features = std::array<double, kFeatureCount>;
 
-/// The features of a percept (6 and 7 are 0 unless the percept observed the opponent's heading).
-Features features_of(const game::Percept& p);
+/// The features of a view (6 and 7 are 0 unless its percept observed the opponent's heading).
+Features features_of(const game::AgentView& v);
 
 /// The learned part of a FACL agent. Acting reads it; only a learning FaclPolicy writes it.
 class FaclModel {

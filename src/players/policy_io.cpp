@@ -92,7 +92,7 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
     // 1 and 2 without guard.look_ahead, versions 1 to 3 without observation.opponent_heading, versions 1 to
     // 4 without action, versions 1 to 5 without lidar, map and observation.obstacles, version 6 without
     // map.insert_agents (its maps held the agents' echoes), versions 1 to 7 without sight (full information),
-    // versions 1 to 8 without camera.
+    // versions 1 to 8 without camera, versions 1 to 9 without observation.sight_inputs and sight_age_range.
     if (image.is_object() && image.contains("guard") && image["guard"].is_object()) {
       nlohmann::json& guard = image["guard"];
       if (version.get<long long>() < 2 && !guard.contains("faces")) guard["faces"] = false;
@@ -102,6 +102,11 @@ std::shared_ptr<FaclModel> read_policy(const nlohmann::json& doc, const std::fil
       nlohmann::json& observation = image["observation"];
       if (version.get<long long>() < 4 && !observation.contains("opponent_heading")) {
         observation["opponent_heading"] = false;
+      }
+      if (version.get<long long>() < 10) {
+        const game::ObservationConfig defaults;
+        if (!observation.contains("sight_inputs")) observation["sight_inputs"] = defaults.sight_inputs;
+        if (!observation.contains("sight_age_range")) observation["sight_age_range"] = defaults.sight_age_range;
       }
     }
     if (image.is_object() && version.get<long long>() < 5 && !image.contains("action")) {

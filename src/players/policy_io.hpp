@@ -27,7 +27,7 @@
 namespace peg3d::players {
 
 inline constexpr const char* kPolicyFormat = "peg3d-policy";
-inline constexpr int kPolicyVersion = 9;  // 8: AgentConfig::sight; 9: its depth camera
+inline constexpr int kPolicyVersion = 10;  // 8: AgentConfig::sight; 9: its depth camera; 10: sight inputs
 /// The oldest version this build reads.
 inline constexpr int kOldestPolicyVersion = 1;
 

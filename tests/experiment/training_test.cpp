@@ -13,6 +13,7 @@
 #include "experiment/training.hpp"
 #include "experiment/trial.hpp"
 #include "experiment/trial_config.hpp"
+#include "support/facl_tables_hash.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::experiment {
@@ -44,16 +45,7 @@ TrialResult trial(const TrialConfig& c, std::uint64_t seed, int episodes, const 
                                                 .pool = pool});
 }
 
-std::uint64_t tables_hash(const players::RoleModels& models) {
-  Fnv1a h;
-  for (const auto& m : models.models) {
-    for (int c = 0; c < m->channels(); ++c) {
-      h.add_span(m->tables(c).actor_table());
-      h.add_span(m->tables(c).critic_table());
-    }
-  }
-  return h.value();
-}
+using testing::tables_hash;
 
 TEST(OpponentPool, CoLearningHasNoOpponents) { EXPECT_TRUE(pool_of(trial_preset("peg3d")).empty()); }
 

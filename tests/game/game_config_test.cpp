@@ -56,9 +56,9 @@ TEST(GameConfig, EveryFieldTravelsThroughJsonBothWays) {
     EXPECT_EQ(config::to_json(back)[ptr], j[ptr]) << key << " is not written back";
     ++leaves;
   }
-  // 73 per agent (11 of its lidar, 10 of its camera, 9 of its map, 6 of its sight), 7 game and 4 team fields
-  // (training is the experiments': experiment::TrialConfig)
-  EXPECT_EQ(leaves, 2 * 73 + 11);
+  // 75 per agent (11 of its lidar, 10 of its camera, 9 of its map, 6 of its sight, 2 sight inputs), 7 game and 4
+  // team fields (training is the experiments': experiment::TrialConfig)
+  EXPECT_EQ(leaves, 2 * 75 + 11);
 }
 
 TEST(GameConfig, TablesListEveryMemberOfEveryStruct) {

@@ -48,10 +48,51 @@ TEST(FaclPolicy, TheOpponentsHeadingIsOneMoreInputOfEachChannel) {
   c.observation.angles = AngleInputs::kAzimuth;
   EXPECT_EQ(FaclModel(c, Role::kEvader).features(0), (std::vector<int>{0, 1, 3, 4, 6}));
   // The features carry the percept's opponent heading.
-  Percept q;
-  q.opponent_heading = {0.25, -0.5};
+  AgentView q;
+  q.percept.opponent_heading = {0.25, -0.5};
   EXPECT_EQ(features_of(q)[6], 0.25);
   EXPECT_EQ(features_of(q)[7], -0.5);
+}
+
+TEST(FaclPolicy, TheSightIsTwoMoreInputsOfEachChannel) {
+  AgentConfig c = agent_preset("peg3d", Role::kEvader);  // per-angle: {0,1,3,4} and {0,2,3,5}
+  c.observation.sight_inputs = true;
+  c.observation.sight_age_range = 6.0;
+  const FaclModel per_angle(c, Role::kEvader);
+  EXPECT_EQ(per_angle.features(0), (std::vector<int>{0, 1, 3, 4, 8, 9}));
+  EXPECT_EQ(per_angle.features(1), (std::vector<int>{0, 2, 3, 5, 8, 9}));
+  // Visibility has two sets, the age `sets`.
+  EXPECT_EQ(facl_rules(c), 5 * 5 * 5 * 5 * 2 * 5);
+  EXPECT_EQ(per_angle.tables(0).rules().rules(), facl_rules(c));
+  EXPECT_EQ(per_angle.tables(0).rules().input(4).sets(), 2);
+  EXPECT_EQ(per_angle.tables(0).rules().input(5).sets(), 5);
+  EXPECT_EQ(per_angle.tables(0).rules().input(5).hi(), 6.0);
+  c.structure = FaclStructure::kJoint;
+  EXPECT_EQ(FaclModel(c, Role::kEvader).features(0), (std::vector<int>{0, 1, 2, 3, 4, 5, 8, 9}));
+  // The features carry the view's sight: in sight now (1 or 0), and the sighting's age.
+  AgentView seen, lost;
+  lost.other_visible = false;
+  lost.other_age = 2.5;
+  EXPECT_EQ(features_of(seen)[8], 1.0);
+  EXPECT_EQ(features_of(seen)[9], 0.0);
+  EXPECT_EQ(features_of(lost)[8], 0.0);
+  EXPECT_EQ(features_of(lost)[9], 2.5);
+  // In sight and lost fire disjoint rules (those of strength > 0, which alone learn): what the agent learns while
+  // it sees the opponent is its own.
+  const FaclModel joint(c, Role::kEvader);
+  fuzzy::FiredRules a, b;
+  joint.fire(0, features_of(seen), a);
+  joint.fire(0, features_of(lost), b);
+  int strong = 0;
+  for (int i = 0; i < a.count; ++i) {
+    for (int j = 0; j < b.count; ++j) {
+      if (a.strength[std::size_t(i)] > 0 && b.strength[std::size_t(j)] > 0) {
+        ++strong;
+        EXPECT_NE(a.rule[std::size_t(i)], b.rule[std::size_t(j)]);
+      }
+    }
+  }
+  EXPECT_GT(strong, 0);
 }
 
 TEST(FaclPolicy, SavedAndLoadedPoliciesActIdentically) {
@@ -214,25 +255,33 @@ TEST(FaclPolicy, RejectsDocumentsThatDoNotFit) {
   d = doc;
   d["config"].erase("camera");
   expect_error(d, "config.camera");  // version 9 documents have it
+  d = doc;
+  d["config"]["observation"].erase("sight_inputs");
+  expect_error(d, "config.observation.sight_inputs");  // version 10 documents have it
 }
 
 TEST(FaclPolicy, ReadsOlderDocumentsAsTheyPlayed) {
   // Version 1 predates guard.faces, guard.look_ahead, observation.opponent_heading, action and lidar, version 2
   // the look ahead, version 3 the opponent's heading, version 4 the action, version 5 the lidar, version 6
-  // map.insert_agents, version 7 sight, version 8 the camera; their agents played without them (actions as heading
-  // changes, no lidar, agents in maps, full information, no camera).
+  // map.insert_agents, version 7 sight, version 8 the camera, version 9 the sight inputs; their agents played without
+  // them (actions as heading changes, no lidar, agents in maps, full information, no camera, no sight inputs).
   AgentConfig offset = agent_preset("peg3d", Role::kEvader);
   offset.action = FaclAction::kTargetLineOffset;
   offset.sensors.lidar.azimuth_rays = 8;
   offset.sensors.sight.enabled = true;
   nlohmann::json saved = policy_to_json(FaclModel(offset, Role::kEvader));
-  EXPECT_EQ(saved["version"], 9);
+  EXPECT_EQ(saved["version"], 10);
   EXPECT_TRUE(policy_from_json(saved, "p.json", Role::kEvader)->config().sensors.sight.enabled);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().action, FaclAction::kTargetLineOffset);
   EXPECT_EQ(policy_from_json(saved, "p.json", Role::kEvader)->config().sensors.lidar, offset.sensors.lidar);
   EXPECT_FALSE(policy_from_json(saved, "p.json", Role::kEvader)->config().map.insert_agents);
   const FaclModel m(agent_preset("peg3d", Role::kEvader), Role::kEvader);
   nlohmann::json doc = policy_to_json(m);
+  // Version 9 agents had no sight inputs.
+  doc["version"] = 9;
+  doc["config"]["observation"].erase("sight_inputs");
+  doc["config"]["observation"].erase("sight_age_range");
+  EXPECT_EQ(policy_from_json(doc, "p.json", Role::kEvader)->config().observation, m.config().observation);
   // Version 8 agents had no camera.
   doc["version"] = 8;
   doc["config"].erase("camera");

@@ -4,6 +4,7 @@ stopped. Training runs are not tests: the budgets here are seconds."""
 
 import csv
 import filecmp
+import json
 import os
 import shutil
 import subprocess
@@ -162,3 +163,35 @@ def test_a_policy_file_of_the_other_role_is_refused_naming_it(tmp_path):
 def test_the_command_line_exits_2_on_bad_input(tmp_path, capsys):
     assert selfplay.main(["--out", str(tmp_path / "x"), "--pursuer", "nobody", "--map", "maps/paper.yaml"]) == 2
     assert "nobody" in capsys.readouterr().err
+
+
+def test_facl_best_responses_trained_in_cpp_join_the_populations(tmp_path):
+    pytest.importorskip("torch")
+    s = tiny(facl_episodes=3)
+    a = selfplay.SelfPlay(s, tmp_path / "a", log=lambda *_: None).run()
+    assert a["members"]["pursuer"] == ["pure-pursuit", "pn", "iteration_0/pursuer.json", "iteration_0/pursuer_facl.json",
+                                       "iteration_1/pursuer.json", "iteration_1/pursuer_facl.json"]
+    assert a["members"]["evader"][-1] == "iteration_1/evader_facl.json"
+    assert np.array(a["payoff"]).shape == (6, 6)
+    # A FACL file: the learners' settings, the sight entries among its inputs.
+    with open(tmp_path / "a" / "iteration_1" / "pursuer_facl.json") as f:
+        doc = json.load(f)
+    assert doc["role"] == "pursuer" and doc["config"]["policy"] == "facl"
+    assert doc["config"]["observation"]["sight_inputs"] is True
+    # Each FACL response trained against the mixture of its iteration, written beside it (files named from there).
+    with open(tmp_path / "a" / "iteration_1" / "state.json") as f:
+        state = json.load(f)
+    weights = state["history"][1]["evader_mixture"]
+    mixture = peg3d.read_policy(tmp_path / "a" / "iteration_1" / "evader_mixture.json")
+    named = ["flee", "random", "../iteration_0/evader.json", "../iteration_0/evader_facl.json"]
+    assert [m["policy"] for m in mixture["members"]] == [n for n, w in zip(named, weights) if w > 0]
+    # The C++ training is a pure function of its seed.
+    file = str(tmp_path / "a" / "iteration_1" / "evader_mixture.json")
+    one = selfplay._train_facl(s, "pursuer", file, 2, 7)
+    assert selfplay._train_facl(s, "pursuer", file, 2, 7) == one
+    assert selfplay._train_facl(s, "pursuer", file, 2, 8) != one
+    # Bad FACL settings are refused before any training.
+    bad = tiny(facl_episodes=3, facl_set={"observation.no_such": "1"})
+    with pytest.raises(peg3d.InputError, match="facl_set.*no_such"):
+        selfplay.SelfPlay(bad, tmp_path / "bad")
+    assert not (tmp_path / "bad").exists()
