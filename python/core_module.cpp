@@ -68,6 +68,12 @@ py::tuple bounds_arrays(const env::ObservationBounds& o) {
                         py::array_t<float>(py::ssize_t(o.high.size()), o.high.data()));
 }
 
+game::Role role_named(const std::string& name) {
+  if (name == "pursuer") return game::Role::kPursuer;
+  if (name == "evader") return game::Role::kEvader;
+  throw InvalidParameter("role", name, "must be pursuer or evader");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -331,6 +337,16 @@ PYBIND11_MODULE(_core, m) {
     });
   }
 
+  // A policy file of any kind (FACL, MLP, peg3d-mixture) read as the C++ programs read it for an agent of `role`:
+  // peg3d.read_policy's check, so that Python and C++ accept and refuse the same files with the same messages.
+  m.def(
+      "check_policy",
+      [](const std::string& file, const std::string& role_name) {
+        const game::Role role = role_named(role_name);
+        (void)players::load_saved_policy(file, role);
+      },
+      py::arg("file"), py::arg("role"));
+
   // A FACL best response (experiment/facl_response.hpp) against `opponent`, a policy file of the other role (a
   // classic player goes in a one-member peg3d-mixture file), saved to `out` as a FACL policy file.
   m.def(
@@ -338,9 +354,7 @@ PYBIND11_MODULE(_core, m) {
       [](const std::string& map, const std::string& config, const std::vector<std::string>& sets,
          const std::vector<std::string>& scenarios, const std::string& role_name, const std::string& opponent,
          int episodes, std::uint64_t seed, const std::string& out, bool cache) {
-        const game::Role role = role_name == "pursuer" ? game::Role::kPursuer
-                                : role_name == "evader" ? game::Role::kEvader
-                                                        : throw InvalidParameter("role", role_name, "must be pursuer or evader");
+        const game::Role role = role_named(role_name);
         py::gil_scoped_release unlocked;  // building the world and training take seconds to hours
         game::GameConfig c = game::apply_game_overrides(game::load_game_config(config), sets, players::check_players);
         const game::Role other = role == game::Role::kPursuer ? game::Role::kEvader : game::Role::kPursuer;

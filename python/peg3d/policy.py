@@ -4,10 +4,11 @@ exactly the observation its agent has in the batch. A file records that observat
 refuses it for an agent whose observation differs, naming the first segment that does."""
 
 import json
-import math
 import os
 
 import numpy as np
+
+from . import _core
 
 FORMAT = "peg3d-mlp"
 VERSION = 2
@@ -86,7 +87,6 @@ def save_policy(path, *, role, observation, layers, action_bound, input_mean=Non
 
 
 MIXTURE_FORMAT = "peg3d-mixture"
-MAX_MIXTURE_MEMBERS = 256  # as the C++ loader (players/saved_policy.hpp)
 
 
 def read_policy(path):
@@ -94,7 +94,8 @@ def read_policy(path):
     peg3d.selfplay ships: {"role", "members": [{"policy": player or file, "weight"}]}, one member played per episode
     with probability weight / total). A mixture's members each gain "path", the file a member names (relative to the
     mixture's folder; None for a classic player), and "document", that file's document (a peg3d-mlp network's as
-    read_policy reads it, a FACL file's as written; None for a player). ValueError naming the file and field."""
+    read_policy reads it, a FACL file's as written; None for a player). ValueError naming the file and field (a
+    mixture is checked by the C++ loader, players::load_saved_policy: peg3d.InputError, a ValueError)."""
     with open(path) as f:
         doc = json.load(f)
     kind = doc.get("format") if isinstance(doc, dict) else None
@@ -103,40 +104,19 @@ def read_policy(path):
     if kind != MIXTURE_FORMAT:
         raise ValueError(f"{path}: not a {FORMAT} or {MIXTURE_FORMAT} file")
 
-    def fail(field, message):
-        raise ValueError(f"{path}: {field}: {message}")
-
-    if doc.get("version") != 1:
-        fail("version", f"a {MIXTURE_FORMAT} file of version 1")
-    if doc.get("role") not in ("pursuer", "evader"):
-        fail("role", "pursuer or evader")
-    members = doc.get("members")
-    if not isinstance(members, list) or not members:
-        fail("members", 'a list of at least one {"policy": name or file, "weight": number}')
-    if len(members) > MAX_MIXTURE_MEMBERS:
-        fail("members", f"{len(members)} members: a mixture has at most {MAX_MIXTURE_MEMBERS}")
-    total = 0.0
-    for k, m in enumerate(members):
-        if not isinstance(m, dict) or not isinstance(m.get("policy"), str):
-            fail(f"members.{k}.policy", "missing: a player or a policy file")
-        w = m.get("weight")
-        if isinstance(w, bool) or not isinstance(w, (int, float)) or not math.isfinite(w) or w < 0:
-            fail(f"members.{k}.weight", f"a finite number >= 0, not {w!r}")
-        total += w
+    # The C++ loader's checks (players::load_saved_policy: version, role, members, weights, no nested mixture, the
+    # members' roles and FACL configurations), so that Python refuses what the programs refuse, with their messages.
+    role = doc.get("role") if doc.get("role") in ("pursuer", "evader") else "pursuer"
+    _core.check_policy(os.fspath(path), role)
+    for m in doc["members"]:
         source = m["policy"]
         m["path"], m["document"] = None, None
         if source.endswith(".json") or "/" in source:
             member_path = os.path.join(os.path.dirname(os.fspath(path)), source)
             with open(member_path) as f:
                 member = json.load(f)
-            if not isinstance(member, dict) or member.get("format") == MIXTURE_FORMAT:
-                fail(f"members.{k}.policy", f"{source} is a mixture: a member is a player or a FACL or MLP file")
-            if member.get("role") != doc["role"]:
-                fail(f"members.{k}.policy", f"{source} is for the {member.get('role')}, not the {doc['role']}")
             m["path"] = member_path
             m["document"] = read_policy(member_path) if member.get("format") == FORMAT else member
-    if not total > 0 or not math.isfinite(total):
-        fail("members", "the members' weights sum to a finite number > 0")
     return doc
 
 
