@@ -166,9 +166,11 @@ def main():
               f"an edited journal's pool opponents: status {r.returncode}, {r.stderr[-300:]!r}")
 
     # peg-league stopped while it plays its games (every training run journaled): status 143, no result file;
-    # --resume trains nothing again and plays the games, with the uninterrupted league's results.
-    league = [os.path.join(bin_dir, "peg-league"), "--seed", "9", "--train-seeds", "2", "--eval-seeds", "40",
-              "--episodes", "5", "--no-plots", "--plain-progress"]
+    # --resume trains nothing again and plays the games, with the uninterrupted league's results. The games must
+    # outlast the 0.5 s before the stop: 40 evaluation seeds in Release, 10 under the sanitizers (whose games are
+    # several times slower; 40 took 33 s there against 8 s for 10).
+    league = [os.path.join(bin_dir, "peg-league"), "--seed", "9", "--train-seeds", "2",
+              "--eval-seeds", "10" if sanitized else "40", "--episodes", "5", "--no-plots", "--plain-progress"]
     league_ref, stopped = os.path.join(work, "league-reference"), os.path.join(work, "league-stopped")
     r = run(league + ["--out", league_ref, "--threads", "2"])
     check(r.returncode == 0, f"peg-league: status {r.returncode}: {r.stderr[-800:]}")
