@@ -249,13 +249,21 @@ def _mixture(members, weights, out):
 
 def _write_mixture(path, role, members, weights, out):
     """A peg3d-mixture file (the C++ side draws one member per episode) of the members of weight > 0: the run's
-    files (named relative to `out`) named relative to the mixture file's folder, players by name."""
+    files (named relative to `out`) named relative to the mixture file's folder, which the C++ loader reads them
+    from; other files (the first members given, relative to the working folder) by their absolute paths; players
+    by name."""
     folder = os.path.dirname(os.path.abspath(path))
     named = []
     for m, w in zip(members, weights):
         if w > 0:
             file = _absolute(m, out)
-            named.append({"policy": os.path.relpath(file, folder) if file != str(m) else str(m), "weight": float(w)})
+            if file != str(m):
+                policy = os.path.relpath(file, folder)
+            elif str(m).endswith(".json") or os.path.exists(str(m)):
+                policy = os.path.abspath(str(m))
+            else:
+                policy = str(m)
+            named.append({"policy": policy, "weight": float(w)})
     _write_json(path, {"format": "peg3d-mixture", "version": 1, "role": role, "trained_by": "peg3d.selfplay",
                        "members": named})
 

@@ -195,3 +195,18 @@ def test_facl_best_responses_trained_in_cpp_join_the_populations(tmp_path):
     with pytest.raises(peg3d.InputError, match="facl_set.*no_such"):
         selfplay.SelfPlay(bad, tmp_path / "bad")
     assert not (tmp_path / "bad").exists()
+
+
+def test_a_mixture_file_names_its_members_where_the_cpp_loader_finds_them(tmp_path):
+    # The run's files relative to the mixture's folder; a first member given relative to the working folder by its
+    # absolute path; players by name. The C++ loader reads every one (a wrong path is an InputError).
+    robust = os.path.join(os.path.dirname(__file__), "..", "data", "policies", "robust_evader.json")
+    (tmp_path / "iteration_0").mkdir()
+    shutil.copy(robust, tmp_path / "iteration_0" / "evader.json")
+    (tmp_path / "iteration_1").mkdir()
+    mixture = tmp_path / "iteration_1" / "evader_mixture.json"
+    selfplay._write_mixture(str(mixture), "evader", ["flee", os.path.relpath(robust), "iteration_0/evader.json", "random"],
+                            [0.5, 0.25, 0.25, 0.0], str(tmp_path))
+    doc = peg3d.read_policy(mixture)  # checked by the C++ loader
+    assert [m["policy"] for m in doc["members"]] == ["flee", os.path.abspath(robust), "../iteration_0/evader.json"]
+    assert [m["weight"] for m in doc["members"]] == [0.5, 0.25, 0.25]
