@@ -62,7 +62,9 @@ def main(argv):
         for j in range(rates.shape[1]):
             b.text(j, i, f"{rates[i, j]:.2f}", ha="center", va="center", color="w" if rates[i, j] < 0.6 else "k", fontsize=8)
     b.set_yticks(range(rates.shape[0]), [f"{label(m)} ({w:.2f})" for m, w in zip(members["pursuer"], x)])
-    b.set_xticks(range(rates.shape[1]), [f"{label(m)}\n({w:.2f})" for m, w in zip(members["evader"], y)], fontsize=8)
+    # Slanted: with FACL members the evaders' labels are too wide to stand side by side.
+    b.set_xticks(range(rates.shape[1]), [f"{label(m)} ({w:.2f})" for m, w in zip(members["evader"], y)], fontsize=8,
+                 rotation=45, ha="right", rotation_mode="anchor")
     b.set_title("capture rate (final mixture weights)")
     fig.tight_layout()
     fd, tmp = tempfile.mkstemp(suffix=".png", dir=os.path.dirname(os.path.abspath(out)))
