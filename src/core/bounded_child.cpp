@@ -13,6 +13,7 @@
 #include <cstring>
 #include <ctime>
 #include <new>
+#include <optional>
 #include <stdexcept>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -105,12 +106,15 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
                                            std::chrono::duration<double>(limits.seconds * ChildLimits::kWallTimeFactor));
   clockid_t child_cpu{};
   const bool have_cpu_clock = ::clock_getcpuclockid(pid, &child_cpu) == 0;
-  // Out of time: used its processor seconds, or blocked for the wall-clock backstop.
-  const auto out_of_time = [&] {
-    if (Clock::now() > deadline) return true;
+  // Out of time: used its processor seconds (kTimedOut), or blocked for the wall-clock backstop (kBlocked).
+  const auto out_of_time = [&]() -> std::optional<ChildResult::Status> {
     timespec used{};
-    return have_cpu_clock && ::clock_gettime(child_cpu, &used) == 0 &&
-           double(used.tv_sec) + 1e-9 * double(used.tv_nsec) > limits.seconds;
+    if (have_cpu_clock && ::clock_gettime(child_cpu, &used) == 0 &&
+        double(used.tv_sec) + 1e-9 * double(used.tv_nsec) > limits.seconds) {
+      return ChildResult::Status::kTimedOut;
+    }
+    if (Clock::now() > deadline) return ChildResult::Status::kBlocked;
+    return std::nullopt;
   };
   ChildResult result;
   std::string bytes;
@@ -133,7 +137,7 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
       if (bytes.size() > limits.extra_memory_bytes) kill_with(ChildResult::Status::kOutOfMemory);
     }
     if (statm(pid).resident * static_cast<std::size_t>(page) > rss_limit) kill_with(ChildResult::Status::kOutOfMemory);
-    else if (out_of_time()) kill_with(ChildResult::Status::kTimedOut);
+    else if (const auto why = out_of_time()) kill_with(*why);
   }
   ::close(fds[0]);
   int wstatus = 0;
@@ -142,7 +146,7 @@ ChildResult run_bounded(const std::function<std::string()>& work, const ChildLim
     const pid_t r = ::waitpid(pid, &wstatus, killed ? 0 : WNOHANG);
     if (r == pid || (r < 0 && errno != EINTR)) break;
     if (r == 0) {
-      if (out_of_time()) kill_with(ChildResult::Status::kTimedOut);
+      if (const auto why = out_of_time()) kill_with(*why);
       else ::usleep(1000);
     }
   }

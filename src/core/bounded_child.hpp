@@ -24,7 +24,8 @@ struct ChildResult {
   enum class Status {
     kOk,        ///< work returned; output holds what it returned
     kFailed,    ///< work threw; output holds the exception's what()
-    kTimedOut,  ///< killed after limits.seconds of processor time (or kWallTimeFactor times that by the clock)
+    kTimedOut,  ///< killed after limits.seconds of processor time
+    kBlocked,   ///< killed by the clock after kWallTimeFactor * limits.seconds without using that processor time
     kOutOfMemory,  ///< it needed more than limits.extra_memory_bytes (an allocation failed, or it was killed)
     kCrashed,   ///< it died of a signal (output: the signal's name)
   };
@@ -36,7 +37,9 @@ struct ChildResult {
 /// space is capped (RLIMIT_AS, except under AddressSanitizer, whose shadow memory needs terabytes of it) and
 /// its resident memory is watched by the parent, which kills it on either limit. The child leaves with
 /// _exit, so no destructors or atexit handlers of the parent's state run twice. Safe from a multi-threaded
-/// process as long as `work` takes no lock another thread may hold (glibc's malloc is fork-safe).
+/// process as long as `work` takes no lock another thread may hold: glibc's malloc is fork-safe, but GCC 12's
+/// AddressSanitizer allocator takes no lock around fork, so a thread allocating as the child is forked can
+/// leave it blocked (kBlocked).
 ChildResult run_bounded(const std::function<std::string()>& work, const ChildLimits& limits);
 
 }  // namespace peg3d

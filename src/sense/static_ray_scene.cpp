@@ -105,6 +105,22 @@ void cylinder_intersect(const RTCIntersectFunctionNArguments* args) {
 // asks both.
 constexpr unsigned kTriangleMask = 1u, kShapeMask = 2u;
 
+// The process's one Embree device, made on first use and never released. One thread: a scene is built when the
+// Arena's user asks for it, never beside the runs' threads. Never released: releasing the last device lifts
+// its `threads=1` hold on TBB, which then starts a worker thread at once, and a mesh import forking
+// (core/bounded_child) while that thread starts can inherit a lock it holds (seen: a sanitized test's import
+// child, forked right after a scene was destroyed, blocked until the clock killed it).
+namespace {
+RTCDevice shared_device() {
+  static const RTCDevice device = [] {
+    RTCDevice d = rtcNewDevice("threads=1");
+    if (d == nullptr) throw std::runtime_error("Embree: cannot create a device");
+    return d;
+  }();
+  return device;
+}
+}  // namespace
+
 struct StaticRayScene::Impl {
   const world::Arena& arena;
   RTCDevice device = nullptr;
@@ -118,9 +134,7 @@ struct StaticRayScene::Impl {
   BoxIndex shapes;
 
   explicit Impl(const world::Arena& a) : arena(a) {
-    // One thread: the scene is built when the Arena's user asks for it, never beside the runs' threads.
-    device = rtcNewDevice("threads=1");
-    if (device == nullptr) throw std::runtime_error("Embree: cannot create a device");
+    device = shared_device();
     scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
@@ -177,7 +191,6 @@ struct StaticRayScene::Impl {
 
   ~Impl() {
     if (scene != nullptr) rtcReleaseScene(scene);
-    if (device != nullptr) rtcReleaseDevice(device);
   }
 
   RayHit cast(const Ray& ray, double range) const {

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <iterator>
 #include <random>
 
 #include "core/random.hpp"
@@ -152,6 +154,22 @@ TEST(StaticRayScene, RaysThroughTheTerrainsEdgesReadTheDistanceInDoublePrecision
   }
   EXPECT_GT(checked, 10000);
   EXPECT_EQ(off, 0) << "of " << checked << " rays through an edge";
+}
+
+// The mesh importer forks (core/bounded_child); a thread starting in the parent at that moment can leave the
+// child a lock it never gets (a sanitized test's import blocked until the clock killed it: Embree, when its last
+// device was released, let TBB start a worker). Building and destroying scenes must start no thread.
+TEST(StaticRayScene, BuildingAndDestroyingScenesStartsNoThread) {
+  const auto threads = [] {
+    return std::distance(std::filesystem::directory_iterator("/proc/self/task"), std::filesystem::directory_iterator{});
+  };
+  const auto arena = random_world(4);
+  const auto before = threads();
+  for (int k = 0; k < 3; ++k) {
+    const StaticRayScene scene(*arena);
+    EXPECT_EQ(threads(), before) << "while scene " << k << " stands";
+  }
+  EXPECT_EQ(threads(), before) << "after the scenes were destroyed";
 }
 
 }  // namespace

@@ -210,6 +210,11 @@ TriangleMesh import_mesh(const std::filesystem::path& file, const MeshImportLimi
       throw MeshError(fmt::format("mesh file '{}' took more than {:.1f} s of processor time to import and was given up: it is malformed or too "
                                   "large",
                                   name, seconds));
+    case ChildResult::Status::kBlocked:
+      throw MeshError(fmt::format("mesh file '{}' was given up after {:.1f} s by the clock, in which its import used "
+                                  "less than its {:.1f} s of processor time: the import was blocked, not the file "
+                                  "too large (a lock another thread of this process held when the import started)",
+                                  name, seconds * ChildLimits::kWallTimeFactor, seconds));
     case ChildResult::Status::kOutOfMemory:
       throw MeshError(fmt::format("mesh file '{}' needed more memory than the {} MiB an import may use and was given up: "
                                   "it is malformed or too large",
