@@ -26,6 +26,7 @@
 #include "players/registry.hpp"
 #include "players/saved_policy.hpp"
 #include "game/observation.hpp"
+#include "game/scenario_choice.hpp"
 #include "sense/scan_map.hpp"
 #include "view/frame_renderer.hpp"
 #include "view/replay.hpp"
@@ -362,11 +363,7 @@ PYBIND11_MODULE(_core, m) {
         world::BuildOptions options;
         if (cache) options.cache_dir = world::default_cache_dir();
         auto arena = world::Arena::build(world::load_map(map), options);
-        std::size_t opponents = 0;
-        for (const world::Scenario& s : arena->map().scenarios) {
-          opponents = std::max(opponents, other == game::Role::kPursuer ? s.pursuers.size() : s.evaders.size());
-        }
-        c = experiment::with_opponent_config(std::move(c), other, int(opponents), *saved);
+        c = experiment::with_opponent_config(std::move(c), other, game::most_agents(arena->map(), other), *saved);
         const auto sim = std::make_shared<const game::Sim>(std::move(arena), std::move(c));
         saved->check_fits(*sim, other);
         experiment::FaclResponseSettings s;

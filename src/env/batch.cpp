@@ -17,6 +17,7 @@
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/observation.hpp"
+#include "game/scenario_choice.hpp"
 #include "players/registry.hpp"
 #include "sense/scan_map.hpp"
 
@@ -109,31 +110,8 @@ Batch::Batch(std::shared_ptr<const world::Arena> arena, game::GameConfig config,
   require_in_range("threads", settings_.threads, 1, 256);
   require_in_range("neighbours", settings_.neighbours, 0, 16);
   settings_.threads = std::min(settings_.threads, settings_.games);
-  const auto& all = arena->map().scenarios;
-  if (all.empty()) throw InvalidParameter("scenario", "(none)", "the map has no scenario");
-  const auto same_teams = [](const world::Scenario& a, const world::Scenario& b) {
-    return a.pursuers.size() == b.pursuers.size() && a.evaders.size() == b.evaders.size();
-  };
-  for (const std::string& name : settings_.scenarios) {
-    const auto it = std::find_if(all.begin(), all.end(), [&](const world::Scenario& s) { return s.name == name; });
-    if (it == all.end()) {
-      std::string names;
-      for (const auto& s : all) names += (names.empty() ? "" : ", ") + s.name;
-      throw InvalidParameter("scenario", name, "is not a scenario of the map (" + names + ")");
-    }
-    const world::Scenario& head = all[std::size_t(scenarios_.empty() ? it - all.begin() : scenarios_.front())];
-    if (!same_teams(*it, head)) {
-      throw InvalidParameter("scenario", name, "has other numbers of pursuers and evaders than " + head.name +
-                                                   " (a batch plays one team size)");
-    }
-    scenarios_.push_back(int(it - all.begin()));
-  }
-  if (settings_.scenarios.empty()) {
-    for (std::size_t i = 0; i < all.size(); ++i) {
-      if (same_teams(all[i], all[0])) scenarios_.push_back(int(i));
-    }
-  }
-  const world::Scenario& first = all[std::size_t(scenarios_.front())];
+  scenarios_ = game::scenarios_of_one_team_size(arena->map(), settings_.scenarios, "scenario");
+  const world::Scenario& first = arena->map().scenarios[std::size_t(scenarios_.front())];
   pursuers_ = int(first.pursuers.size());
   agents_ = first.agents();
   for (int i = 0; i < agents_; ++i) {

@@ -5,6 +5,7 @@
 #include "core/random.hpp"
 #include "core/validation.hpp"
 #include "game/episode.hpp"
+#include "game/scenario_choice.hpp"
 #include "players/registry.hpp"
 
 namespace peg3d::experiment {
@@ -23,30 +24,6 @@ class Unlearning final : public game::Policy {
   std::unique_ptr<game::Policy> inner_;
 };
 
-/// The scenarios the settings name, in their order (all of the first one's team numbers when none are named).
-std::vector<const world::Scenario*> chosen_scenarios(const game::Sim& sim, const std::vector<std::string>& names) {
-  const auto& all = sim.arena().map().scenarios;
-  std::vector<const world::Scenario*> out;
-  if (names.empty()) {
-    for (const world::Scenario& s : all) {
-      if (s.pursuers.size() == all.front().pursuers.size() && s.evaders.size() == all.front().evaders.size()) out.push_back(&s);
-    }
-    return out;
-  }
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    const world::Scenario* found = nullptr;
-    for (const world::Scenario& s : all) found = s.name == names[k] ? &s : found;
-    if (!found) throw InvalidParameter("scenarios." + std::to_string(k), names[k], "is no scenario of the map");
-    if (!out.empty() && (found->pursuers.size() != out.front()->pursuers.size() ||
-                         found->evaders.size() != out.front()->evaders.size())) {
-      throw InvalidParameter("scenarios." + std::to_string(k), names[k],
-                             "has other numbers of pursuers and evaders than the first scenario");
-    }
-    out.push_back(found);
-  }
-  return out;
-}
-
 }  // namespace
 
 game::GameConfig with_opponent_config(game::GameConfig config, game::Role role, int count,
@@ -60,7 +37,11 @@ game::GameConfig with_opponent_config(game::GameConfig config, game::Role role, 
 players::RoleModels train_facl_response(const game::Sim& sim, game::Role role, const players::SavedPolicy& opponent,
                                         const FaclResponseSettings& settings) {
   require_in_range("episodes", settings.episodes, 1, 10'000'000);
-  const std::vector<const world::Scenario*> scenarios = chosen_scenarios(sim, settings.scenarios);
+  const auto& all = sim.arena().map().scenarios;
+  std::vector<const world::Scenario*> scenarios;
+  for (const int i : game::scenarios_of_one_team_size(sim.arena().map(), settings.scenarios, "scenarios")) {
+    scenarios.push_back(&all[std::size_t(i)]);
+  }
   const game::GameConfig& config = sim.config();
   const game::Role other = role == game::Role::kPursuer ? game::Role::kEvader : game::Role::kPursuer;
   const world::Scenario& first = *scenarios.front();

@@ -8,6 +8,7 @@
 #include "core/hash.hpp"
 #include "core/input_files.hpp"  // json_line_of
 #include "core/random.hpp"
+#include "game/scenario_choice.hpp"
 #include "players/policy_io.hpp"
 #include "players/registry.hpp"
 
@@ -181,11 +182,8 @@ void SavedPolicy::check_fits(const game::Sim& sim, game::Role role, int rank) co
 }
 
 void SavedPolicy::check_fits(const game::Sim& sim, game::Role role) const {
-  std::size_t most = 0;
-  for (const world::Scenario& s : sim.arena().map().scenarios) {
-    most = std::max(most, role == game::Role::kPursuer ? s.pursuers.size() : s.evaders.size());
-  }
-  for (std::size_t k = 0; k < most; ++k) check_fits(sim, role, int(k));
+  const int most = game::most_agents(sim.arena().map(), role);
+  for (int k = 0; k < most; ++k) check_fits(sim, role, k);
 }
 
 std::shared_ptr<const SavedPolicy> load_saved_policy(const std::filesystem::path& file, game::Role role) {
