@@ -47,15 +47,11 @@ std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, dou
   // the ray's interval in each is exact, and the first point of their intersection is the entry.
   double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
   if (!clip_slab(ray.origin.z(), ray.direction.z(), base.z(), base.z() + height, enter, leave)) return std::nullopt;
-  const double ox = ray.origin.x() - base.x(), oy = ray.origin.y() - base.y();
-  const double dx = ray.direction.x(), dy = ray.direction.y();
-  const double a = dx * dx + dy * dy, c = ox * ox + oy * oy - radius * radius;
-  if (a == 0.0) {  // parallel to the axis: inside the column all along, or never
-    if (c > 0.0) return std::nullopt;
-  } else {
-    const double b = ox * dx + oy * dy;
-    const double disc = b * b - a * c;
-    if (disc < 0.0) return std::nullopt;
+  const ColumnCut cut = column_cut(ray, base, radius);
+  if (cut.misses()) return std::nullopt;  // parallel to the axis outside the column, or passing it by
+  const double a = cut.a, b = cut.b, c = cut.c;
+  if (a != 0.0) {  // (parallel to the axis: inside the column all along)
+    const double disc = cut.discriminant();
     const double s = std::sqrt(disc);
     // The two roots without cancellation: q = -(b + sign(b) s), roots q / a and c / q.
     const double q = b >= 0.0 ? -(b + s) : -(b - s);

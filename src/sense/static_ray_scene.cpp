@@ -41,12 +41,12 @@ Box shape_box(const world::MapSpec& map, const StaticRayScene::ShapeRef& shape) 
 // The nearer of two hits (a tie keeps the first).
 RayHit nearer(const RayHit& a, const RayHit& b) { return b.target != RayTarget::kNone && b.distance < a.distance ? b : a; }
 
-// A query's context: Embree's, then the ray in double precision and the exact distance of the best user-geometry
-// hit so far (Embree keeps only its float).
+// A query's context: Embree's, then the rays in double precision and, per ray, the exact distance of its best
+// user-geometry hit so far (Embree keeps only its float). A lane's ray id indexes both.
 struct ExactContext {
   RTCIntersectContext embree;
-  const Ray* ray;
-  double exact;
+  const Ray* rays;
+  double* exact;
   unsigned spheres_id;  // ties at one distance (a ray from inside several solids) go to spheres, then low indices
 };
 
@@ -59,22 +59,34 @@ void store_bounds(RTCBounds* b, const Vec3& lo, const Vec3& hi) {
   b->upper_x = up(hi.x()), b->upper_y = up(hi.y()), b->upper_z = up(hi.z());
 }
 
-// One user-geometry hit, exact: accepted when nearer than what the ray holds (Embree asks primitives in any order).
-void accept(const RTCIntersectFunctionNArguments* args, std::optional<double> t) {
-  if (!t || args->N != 1 || args->valid[0] == 0) return;
+// Each valid lane's hit on one user primitive, exact: accepted when nearer than what the lane's ray holds (Embree
+// asks primitives in any order). `hit(ray)` is the primitive's exact distance along the ray, if it meets it.
+template <class Hit>
+void accept_lanes(const RTCIntersectFunctionNArguments* args, Hit&& hit) {
   auto* ctx = reinterpret_cast<ExactContext*>(args->context);
-  auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  const float tf = static_cast<float>(*t);
-  if (tf > rh->ray.tfar) return;
-  if (tf == rh->ray.tfar && *t >= ctx->exact) {
-    const auto rank = [&](unsigned geom, unsigned prim) { return std::pair{geom == ctx->spheres_id ? 0 : 1, prim}; };
-    if (*t > ctx->exact || rank(args->geomID, args->primID) >= rank(rh->hit.geomID, rh->hit.primID)) return;
+  RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* best = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned id = RTCRayN_id(ray, args->N, i);
+    const std::optional<double> t = hit(ctx->rays[id]);
+    if (!t) continue;
+    float& tfar = RTCRayN_tfar(ray, args->N, i);
+    double& exact = ctx->exact[id];
+    unsigned& geom = RTCHitN_geomID(best, args->N, i);
+    unsigned& prim = RTCHitN_primID(best, args->N, i);
+    const float tf = static_cast<float>(*t);
+    if (tf > tfar) continue;
+    if (tf == tfar && *t >= exact) {
+      const auto rank = [&](unsigned g, unsigned p) { return std::pair{g == ctx->spheres_id ? 0 : 1, p}; };
+      if (*t > exact || rank(args->geomID, args->primID) >= rank(geom, prim)) continue;
+    }
+    tfar = tf;
+    exact = *t;
+    geom = args->geomID;
+    prim = args->primID;
+    RTCHitN_instID(best, args->N, i, 0) = RTC_INVALID_GEOMETRY_ID;
   }
-  rh->ray.tfar = tf;
-  ctx->exact = *t;
-  rh->hit.geomID = args->geomID;
-  rh->hit.primID = args->primID;
-  rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
 void sphere_bounds(const RTCBoundsFunctionArguments* args) {
@@ -84,8 +96,7 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
 
 void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
   const auto& s = static_cast<const std::vector<world::SphereObstacle>*>(args->geometryUserPtr)->at(args->primID);
-  const auto* ctx = reinterpret_cast<const ExactContext*>(args->context);
-  accept(args, ray_sphere(*ctx->ray, s.center, s.radius, std::numeric_limits<double>::infinity()));
+  accept_lanes(args, [&](const Ray& r) { return ray_sphere(r, s.center, s.radius, std::numeric_limits<double>::infinity()); });
 }
 
 void cylinder_bounds(const RTCBoundsFunctionArguments* args) {
@@ -95,8 +106,11 @@ void cylinder_bounds(const RTCBoundsFunctionArguments* args) {
 
 void cylinder_intersect(const RTCIntersectFunctionNArguments* args) {
   const auto& c = static_cast<const std::vector<world::CylinderObstacle>*>(args->geometryUserPtr)->at(args->primID);
-  const auto* ctx = reinterpret_cast<const ExactContext*>(args->context);
-  accept(args, ray_upright_cylinder(*ctx->ray, c.base, c.radius, c.height, std::numeric_limits<double>::infinity()));
+  accept_lanes(args, [&](const Ray& r) -> std::optional<double> {
+    // Most lanes of a packet pass the trunk by: their column test alone, inline, before the whole one.
+    if (column_cut(r, c.base, c.radius).misses()) return std::nullopt;
+    return ray_upright_cylinder(r, c.base, c.radius, c.height, std::numeric_limits<double>::infinity());
+  });
 }
 
 }  // namespace
@@ -119,6 +133,28 @@ RTCDevice shared_device() {
   }();
   return device;
 }
+// One packet of up to eight rays, in float, lane k ray k (id k) within `range`, asking the geometries of `mask`;
+// the lanes past the rays are off (valid 0).
+void fill_packet(std::span<const Ray> rays, double range, unsigned mask, int* valid, RTCRayHit8& rh) {
+  for (std::size_t k = 0; k < 8; ++k) {
+    const bool on = k < rays.size();
+    valid[k] = on ? -1 : 0;
+    const Ray& ray = rays[on ? k : 0];
+    rh.ray.org_x[k] = float(ray.origin.x()), rh.ray.org_y[k] = float(ray.origin.y()), rh.ray.org_z[k] = float(ray.origin.z());
+    rh.ray.dir_x[k] = float(ray.direction.x()), rh.ray.dir_y[k] = float(ray.direction.y()),
+    rh.ray.dir_z[k] = float(ray.direction.z());
+    rh.ray.tnear[k] = 0.0f;
+    rh.ray.tfar[k] = float(range);
+    rh.ray.mask[k] = mask;
+    rh.ray.time[k] = 0.0f;
+    rh.ray.id[k] = unsigned(k);
+    rh.ray.flags[k] = 0;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
 }  // namespace
 
 struct StaticRayScene::Impl {
@@ -194,7 +230,8 @@ struct StaticRayScene::Impl {
   }
 
   RayHit cast(const Ray& ray, double range) const {
-    ExactContext ctx{{}, &ray, std::numeric_limits<double>::infinity(), spheres_id};
+    double exact = std::numeric_limits<double>::infinity();
+    ExactContext ctx{{}, &ray, &exact, spheres_id};
     rtcInitIntersectContext(&ctx.embree);
     RTCRayHit rh{};
     rh.ray.org_x = float(ray.origin.x()), rh.ray.org_y = float(ray.origin.y()), rh.ray.org_z = float(ray.origin.z());
@@ -205,13 +242,48 @@ struct StaticRayScene::Impl {
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, &ctx.embree, &rh);
+    return resolve(ray, range, rh.hit.geomID, rh.hit.primID, rh.ray.tfar, exact);
+  }
+
+  // cast() for many rays, eight at a time through Embree's packet traversal (coherent when they share an origin,
+  // as a scan's do): the same hits, the traversal shared.
+  void cast_packets(std::span<const Ray> rays, double range, std::span<RayHit> hits) const {
+    constexpr std::size_t kLanes = 8;
+    const bool coherent =
+        std::all_of(rays.begin(), rays.end(), [&](const Ray& r) { return r.origin == rays.front().origin; });
+    for (std::size_t from = 0; from < rays.size(); from += kLanes) {
+      const std::size_t n = std::min(kLanes, rays.size() - from);
+      alignas(32) int valid[kLanes];
+      alignas(32) RTCRayHit8 rh;
+      fill_packet(rays.subspan(from, n), range, ~0u, valid, rh);
+      double exact[kLanes];
+      std::fill_n(exact, kLanes, std::numeric_limits<double>::infinity());
+      ExactContext ctx{{}, rays.data() + from, exact, spheres_id};
+      rtcInitIntersectContext(&ctx.embree);
+      if (coherent) ctx.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcIntersect8(valid, scene, &ctx.embree, &rh);
+      for (std::size_t k = 0; k < n; ++k) {
+        RayHit& hit = hits[from + k];
+        hit = resolve(rays[from + k], range, rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], exact[k]);
+        // A ray from inside several solids meets them all at 0, and the tie goes to the first by rank; a packet's
+        // traversal culls what lies at the distance a lane already holds (a single ray's does not), so it may
+        // never ask the others. Such a ray is cast again alone.
+        if (hit.distance == 0.0 && hit.target != RayTarget::kArenaFace) hit = cast(rays[from + k], range);
+      }
+    }
+  }
+
+  // What a ray met, from Embree's answer (the geometry and primitive it chose, its float distance) and the exact
+  // distance of the best user-geometry hit: the arena's face unless that solid is strictly nearer.
+  RayHit resolve(const Ray& ray, double range, unsigned geometry, unsigned primitive, float float_distance,
+                 double exact) const {
     RayHit best = arena_face_hit(arena.map(), ray, range);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return best;
+    if (geometry == RTC_INVALID_GEOMETRY_ID) return best;
     RayHit solid;
-    if (rh.hit.geomID == spheres_id || rh.hit.geomID == cylinders_id) {
-      solid = {ctx.exact, rh.hit.geomID == spheres_id ? RayTarget::kSphere : RayTarget::kCylinder, int(rh.hit.primID)};
+    if (geometry == spheres_id || geometry == cylinders_id) {
+      solid = {exact, geometry == spheres_id ? RayTarget::kSphere : RayTarget::kCylinder, int(primitive)};
     } else {
-      solid = exact_triangle(ray, rh.hit.geomID, rh.hit.primID, rh.ray.tfar);
+      solid = exact_triangle(ray, geometry, primitive, float_distance);
     }
     if (solid.distance > range) return best;
     return nearer(best, solid);
@@ -243,23 +315,7 @@ struct StaticRayScene::Impl {
       const std::size_t n = std::min(kLanes, rays.size() - from);
       alignas(32) int valid[kLanes];
       alignas(32) RTCRayHit8 rh;
-      for (std::size_t k = 0; k < kLanes; ++k) {
-        const bool on = k < n;
-        valid[k] = on ? -1 : 0;
-        const Ray& ray = rays[from + (on ? k : 0)];
-        rh.ray.org_x[k] = float(ray.origin.x()), rh.ray.org_y[k] = float(ray.origin.y()), rh.ray.org_z[k] = float(ray.origin.z());
-        rh.ray.dir_x[k] = float(ray.direction.x()), rh.ray.dir_y[k] = float(ray.direction.y()),
-        rh.ray.dir_z[k] = float(ray.direction.z());
-        rh.ray.tnear[k] = 0.0f;
-        rh.ray.tfar[k] = float(range);
-        rh.ray.mask[k] = kTriangleMask;
-        rh.ray.time[k] = 0.0f;
-        rh.ray.id[k] = unsigned(k);
-        rh.ray.flags[k] = 0;
-        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-      }
+      fill_packet(rays.subspan(from, n), range, kTriangleMask, valid, rh);
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -331,7 +387,11 @@ StaticRayScene::~StaticRayScene() = default;
 RayHit StaticRayScene::cast(const Ray& ray, double range) const { return impl_->cast(ray, range); }
 
 void StaticRayScene::cast(std::span<const Ray> rays, double range, std::span<RayHit> hits) const {
-  for (std::size_t i = 0; i < rays.size(); ++i) hits[i] = impl_->cast(rays[i], range);
+  if (rays.size() == 1) {
+    hits[0] = impl_->cast(rays[0], range);
+    return;
+  }
+  impl_->cast_packets(rays, range, hits);
 }
 
 RayHit cast_every_solid(const world::Arena& arena, const Ray& ray, double range) {

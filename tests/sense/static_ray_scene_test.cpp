@@ -28,8 +28,10 @@ Vec3 random_unit(Rng& rng) {
   return v.normalized();
 }
 
-// maps/valley.yaml's terrain with random spheres and cylinders over it, and random faces made obstacles.
-std::shared_ptr<const world::Arena> random_world(std::uint64_t seed) {
+// maps/valley.yaml's terrain with random spheres and cylinders over it, and random faces made obstacles; with
+// `nested`, each of the first 20 spheres also inside a cylinder listed after the others (a point near its centre
+// is inside both, where every ray meets both at 0).
+std::shared_ptr<const world::Arena> random_world(std::uint64_t seed, bool nested = false) {
   Rng rng(seed);
   world::MapSpec m = world::load_map(std::filesystem::path(PEG3D_SOURCE_DIR) / "maps/valley.yaml");
   m.resolution = 0.5;
@@ -41,6 +43,11 @@ std::shared_ptr<const world::Arena> random_world(std::uint64_t seed) {
                          uniform(rng, 0.2, 2.5)});
     m.cylinders.push_back({{uniform(rng, lo.x(), hi.x()), uniform(rng, lo.y(), hi.y()), uniform(rng, lo.z(), hi.z() - 1)},
                            uniform(rng, 0.2, 2.0), uniform(rng, 0.5, 8.0)});
+  }
+  for (int i = 0; nested && i < 20; ++i) {
+    const world::SphereObstacle& o = m.spheres[std::size_t(i)];
+    const double base = std::max(lo.z(), o.center.z() - o.radius);
+    m.cylinders.push_back({{o.center.x(), o.center.y(), base}, o.radius, std::min(2 * o.radius, hi.z() - base)});
   }
   m.floor_is_obstacle = seed % 2 == 0;
   m.ceiling_is_obstacle = seed % 3 != 0;
@@ -154,6 +161,46 @@ TEST(StaticRayScene, RaysThroughTheTerrainsEdgesReadTheDistanceInDoublePrecision
   }
   EXPECT_GT(checked, 10000);
   EXPECT_EQ(off, 0) << "of " << checked << " rays through an edge";
+}
+
+// cast() of many rays at once (through Embree's packets) answers to the bit what each ray cast alone answers:
+// scans of one origin (a third of them from inside a sphere and a cylinder, where every ray meets both at 0 and
+// the rank decides), rays of different origins, and spans of every length from 1 to 70 rays.
+TEST(StaticRayScene, RaysCastTogetherMeetWhatEachMeetsAlone) {
+  long compared = 0, at_zero = 0;
+  for (const std::uint64_t seed : {5u, 6u}) {
+    const auto arena = random_world(seed, /*nested=*/true);
+    const StaticRayScene scene(*arena);
+    Rng rng(200 + seed);
+    const Box& b = arena->bounds();
+    const auto point = [&] {
+      return Vec3(uniform(rng, b.lo.x(), b.hi.x()), uniform(rng, b.lo.y(), b.hi.y()), uniform(rng, b.lo.z(), b.hi.z()));
+    };
+    for (int s = 0; s < 400; ++s) {
+      const std::size_t n = 1 + std::size_t(s) % 70;
+      const bool shared = s % 4 != 1;
+      Vec3 origin = point();
+      if (s % 3 == 0) {
+        const world::SphereObstacle& o = arena->map().spheres[std::size_t(s / 3) % 20];
+        origin = o.center + 0.5 * o.radius * random_unit(rng);
+      }
+      std::vector<Ray> rays;
+      for (std::size_t k = 0; k < n; ++k) rays.push_back({shared ? origin : point(), random_unit(rng)});
+      const double range = uniform(rng, 2.0, 60.0);
+      std::vector<RayHit> together(n);
+      scene.cast(rays, range, together);
+      for (std::size_t k = 0; k < n; ++k) {
+        const RayHit alone = scene.cast(rays[k], range);
+        ++compared;
+        at_zero += alone.distance == 0.0;
+        ASSERT_EQ(int(together[k].target), int(alone.target)) << "seed " << seed << " scan " << s << " ray " << k;
+        ASSERT_EQ(together[k].index, alone.index) << "seed " << seed << " scan " << s << " ray " << k;
+        ASSERT_EQ(together[k].distance, alone.distance) << "seed " << seed << " scan " << s << " ray " << k;
+      }
+    }
+  }
+  std::printf("%ld rays, %ld met a solid at 0\n", compared, at_zero);
+  EXPECT_GT(at_zero, compared / 20);
 }
 
 // The mesh importer forks (core/bounded_child); a thread starting in the parent at that moment can leave the
