@@ -277,16 +277,32 @@ struct StaticRayScene::Impl {
   // distance of the best user-geometry hit: the arena's face unless that solid is strictly nearer.
   RayHit resolve(const Ray& ray, double range, unsigned geometry, unsigned primitive, float float_distance,
                  double exact) const {
-    RayHit best = arena_face_hit(arena.map(), ray, range);
-    if (geometry == RTC_INVALID_GEOMETRY_ID) return best;
+    if (geometry == RTC_INVALID_GEOMETRY_ID) return arena_face_hit(arena.map(), ray, range);
     RayHit solid;
     if (geometry == spheres_id || geometry == cylinders_id) {
       solid = {exact, geometry == spheres_id ? RayTarget::kSphere : RayTarget::kCylinder, int(primitive)};
     } else {
       solid = exact_triangle(ray, geometry, primitive, float_distance);
     }
-    if (solid.distance > range) return best;
-    return nearer(best, solid);
+    if (solid.distance > range) return arena_face_hit(arena.map(), ray, range);
+    // A solid nearer than every obstacle face's plane is nearer than the face the ray would leave by: no need to
+    // find that face (three divisions).
+    if (solid.distance < face_planes_distance(ray.origin)) return solid;
+    return nearer(arena_face_hit(arena.map(), ray, range), solid);
+  }
+
+  // A lower bound on the distance along any ray from `origin` to an obstacle face of the arena: the nearest such
+  // face's plane, less a margin for rounding; 0 or below from outside the arena.
+  double face_planes_distance(const Vec3& origin) const {
+    const world::MapSpec& map = arena.map();
+    const Vec3 &lo = map.bounds.lo, &hi = map.bounds.hi;
+    double d = std::numeric_limits<double>::infinity();
+    if (map.walls_is_obstacle) {
+      d = std::min({origin.x() - lo.x(), hi.x() - origin.x(), origin.y() - lo.y(), hi.y() - origin.y()});
+    }
+    if (map.floor_is_obstacle) d = std::min(d, origin.z() - lo.z());
+    if (map.ceiling_is_obstacle) d = std::min(d, hi.z() - origin.z());
+    return d * (1.0 - 1e-9);
   }
 
   // The triangle Embree chose again in double precision, from the ray as given. Float may have seen the ray
