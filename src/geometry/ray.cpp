@@ -27,28 +27,33 @@ std::optional<double> first_in(double enter, double leave, double range) {
 
 }  // namespace
 
-std::optional<double> ray_sphere(const Ray& ray, const Vec3& centre, double radius, double range) {
+double ray_sphere_entry(const Ray& ray, const Vec3& centre, double radius) {
+  constexpr double kNever = std::numeric_limits<double>::infinity();
   const Vec3 m = ray.origin - centre;
   const double c = m.squaredNorm() - radius * radius;
   if (c <= 0.0) return 0.0;  // starts inside or on the surface
   const double b = m.dot(ray.direction);
-  if (b >= 0.0) return std::nullopt;  // outside and heading away
+  if (b >= 0.0) return kNever;  // outside and heading away
   const double disc = b * b - c;
-  if (disc < 0.0) return std::nullopt;
+  if (disc < 0.0) return kNever;
   // -b - sqrt(disc) loses digits when the ray passes far from the centre; c / (-b + sqrt(disc)) is the same
   // root without the cancellation.
-  const double t = c / (-b + std::sqrt(disc));
+  return c / (-b + std::sqrt(disc));
+}
+
+std::optional<double> ray_sphere(const Ray& ray, const Vec3& centre, double radius, double range) {
+  const double t = ray_sphere_entry(ray, centre, radius);
   return t <= range ? std::optional<double>(t) : std::nullopt;
 }
 
-std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, double radius, double height,
-                                           double range) {
+double ray_upright_cylinder_entry(const Ray& ray, const Vec3& base, double radius, double height) {
+  constexpr double kNever = std::numeric_limits<double>::infinity();
   // The solid is the intersection of the slab base.z <= z <= base.z + height with the infinite round column;
   // the ray's interval in each is exact, and the first point of their intersection is the entry.
   double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
-  if (!clip_slab(ray.origin.z(), ray.direction.z(), base.z(), base.z() + height, enter, leave)) return std::nullopt;
+  if (!clip_slab(ray.origin.z(), ray.direction.z(), base.z(), base.z() + height, enter, leave)) return kNever;
   const ColumnCut cut = column_cut(ray, base, radius);
-  if (cut.misses()) return std::nullopt;  // parallel to the axis outside the column, or passing it by
+  if (cut.misses()) return kNever;  // parallel to the axis outside the column, or passing it by
   const double a = cut.a, b = cut.b, c = cut.c;
   if (a != 0.0) {  // (parallel to the axis: inside the column all along)
     const double disc = cut.discriminant();
@@ -60,7 +65,14 @@ std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, dou
     enter = std::max(enter, t0);
     leave = std::min(leave, t1);
   }
-  return first_in(enter, leave, range);
+  if (enter > leave || leave < 0.0) return kNever;
+  return std::max(enter, 0.0);
+}
+
+std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, double radius, double height,
+                                           double range) {
+  const double t = ray_upright_cylinder_entry(ray, base, radius, height);
+  return t <= range ? std::optional<double>(t) : std::nullopt;
 }
 
 std::optional<double> ray_box(const Ray& ray, const Vec3& lo, const Vec3& hi, double range) {

@@ -22,6 +22,9 @@ struct Ray {
 
 /// The first distance in [0, range] at which the ray meets a solid ball; nullopt when it does not.
 std::optional<double> ray_sphere(const Ray& ray, const Vec3& centre, double radius, double range);
+/// ray_sphere without a range: the first distance >= 0, +infinity when the ray never meets the ball. For callers
+/// that test many solids a ray: an optional's round trip through the stack cost more than the test.
+double ray_sphere_entry(const Ray& ray, const Vec3& centre, double radius);
 
 /// The ray's line against the infinite round column of `radius` about the vertical line through `base`, in the
 /// terms of t's quadratic a t^2 + 2 b t + c = 0 (a = 0: the ray runs parallel to the axis). ray_upright_cylinder
@@ -41,6 +44,8 @@ inline ColumnCut column_cut(const Ray& ray, const Vec3& base, double radius) {
 /// ... a solid upright cylinder: axis +z from the centre of its base disc, `height` long (m).
 std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, double radius, double height,
                                            double range);
+/// ray_upright_cylinder without a range: the first distance >= 0, +infinity when never (as ray_sphere_entry).
+double ray_upright_cylinder_entry(const Ray& ray, const Vec3& base, double radius, double height);
 
 /// ... a solid axis-aligned box [lo, hi].
 std::optional<double> ray_box(const Ray& ray, const Vec3& lo, const Vec3& hi, double range);

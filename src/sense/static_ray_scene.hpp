@@ -41,7 +41,8 @@ class StaticRayScene {
 
   /// The first static solid along the ray within `range` (m, > 0).
   RayHit cast(const Ray& ray, double range) const;
-  /// cast() for each ray, into `hits` (the same length).
+  /// cast() for each ray, into `hits` (the same length), to the bit; in a scene without terrain eight rays at a
+  /// time through Embree's packets (fastest when they share an origin, as a scan's rays do).
   void cast(std::span<const Ray> rays, double range, std::span<RayHit> hits) const;
 
   // The parts cast() combines, for casters that find some solids their own way (sense/image_cast.hpp): cast()'s

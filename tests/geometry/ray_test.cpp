@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "test_vectors.hpp"
@@ -118,6 +119,34 @@ TEST(RayUprightCylinder, EntersTheCapsAtTheAnalyticDistance) {
   EXPECT_FALSE(ray_upright_cylinder({{1.5, 0, 10}, {0, 0, -1}}, {0, 0, 0}, 1.0, 4.0, 100.0));
   EXPECT_EQ(ray_upright_cylinder({{1, 0, 10}, {0, 0, -1}}, {0, 0, 0}, 1.0, 4.0, 100.0), 6.0);
   EXPECT_EQ(ray_upright_cylinder({{0.5, 0, 2}, {0, 0, 1}}, {0, 0, 0}, 1.0, 4.0, 100.0), 0.0);  // inside
+}
+
+// The entry functions (no range, +infinity for a miss), which casters test many solids with, answer exactly as
+// the ranged ones: the same distance to the bit, a miss where those find none. (Their distances are checked
+// against the analytic ones above, through the ranged functions.)
+TEST(RayEntry, AgreesWithTheRangedTestsToTheBit) {
+  Rng rng(17);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  int met = 0, missed = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 origin = random_point(rng, 10.0), centre = random_point(rng, 10.0);
+    // Half the rays aimed near the solid, half anywhere.
+    const Vec3 aim = centre + random_point(rng, 3.0) - origin;
+    const Ray ray{origin, k % 2 == 0 && aim.norm() > 1e-6 ? Vec3(aim.normalized()) : random_unit(rng)};
+    const double r = uniform(rng, 0.1, 5.0), h = uniform(rng, 0.5, 15.0), range = uniform(rng, 1.0, 40.0);
+    const auto sphere = ray_sphere(ray, centre, r, range);
+    const double sphere_entry = ray_sphere_entry(ray, centre, r);
+    EXPECT_EQ(sphere.value_or(kInf), sphere_entry <= range ? sphere_entry : kInf) << k;
+    const auto cylinder = ray_upright_cylinder(ray, centre, r, h, range);
+    const double cylinder_entry = ray_upright_cylinder_entry(ray, centre, r, h);
+    EXPECT_EQ(cylinder.value_or(kInf), cylinder_entry <= range ? cylinder_entry : kInf) << k;
+    (cylinder ? met : missed) += 1;
+  }
+  EXPECT_GT(met, 2000);
+  EXPECT_GT(missed, 2000);
+  // Parallel to the axis: inside the column it meets the cylinder, outside it misses (a = 0 in column_cut).
+  EXPECT_FALSE(column_cut({{0.5, 0, 10}, {0, 0, -1}}, {0, 0, 0}, 1.0).misses());
+  EXPECT_TRUE(column_cut({{1.5, 0, 10}, {0, 0, -1}}, {0, 0, 0}, 1.0).misses());
 }
 
 TEST(RayBox, EntersAFaceAtTheAnalyticDistance) {
