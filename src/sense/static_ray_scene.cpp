@@ -161,7 +161,6 @@ void fill_packet(std::span<const Ray> rays, double range, unsigned mask, int* va
 
 struct StaticRayScene::Impl {
   const world::Arena& arena;
-  RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   unsigned spheres_id = RTC_INVALID_GEOMETRY_ID, cylinders_id = RTC_INVALID_GEOMETRY_ID;
   std::vector<unsigned> mesh_of_geometry;  // geometry ID -> mesh index (triangle geometries), else -1
@@ -172,7 +171,7 @@ struct StaticRayScene::Impl {
   BoxIndex shapes;
 
   explicit Impl(const world::Arena& a) : arena(a) {
-    device = shared_device();
+    const RTCDevice device = shared_device();
     scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
     rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
