@@ -423,8 +423,12 @@ MoverPoint MoverTimeline::nearest(const Vec3& p, double t, double cap, int hint)
 
 namespace {
 
-// Mover m as the answer of a ray query when the ray meets it nearer (the lower index at one distance).
-void offer_hit(int m, const Shape& shape, const Pose& at, const Ray& ray, MoverHit& best) {
+// Mover m as the answer of a ray query when the ray meets it nearer (the lower index at one distance). A ray
+// that passes the shape's bounding ball (radius `reach`) by, or enters it beyond the best distance, cannot meet
+// the shape nearer: the ball, widened far above the rounding of its entry, spares the exact test's rotation
+// and divisions for most candidates of a scan (68 a scan on quarry's movers, 8 of them hits).
+void offer_hit(int m, const Shape& shape, double reach, const Pose& at, const Ray& ray, MoverHit& best) {
+  if (ray_sphere_entry(ray, at.position, reach * (1.0 + 1e-9) + 1e-9) > best.distance) return;
   const auto t = ray_shape(ray, shape, at, best.distance);
   if (t && (*t < best.distance || (*t == best.distance && (best.mover < 0 || m < best.mover)))) best = {m, *t};
 }
@@ -437,7 +441,7 @@ MoverHit MoverTimeline::first_along(const Ray& ray, double t, double range) cons
   const std::size_t b = block_at(t);
   window(b).along(static_cast<int>(b % kWindowBlocks), ray.origin, ray.direction, range, [&](int leaf) {
     const int m = queried_[std::size_t(leaf)];
-    offer_hit(m, movers_[std::size_t(m)].shape, pose(m, t), ray, best);
+    offer_hit(m, movers_[std::size_t(m)].shape, reach_[std::size_t(m)], pose(m, t), ray, best);
     return best.distance;
   });
   return best;
@@ -458,7 +462,7 @@ void MoverTimeline::first_along_fan(const Vec3& origin, std::span<const Vec3> di
     const Pose at = pose(m, t);
     for (; rays != 0; rays &= rays - 1) {
       const int k = __builtin_ctzll(rays);
-      offer_hit(m, movers_[std::size_t(m)].shape, at, {origin, directions[std::size_t(k)]}, best[std::size_t(k)]);
+      offer_hit(m, movers_[std::size_t(m)].shape, reach_[std::size_t(m)], at, {origin, directions[std::size_t(k)]}, best[std::size_t(k)]);
       bounds[k] = best[std::size_t(k)].distance;
     }
   });
@@ -466,7 +470,7 @@ void MoverTimeline::first_along_fan(const Vec3& origin, std::span<const Vec3> di
 
 MoverHit MoverTimeline::first_along_scan(const Ray& ray, double t, double range) const {
   MoverHit best{-1, range};
-  for (const int m : queried_) offer_hit(m, movers_[std::size_t(m)].shape, pose(m, t), ray, best);
+  for (const int m : queried_) offer_hit(m, movers_[std::size_t(m)].shape, reach_[std::size_t(m)], pose(m, t), ray, best);
   return best;
 }
 
