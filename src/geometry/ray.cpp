@@ -18,17 +18,23 @@ bool clip_slab(double origin, double direction, double lo, double hi, double& en
   return true;
 }
 
-// The first t in [0, range] with the point in the clipped interval [enter, leave], if that is not empty.
-std::optional<double> first_in(double enter, double leave, double range) {
-  if (enter > leave || leave < 0.0) return std::nullopt;
-  const double t = std::max(enter, 0.0);
-  return t <= range ? std::optional<double>(t) : std::nullopt;
+// The entry functions' answer for a ray that never meets the solid.
+constexpr double kNever = std::numeric_limits<double>::infinity();
+
+// The first t >= 0 in the clipped interval [enter, leave], kNever when that is empty or behind the origin.
+double first_point(double enter, double leave) {
+  if (enter > leave || leave < 0.0) return kNever;
+  return std::max(enter, 0.0);
+}
+
+// An entry within range, else nullopt (a miss too when the range is infinite).
+std::optional<double> within(double t, double range) {
+  return t < kNever && t <= range ? std::optional<double>(t) : std::nullopt;
 }
 
 }  // namespace
 
 double ray_sphere_entry(const Ray& ray, const Vec3& centre, double radius) {
-  constexpr double kNever = std::numeric_limits<double>::infinity();
   const Vec3 m = ray.origin - centre;
   const double c = m.squaredNorm() - radius * radius;
   if (c <= 0.0) return 0.0;  // starts inside or on the surface
@@ -42,12 +48,10 @@ double ray_sphere_entry(const Ray& ray, const Vec3& centre, double radius) {
 }
 
 std::optional<double> ray_sphere(const Ray& ray, const Vec3& centre, double radius, double range) {
-  const double t = ray_sphere_entry(ray, centre, radius);
-  return t <= range ? std::optional<double>(t) : std::nullopt;
+  return within(ray_sphere_entry(ray, centre, radius), range);
 }
 
 double ray_upright_cylinder_entry(const Ray& ray, const Vec3& base, double radius, double height) {
-  constexpr double kNever = std::numeric_limits<double>::infinity();
   // The solid is the intersection of the slab base.z <= z <= base.z + height with the infinite round column;
   // the ray's interval in each is exact, and the first point of their intersection is the entry.
   double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
@@ -65,14 +69,12 @@ double ray_upright_cylinder_entry(const Ray& ray, const Vec3& base, double radiu
     enter = std::max(enter, t0);
     leave = std::min(leave, t1);
   }
-  if (enter > leave || leave < 0.0) return kNever;
-  return std::max(enter, 0.0);
+  return first_point(enter, leave);
 }
 
 std::optional<double> ray_upright_cylinder(const Ray& ray, const Vec3& base, double radius, double height,
                                            double range) {
-  const double t = ray_upright_cylinder_entry(ray, base, radius, height);
-  return t <= range ? std::optional<double>(t) : std::nullopt;
+  return within(ray_upright_cylinder_entry(ray, base, radius, height), range);
 }
 
 std::optional<double> ray_box(const Ray& ray, const Vec3& lo, const Vec3& hi, double range) {
@@ -80,7 +82,7 @@ std::optional<double> ray_box(const Ray& ray, const Vec3& lo, const Vec3& hi, do
   for (int k = 0; k < 3; ++k) {
     if (!clip_slab(ray.origin[k], ray.direction[k], lo[k], hi[k], enter, leave)) return std::nullopt;
   }
-  return first_in(enter, leave, range);
+  return within(first_point(enter, leave), range);
 }
 
 std::optional<double> ray_triangle(const Ray& ray, const Vec3& a, const Vec3& b, const Vec3& c, double range) {

@@ -144,6 +144,11 @@ TEST(RayEntry, AgreesWithTheRangedTestsToTheBit) {
   }
   EXPECT_GT(met, 2000);
   EXPECT_GT(missed, 2000);
+  // A miss stays a miss without a bound on the range.
+  const Ray away{{0, 0, 0}, {1, 0, 0}};
+  EXPECT_FALSE(ray_sphere(away, {-5, 0, 0}, 1.0, kInf));
+  EXPECT_FALSE(ray_upright_cylinder(away, {-5, 0, 0}, 1.0, 2.0, kInf));
+  EXPECT_FALSE(ray_box(away, {-6, -1, -1}, {-4, 1, 1}, kInf));
   // Parallel to the axis: inside the column it meets the cylinder, outside it misses (a = 0 in column_cut).
   EXPECT_FALSE(column_cut({{0.5, 0, 10}, {0, 0, -1}}, {0, 0, 0}, 1.0).misses());
   EXPECT_TRUE(column_cut({{1.5, 0, 10}, {0, 0, -1}}, {0, 0, 0}, 1.0).misses());
