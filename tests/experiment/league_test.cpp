@@ -18,7 +18,7 @@ namespace {
 
 using game::Role;
 
-std::shared_ptr<const world::Arena> arena() {
+std::shared_ptr<const world::Arena> league_arena() {
   static const auto a = testing::make_arena(
       {20, 20, 10}, {}, {testing::scenario("S1", {2, 2, 5}, {12, 12, 5}), testing::scenario("S2", {18, 2, 5}, {8, 12, 5})});
   return a;
@@ -41,7 +41,7 @@ LeagueSettings small(int threads = 1) {
 }
 
 League league(std::vector<Algorithm> algorithms, LeagueSettings s) {
-  return League(arena(), {{"room", arena()}}, std::move(algorithms), std::move(s));
+  return League(league_arena(), {{"room", league_arena()}}, std::move(algorithms), std::move(s));
 }
 
 TEST(League, EntrantsAreTheTrainedPoliciesOfEverySeedThenTheClassicOnes) {

@@ -21,7 +21,7 @@ namespace {
 
 using game::Role;
 
-std::shared_ptr<const world::Arena> arena() {
+std::shared_ptr<const world::Arena> training_arena() {
   static const auto a = testing::make_arena({20, 20, 10}, {}, {testing::scenario("S1", {2, 2, 5}, {14, 14, 5})});
   return a;
 }
@@ -34,11 +34,11 @@ TrialConfig pool_config(double share = 0.5) {
   return c;
 }
 
-OpponentPool pool_of(const TrialConfig& c) { return make_pool(arena(), c.game, c.training); }
+OpponentPool pool_of(const TrialConfig& c) { return make_pool(training_arena(), c.game, c.training); }
 
 // A trial of `episodes` episodes from the arena's start, seeded `seed`, trained as `c` says with `pool`.
 TrialResult trial(const TrialConfig& c, std::uint64_t seed, int episodes, const OpponentPool* pool) {
-  return run_trial(game::Sim(arena(), c.game), {.scenario = &arena()->map().scenarios[0],
+  return run_trial(game::Sim(training_arena(), c.game), {.scenario = &training_arena()->map().scenarios[0],
                                                 .seed = seed,
                                                 .episodes = episodes,
                                                 .training = c.training,

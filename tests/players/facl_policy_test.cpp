@@ -16,7 +16,7 @@ namespace {
 
 using namespace peg3d::game;
 
-AgentView random_view(Rng& rng) {
+AgentView random_percept_view(Rng& rng) {
   std::uniform_real_distribution<double> d(0.0, 40.0), a(-kPi, kPi), z(0.0, kPi);
   AgentView v;
   v.percept.target_distance = d(rng);
@@ -30,8 +30,8 @@ AgentView random_view(Rng& rng) {
 void train_randomly(FaclPolicy& p, Rng& rng, int steps) {
   p.begin_episode({}, true);
   for (int i = 0; i < steps; ++i) {
-    p.act(random_view(rng));
-    p.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_view(rng), i % 50 == 49);
+    p.act(random_percept_view(rng));
+    p.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_percept_view(rng), i % 50 == 49);
   }
 }
 
@@ -106,7 +106,7 @@ TEST(FaclPolicy, SavedAndLoadedPoliciesActIdentically) {
     trained.begin_episode({}, false);
     loaded.begin_episode({}, false);
     for (int i = 0; i < 1000; ++i) {
-      const AgentView v = random_view(rng);
+      const AgentView v = random_percept_view(rng);
       const Steering a = trained.act(v), b = loaded.act(v);
       ASSERT_EQ(a.d_alpha, b.d_alpha) << name;
       ASSERT_EQ(a.d_theta, b.d_theta) << name;
@@ -126,7 +126,7 @@ TEST(FaclPolicy, ActDependsOnlyOnItsViewAndTheTables) {
   a.begin_episode({}, true);
   b.begin_episode({}, true);
   for (int i = 0; i < 200; ++i) {
-    const AgentView now = random_view(rng), seen = random_view(rng), other = random_view(rng);
+    const AgentView now = random_percept_view(rng), seen = random_percept_view(rng), other = random_percept_view(rng);
     const Steering ua = a.act(now), ub = b.act(now);
     ASSERT_EQ(ua.d_alpha, ub.d_alpha);
     a.learn(0.5, seen, false);
@@ -136,7 +136,7 @@ TEST(FaclPolicy, ActDependsOnlyOnItsViewAndTheTables) {
     const Steering va = a.act(v), vb = b.act(v);
     ASSERT_EQ(va.d_alpha, vb.d_alpha) << i;
     ASSERT_EQ(va.d_theta, vb.d_theta) << i;
-    const AgentView end = random_view(rng);
+    const AgentView end = random_percept_view(rng);
     a.learn(-0.5, end, true);
     b.learn(-0.5, end, true);
   }
@@ -165,7 +165,7 @@ TEST(FaclPolicy, ATargetLineOffsetAddsTheTurnOntoTheLineAndLearnsTheSame) {
   FaclPolicy fresh{std::shared_ptr<const FaclModel>(std::make_shared<FaclModel>(fresh_model))};
   fresh.begin_episode({}, false);
   for (int i = 0; i < 50; ++i) {
-    const AgentView v = random_view(r1);
+    const AgentView v = random_percept_view(r1);
     const Steering p = plain.act(v), q = offset.act(v), f = fresh.act(v);
     EXPECT_DOUBLE_EQ(q.d_alpha, p.d_alpha + v.percept.target.azimuth);
     EXPECT_DOUBLE_EQ(q.d_theta, p.d_theta + v.percept.target.elevation);
@@ -185,7 +185,7 @@ TEST(FaclPolicy, TeammatesShareOneModelAndFrozenModelsCannotLearn) {
   b.begin_episode({}, false);
   FaclPolicy frozen{std::shared_ptr<const FaclModel>(model)};
   frozen.begin_episode({}, false);
-  const AgentView v = random_view(rng);
+  const AgentView v = random_percept_view(rng);
   EXPECT_EQ(b.act(v).d_alpha, frozen.act(v).d_alpha);
   EXPECT_THROW(frozen.begin_episode({}, true), std::logic_error);
 }

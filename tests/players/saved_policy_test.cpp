@@ -28,7 +28,7 @@ using namespace peg3d::game;
 
 std::filesystem::path temp(const std::string& name) { return std::filesystem::path(::testing::TempDir()) / name; }
 
-AgentView random_view(Rng& rng) {
+AgentView random_saved_view(Rng& rng) {
   std::uniform_real_distribution<double> d(0.5, 40.0), a(-kPi, kPi);
   AgentView v;
   v.percept.target_distance = d(rng);
@@ -46,8 +46,8 @@ std::shared_ptr<const FaclModel> trained_facl(const std::filesystem::path& file)
   Rng rng(1);
   p.begin_episode({}, true);
   for (int i = 0; i < 2000; ++i) {
-    p.act(random_view(rng));
-    p.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_view(rng), i % 50 == 49);
+    p.act(random_saved_view(rng));
+    p.learn(std::uniform_real_distribution<double>(-5, 5)(rng), random_saved_view(rng), i % 50 == 49);
   }
   save_policy(file, p.model());
   return p.shared_model();
@@ -81,7 +81,7 @@ TEST(SavedPolicy, AFaclFilePlaysAsItsModelWithItsOwnConfiguration) {
   Rng rng(2);
   int turned = 0;
   for (int i = 0; i < 500; ++i) {
-    const AgentView v = random_view(rng);
+    const AgentView v = random_saved_view(rng);
     const Steering a = reference.act(v), b = player->act(v);
     ASSERT_EQ(a.d_alpha, b.d_alpha);
     ASSERT_EQ(a.d_theta, b.d_theta);
@@ -101,7 +101,7 @@ TEST(SavedPolicy, AnMlpFilePlaysAsTheMlpWithTheGamesConfiguration) {
   const auto player = saved->make(0, AgentConfig{}, Role::kEvader, 0);
   Rng rng(3);
   for (int i = 0; i < 200; ++i) {
-    const testing::WrittenView w(random_view(rng));
+    const testing::WrittenView w(random_saved_view(rng));
     const AgentView& v = w.view;
     const Steering a = reference.act(v), b = player->act(v);
     ASSERT_EQ(a.d_alpha, b.d_alpha);
@@ -266,7 +266,7 @@ TEST(SavedPolicy, AMixtureFileDrawsAMemberByWeightEachEpisodeTheSameForATeam) {
   int pursuit = 0, gain_differs = 0;
   int told = 0;  // episodes whose second step tells pure pursuit from pn (pn steers by the sight line's turn)
   for (int e = 0; e < n; ++e) {
-    AgentView first = random_view(rng);
+    AgentView first = random_saved_view(rng);
     first.self_speed = 1.0, first.other_speed = 0.8;  // pn steers by the sight line's turn: relative motion
     first.self.heading = {std::uniform_real_distribution<double>(-kPi, kPi)(rng), 1.2};
     first.other.heading = {std::uniform_real_distribution<double>(-kPi, kPi)(rng), 1.9};
@@ -301,7 +301,7 @@ TEST(SavedPolicy, AMixtureFileDrawsAMemberByWeightEachEpisodeTheSameForATeam) {
   int differ = 0;
   const auto a2 = saved->make(1, agent, Role::kPursuer, 77);
   for (int e = 0; e < 200; ++e) {
-    const testing::WrittenView w(random_view(again));
+    const testing::WrittenView w(random_saved_view(again));
     a2->begin_episode(w.view, false);
     c->begin_episode(w.view, false);
     const Steering x = a2->act(w.view), y = c->act(w.view);

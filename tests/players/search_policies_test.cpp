@@ -19,7 +19,7 @@ namespace {
 
 using namespace peg3d::game;
 
-AgentView random_view(Rng& rng) {
+AgentView random_arena_view(Rng& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   AgentView v;
   v.arena = {{0, 0, 0}, {35, 35, 20}};
@@ -37,7 +37,7 @@ TEST(GameSearchPolicies, WithFullInformationTheyPlayAsPurePursuitAndFlee) {
   PurePursuit pure;
   FleeLineOfSight flee;
   for (int k = 0; k < 500; ++k) {
-    AgentView v = random_view(rng);
+    AgentView v = random_arena_view(rng);
     if (k == 0) search.begin_episode(v, false), hide.begin_episode(v, false);
     v.time = 0.1 * k;
     const Steering a = search.act(v), b = pure.act(v), c = hide.act(v), d = flee.act(v);

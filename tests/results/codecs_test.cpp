@@ -12,12 +12,13 @@
 #include "game/game_config.hpp"
 #include "players/lineup.hpp"
 #include "players/policy_io.hpp"
+#include "support/numbers.hpp"
 
 namespace peg3d::results {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing::kInf;
+using testing::kNaN;
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 

@@ -11,12 +11,13 @@
 #include <string>
 
 #include "core/validation.hpp"
+#include "support/numbers.hpp"
 
 namespace peg3d::results {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing::kInf;
+using testing::kNaN;
 
 TEST(ResultsCsvWriter, WritesHeaderAndRows) {
   std::ostringstream out;

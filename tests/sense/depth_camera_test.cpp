@@ -17,11 +17,12 @@
 
 #include "core/random.hpp"
 #include "world/world_test_support.hpp"
+#include "support/numbers.hpp"
 
 namespace peg3d::sense {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
+using testing::kDeg;
 
 // Pixel (r, c)'s unit direction and the optical axis, in the world, built from the header's words with rotations:
 // the sensor frame (x the heading, y level to its left, z = x cross y), turned up by the mount's elevation and left

@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "core/config_fields.hpp"
+#include "support/numbers.hpp"
 
 namespace peg3d::sense {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
+using testing::kDeg;
 
 TEST(Lidar, RaysLieAtTheCellCentresOfTheFieldOfViewAboutTheHeading) {
   Rng rng(11);

@@ -13,6 +13,7 @@
 #include "core/random.hpp"
 #include "world/arena.hpp"
 #include "world/world_test_support.hpp"
+#include "support/draws.hpp"
 
 namespace peg3d::sense {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 // How near a segment may pass a solid's surface before the look is skipped as grazing (metres).
 constexpr double kGraze = 1e-6;
 
-double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+using testing::uniform_draw;
 
 // The distance from p to the segment [a, b].
 double to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
@@ -59,9 +60,9 @@ bool segment_meets_cylinder(const Vec3& a, const Vec3& b, const Vec3& base, doub
 TEST(SenseLineOfSight, PointsAreTheCentreThenEvenlyOnTheRimCircleStartingUp) {
   Rng rng(3);
   for (int q = 0; q < 200; ++q) {
-    const Vec3 eye(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5));
-    const Vec3 c(uniform(rng, -5, 5), uniform(rng, -5, 5), uniform(rng, -5, 5));
-    const double r = uniform(rng, 0.1, 1.0);
+    const Vec3 eye(uniform_draw(rng, -5, 5), uniform_draw(rng, -5, 5), uniform_draw(rng, -5, 5));
+    const Vec3 c(uniform_draw(rng, -5, 5), uniform_draw(rng, -5, 5), uniform_draw(rng, -5, 5));
+    const double r = uniform_draw(rng, 0.1, 1.0);
     const int n = 1 + q % kMaxSightPoints;
     std::array<Vec3, kMaxSightPoints> p;
     sight_points(eye, c, r, n, p);
@@ -92,8 +93,8 @@ TEST(SenseLineOfSight, InSightExactlyWhenASegmentToAPointClearsEverySolid) {
     Rng rng(seed);
     world::MapSpec m = world::testing::empty_spec({30, 30, 12}, 0.5, 5.0);
     for (int k = 0; k < 25; ++k) {
-      m.spheres.push_back({{uniform(rng, 4, 26), uniform(rng, 4, 26), uniform(rng, 2, 10)}, uniform(rng, 0.5, 3.0)});
-      m.cylinders.push_back({{uniform(rng, 4, 26), uniform(rng, 4, 26), 0.0}, uniform(rng, 0.3, 1.5), uniform(rng, 2, 12)});
+      m.spheres.push_back({{uniform_draw(rng, 4, 26), uniform_draw(rng, 4, 26), uniform_draw(rng, 2, 10)}, uniform_draw(rng, 0.5, 3.0)});
+      m.cylinders.push_back({{uniform_draw(rng, 4, 26), uniform_draw(rng, 4, 26), 0.0}, uniform_draw(rng, 0.3, 1.5), uniform_draw(rng, 2, 12)});
     }
     const auto arena = world::Arena::build(m);
     const StaticRayScene scene(*arena);
@@ -128,10 +129,10 @@ TEST(SenseLineOfSight, InSightExactlyWhenASegmentToAPointClearsEverySolid) {
     int seen = 0, hidden = 0;
     for (int q = 0; q < 300; ++q) {
       Vec3 eye, c;
-      const double r = uniform(rng, 0.1, 0.6);
-      do eye = Vec3(uniform(rng, 0.5, 29.5), uniform(rng, 0.5, 29.5), uniform(rng, 0.5, 11.5));
+      const double r = uniform_draw(rng, 0.1, 0.6);
+      do eye = Vec3(uniform_draw(rng, 0.5, 29.5), uniform_draw(rng, 0.5, 29.5), uniform_draw(rng, 0.5, 11.5));
       while (inside_solid(eye, 0.1));
-      do c = Vec3(uniform(rng, 0.5, 29.5), uniform(rng, 0.5, 29.5), uniform(rng, 0.5, 11.5));
+      do c = Vec3(uniform_draw(rng, 0.5, 29.5), uniform_draw(rng, 0.5, 29.5), uniform_draw(rng, 0.5, 11.5));
       while (inside_solid(c, r + 0.01) || (c - eye).norm() < r + 0.1);
       const int points = 1 + q % kMaxSightPoints;
       std::array<Vec3, kMaxSightPoints> p;

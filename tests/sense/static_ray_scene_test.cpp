@@ -14,11 +14,12 @@
 
 #include "core/random.hpp"
 #include "world/map/map_loader.hpp"
+#include "support/draws.hpp"
 
 namespace peg3d::sense {
 namespace {
 
-double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+using testing::uniform_draw;
 
 Vec3 random_unit(Rng& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
@@ -40,10 +41,10 @@ std::shared_ptr<const world::Arena> random_world(std::uint64_t seed, bool nested
   m.cylinders.clear();
   const Vec3 lo = m.bounds.lo, hi = m.bounds.hi;
   for (int i = 0; i < 60; ++i) {
-    m.spheres.push_back({{uniform(rng, lo.x(), hi.x()), uniform(rng, lo.y(), hi.y()), uniform(rng, lo.z(), hi.z())},
-                         uniform(rng, 0.2, 2.5)});
-    m.cylinders.push_back({{uniform(rng, lo.x(), hi.x()), uniform(rng, lo.y(), hi.y()), uniform(rng, lo.z(), hi.z() - 1)},
-                           uniform(rng, 0.2, 2.0), uniform(rng, 0.5, 8.0)});
+    m.spheres.push_back({{uniform_draw(rng, lo.x(), hi.x()), uniform_draw(rng, lo.y(), hi.y()), uniform_draw(rng, lo.z(), hi.z())},
+                         uniform_draw(rng, 0.2, 2.5)});
+    m.cylinders.push_back({{uniform_draw(rng, lo.x(), hi.x()), uniform_draw(rng, lo.y(), hi.y()), uniform_draw(rng, lo.z(), hi.z() - 1)},
+                           uniform_draw(rng, 0.2, 2.0), uniform_draw(rng, 0.5, 8.0)});
   }
   for (int i = 0; nested && i < 20; ++i) {
     const world::SphereObstacle& o = m.spheres[std::size_t(i)];
@@ -71,9 +72,9 @@ TEST(StaticRayScene, EveryRayMeetsWhatTestingEverySolidMeets) {
     Rng rng(100 + seed);
     const Box& b = arena->bounds();
     for (int k = 0; k < 1500; ++k) {
-      const Ray ray{{uniform(rng, b.lo.x(), b.hi.x()), uniform(rng, b.lo.y(), b.hi.y()), uniform(rng, b.lo.z(), b.hi.z())},
+      const Ray ray{{uniform_draw(rng, b.lo.x(), b.hi.x()), uniform_draw(rng, b.lo.y(), b.hi.y()), uniform_draw(rng, b.lo.z(), b.hi.z())},
                     random_unit(rng)};
-      const double range = uniform(rng, 2.0, 60.0);
+      const double range = uniform_draw(rng, 2.0, 60.0);
       const RayHit got = scene.cast(ray, range), want = cast_every_solid(*arena, ray, range);
       ++compared;
       if (got.target != want.target || got.index != want.index) {
@@ -110,7 +111,7 @@ TEST(StaticRayScene, DistancesToALoneSphereCylinderAndFaceAreAnalytic) {
     // The sphere from 8-15 m away, passing p < r from its centre.
     const Vec3 d = random_unit(rng);
     Vec3 n = d.cross(random_unit(rng)).normalized();
-    const double p = uniform(rng, 0.0, 1.49), L = uniform(rng, 3.0, 8.0);
+    const double p = uniform_draw(rng, 0.0, 1.49), L = uniform_draw(rng, 3.0, 8.0);
     const Ray to_sphere{Vec3(20, 10, 10) - L * d + p * n, d};
     if (cast_every_solid(*arena, to_sphere, 40).target != RayTarget::kSphere) continue;  // a face or the cylinder first
     const RayHit h = scene.cast(to_sphere, 40.0);
@@ -150,10 +151,10 @@ TEST(StaticRayScene, RaysThroughTheTerrainsEdgesReadTheDistanceInDoublePrecision
     const auto& f = mesh.faces[std::uniform_int_distribution<std::size_t>(0, mesh.faces.size() - 1)(rng)];
     const int e = int(k % 3);
     const Vec3 a = mesh.vertices[std::size_t(f[std::size_t(e)])], b = mesh.vertices[std::size_t(f[std::size_t((e + 1) % 3)])];
-    const Vec3 target = a + uniform(rng, 0.05, 0.95) * (b - a);
+    const Vec3 target = a + uniform_draw(rng, 0.05, 0.95) * (b - a);
     Vec3 d = random_unit(rng);
-    if (d.z() > -0.2) d.z() = -0.2 - uniform(rng, 0.0, 0.8), d.normalize();  // from above, as a sensor sees terrain
-    const double L = uniform(rng, 2.0, 12.0);
+    if (d.z() > -0.2) d.z() = -0.2 - uniform_draw(rng, 0.0, 0.8), d.normalize();  // from above, as a sensor sees terrain
+    const double L = uniform_draw(rng, 2.0, 12.0);
     const Ray ray{target - L * d, d};
     const RayHit h = scene.cast(ray, 40.0);
     if (h.target != RayTarget::kTriangle || std::abs(h.distance - L) > 1e-4) continue;  // something nearer
@@ -175,7 +176,7 @@ TEST(StaticRayScene, RaysCastTogetherMeetWhatEachMeetsAlone) {
     Rng rng(200 + seed);
     const Box& b = arena->bounds();
     const auto point = [&] {
-      return Vec3(uniform(rng, b.lo.x(), b.hi.x()), uniform(rng, b.lo.y(), b.hi.y()), uniform(rng, b.lo.z(), b.hi.z()));
+      return Vec3(uniform_draw(rng, b.lo.x(), b.hi.x()), uniform_draw(rng, b.lo.y(), b.hi.y()), uniform_draw(rng, b.lo.z(), b.hi.z()));
     };
     for (int s = 0; s < 400; ++s) {
       const std::size_t n = 1 + std::size_t(s) % 70;
@@ -187,7 +188,7 @@ TEST(StaticRayScene, RaysCastTogetherMeetWhatEachMeetsAlone) {
       }
       std::vector<Ray> rays;
       for (std::size_t k = 0; k < n; ++k) rays.push_back({shared ? origin : point(), random_unit(rng)});
-      const double range = uniform(rng, 2.0, 60.0);
+      const double range = uniform_draw(rng, 2.0, 60.0);
       std::vector<RayHit> together(n);
       scene.cast(rays, range, together);
       for (std::size_t k = 0; k < n; ++k) {

@@ -30,8 +30,8 @@ MoverSpec body(const Vec3& at, const Shape& shape, DynamicMotion::Touch touch) {
   return m;
 }
 
-const Shape kBall{Shape::Kind::kSphere, 0.5, 1.0, Vec3::Ones()};
-const Shape kCrate{Shape::Kind::kBox, 1.0, 1.0, Vec3(1.0, 1.0, 1.0)};
+const Shape kPushedBall{Shape::Kind::kSphere, 0.5, 1.0, Vec3::Ones()};
+const Shape kPushedCrate{Shape::Kind::kBox, 1.0, 1.0, Vec3(1.0, 1.0, 1.0)};
 
 // A hit of a resting ball by an agent driving at constant velocity. The ball's surface is met at `phase` of a
 // physics substep (0: on a substep boundary), in the last substep of a game step, after which the agent stands.
@@ -132,15 +132,15 @@ TEST(PushWorld, ABallMeetingARestingBallGainsNoEnergyAtAnyPhase) {
           spec.physics.rate_hz = rate;
           const Vec3 a0(10, 20, 20);
           const double gap = 1.3 + 0.1 * p * launch / rate;
-          for (const Vec3& at : {a0, Vec3(a0 + Vec3(2 * kBall.radius + gap, 0, 0) + offset)}) {
-            spec.movers.push_back(body(at, kBall, DynamicMotion::Touch::kPushable));
+          for (const Vec3& at : {a0, Vec3(a0 + Vec3(2 * kPushedBall.radius + gap, 0, 0) + offset)}) {
+            spec.movers.push_back(body(at, kPushedBall, DynamicMotion::Touch::kPushable));
             spec.movers.back().dynamic.restitution = e;
             spec.movers.back().dynamic.friction = 0.0;
           }
           const auto arena = Arena::build(spec);
           PushWorld w(arena->map(), arena->physics_shapes(), substeps);
-          Vec3 at = a0 - Vec3(2 * kBall.radius + 0.37 * v / rate + 3 * v * kDt, 0, 0);
-          w.add_agent(kBall.radius, at);
+          Vec3 at = a0 - Vec3(2 * kPushedBall.radius + 0.37 * v / rate + 3 * v * kDt, 0, 0);
+          w.add_agent(kPushedBall.radius, at);
           std::vector<Contact> touches;
           std::vector<Vec3> a, b;
           for (int k = 0; k < 20; ++k) {
@@ -180,7 +180,7 @@ TEST(PushWorld, ABallMeetingARestingBallGainsNoEnergyAtAnyPhase) {
 TEST(PushWorld, PushedCrateDeceleratesAtMuG) {
   for (const double mu : {0.2, 0.4}) {
     MapSpec spec = testing::empty_spec(Vec3(40, 10, 10), 0.5);
-    spec.movers.push_back(body(Vec3(6, 5, 0.9), kCrate, DynamicMotion::Touch::kPushable));
+    spec.movers.push_back(body(Vec3(6, 5, 0.9), kPushedCrate, DynamicMotion::Touch::kPushable));
     spec.movers.back().dynamic.friction = mu;
     const auto arena = Arena::build(spec);
     PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
@@ -224,7 +224,7 @@ TEST(PushWorld, PushedCrateDeceleratesAtMuG) {
 TEST(PushWorld, SolidBodyStopsTheAgentAndIsNotPushed) {
   MapSpec spec = testing::empty_spec(Vec3(40, 10, 10), 0.5);
   spec.physics.gravity = Vec3::Zero();
-  spec.movers.push_back(body(Vec3(8, 5, 5), kBall, DynamicMotion::Touch::kSolid));
+  spec.movers.push_back(body(Vec3(8, 5, 5), kPushedBall, DynamicMotion::Touch::kSolid));
   const auto arena = Arena::build(spec);
   PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
   w.add_agent(0.5, Vec3(5, 5, 5));
@@ -250,7 +250,7 @@ TEST(PushWorld, SolidBodyStopsTheAgentAndIsNotPushed) {
 TEST(PushWorld, AgentsThatTouchNothingLeaveTheBodiesAlone) {
   MapSpec spec = testing::empty_spec(Vec3(30, 30, 15), 0.5);
   for (int k = 0; k < 12; ++k) {
-    spec.movers.push_back(body(Vec3(10 + 1.5 * (k % 4), 10 + 1.5 * (k / 4), 3 + 0.7 * k), k % 2 ? kBall : kCrate,
+    spec.movers.push_back(body(Vec3(10 + 1.5 * (k % 4), 10 + 1.5 * (k / 4), 3 + 0.7 * k), k % 2 ? kPushedBall : kPushedCrate,
                                k % 3 ? DynamicMotion::Touch::kPushable : DynamicMotion::Touch::kSolid));
     spec.movers.back().dynamic.restitution = 0.4;
   }
@@ -279,7 +279,7 @@ TEST(PushWorld, AgentsThatTouchNothingLeaveTheBodiesAlone) {
 
 TEST(PushWorld, SameInputsSameBits) {
   MapSpec spec = testing::empty_spec(Vec3(30, 10, 10), 0.5);
-  for (int k = 0; k < 6; ++k) spec.movers.push_back(body(Vec3(8 + 2 * k, 5, 0.5), kBall, DynamicMotion::Touch::kPushable));
+  for (int k = 0; k < 6; ++k) spec.movers.push_back(body(Vec3(8 + 2 * k, 5, 0.5), kPushedBall, DynamicMotion::Touch::kPushable));
   const auto arena = Arena::build(spec);
   auto play = [&] {
     PushWorld w(arena->map(), arena->physics_shapes(), kSubsteps);
