@@ -19,9 +19,13 @@ if [[ "${1:-}" == "--sanitize" ]]; then
     # Benchmarks are timed, never checked: the sanitized build leaves them out and builds everything tested.
     # Warnings are the Release build's check (-Werror there); GCC 12 at -O1 with ASan warns falsely inside
     # <regex> (maybe-uninitialized), so here they stay warnings. -g1: line tables for the sanitizers' stack
-    # traces, without the variables' debug information that cost a quarter of the compile time.
+    # traces, without the variables' debug information that cost a quarter of the compile time. A unity build
+    # (CMake compiles each target's sources in batches of 8 as one unit): every header is parsed and every
+    # template instantiated once a batch, not once a file. The Release build stays file by file, which is what
+    # catches a file that misses an include.
     cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-          -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF >/dev/null
+          -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF \
+          -DCMAKE_UNITY_BUILD=ON >/dev/null
   fi
   cmake --build build-sanitize --parallel "$(nproc)" >&2
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
@@ -33,10 +37,10 @@ if [[ "${1:-}" == "--tsan" ]]; then
   shift
   tools/deps.sh  # these tests need nothing of the suite's extras (no browser, no Python)
   if [[ ! -f build-tsan/CMakeCache.txt ]]; then
-    # As --sanitize: no benchmarks, warnings not errors. The whole library is instrumented (a race inside it
-    # shows only then), but only the programs of target peg3d_thread_tests are built.
+    # As --sanitize: no benchmarks, warnings not errors, a unity build. The whole library is instrumented (a race
+    # inside it shows only then), but only the programs of target peg3d_thread_tests are built.
     cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-          -DPEG3D_SANITIZE=thread -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF >/dev/null
+          -DPEG3D_SANITIZE=thread -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
   fi
   cmake --build build-tsan --parallel "$(nproc)" --target peg3d_thread_tests >&2
   # The first race ends the program (status 66), so its test fails.
