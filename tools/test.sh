@@ -61,13 +61,15 @@ if [[ "${1:-}" == "--python-versions" ]]; then
     else  # the lower bounds of pyproject.toml's dependencies, exactly
       pins=($(sed -n 's/^dependencies = \[\(.*\)\]/\1/p' pyproject.toml | tr -d '" ' | tr , '\n' | sed 's/>=/==/' | tr '\n' ' '))
     fi
-    "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$wheel" pytest hypothesis cloudpickle \
-        "${pins[@]}" >&2
+    "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$wheel" pytest pytest-xdist hypothesis \
+        cloudpickle "${pins[@]}" >&2
     "$venv/bin/python" -c 'import numpy, gymnasium, pettingzoo; print("'"$which"': numpy", numpy.__version__,
         "gymnasium", gymnasium.__version__, "pettingzoo", pettingzoo.__version__)'
     if [[ $which == newest ]]; then
-      # The installed package (no PYTHONPATH), run from the tests' folder as CTest runs them.
-      (cd tests/python && env -u PYTHONPATH -u PEG3D_DATA_DIR "../../$venv/bin/python" -m pytest -q -p no:cacheprovider .)
+      # The installed package (no PYTHONPATH), run from the tests' folder as CTest runs them; on every core
+      # (pytest-xdist), as CTest runs its files side by side.
+      (cd tests/python && env -u PYTHONPATH -u PEG3D_DATA_DIR "../../$venv/bin/python" -m pytest -q -p no:cacheprovider \
+          -n "$(nproc)" .)
     else
       (cd build && env -u PYTHONPATH -u PEG3D_DATA_DIR "venv-oldest/bin/python" ../tests/python/check_versions.py)
     fi
