@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <random>
 #include <span>
 #include <string>
@@ -26,6 +25,7 @@
 #include "game/episode.hpp"
 #include "game/observation.hpp"
 #include "players/saved_policy.hpp"
+#include "support/numbers.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::env {
@@ -37,7 +37,8 @@ using testing::team;
 const Vec3 kSize(35, 35, 20);
 const world::SphereObstacle kRock{{12, 20, 10}, 1.5};
 constexpr int kLimitSteps = 100;  // time_limit 10 s at dt 0.1 s
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using testing::kInf;
+using testing::kNaN;
 
 // Three 2 v 2 starts (agents 0, 1 pursuers; 2, 3 evaders) whose ends follow from geometry when the pursuers fly
 // straight (zero commands from their chase headings, each facing its nearest evader) at standing evaders.
@@ -674,7 +675,7 @@ TEST(EnvBatch, AMixtureIsRefusedNamingTheMemberOrWeightAtFault) {
   };
   EXPECT_EQ(refused({{"flee", 1.0}, {"random", -1.0}}), "opponents.evader.1.weight");
   EXPECT_EQ(refused({{"flee", 1.0}, {"random", kNaN}}), "opponents.evader.1.weight");
-  EXPECT_EQ(refused({{"flee", 1.0}, {"random", std::numeric_limits<double>::infinity()}}), "opponents.evader.1.weight");
+  EXPECT_EQ(refused({{"flee", 1.0}, {"random", kInf}}), "opponents.evader.1.weight");
   EXPECT_EQ(refused({{"flee", 0.0}, {"random", 0.0}}), "opponents.evader");
   EXPECT_EQ(refused({{"flee", 1e308}, {"random", 1e308}}), "opponents.evader");  // the total overflows
   EXPECT_EQ(refused({{"flee", 1.0}, {"no-such-player", 1.0}}), "opponents.evader.1");

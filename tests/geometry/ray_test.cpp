@@ -7,9 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <random>
 
+#include "support/draws.hpp"
+#include "support/numbers.hpp"
 #include "test_vectors.hpp"
 
 namespace peg3d {
@@ -28,22 +29,23 @@ Vec3 perpendicular(const Vec3& d, Rng& rng) {
   return n.normalized();
 }
 
-double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+using testing::kInf;
+using testing::uniform_draw;
 
 TEST(RaySphere, EntersAtTheAnalyticDistanceForAnyOffsetAndAngle) {
   Rng rng(11);
   for (int k = 0; k < 2000; ++k) {
     const Vec3 c = random_point(rng);
-    const double r = uniform(rng, 0.05, 5.0), L = uniform(rng, r + 0.01, 40.0), p = uniform(rng, 0.0, r);
+    const double r = uniform_draw(rng, 0.05, 5.0), L = uniform_draw(rng, r + 0.01, 40.0), p = uniform_draw(rng, 0.0, r);
     const Vec3 d = random_unit(rng), n = perpendicular(d, rng);
     const Ray ray{c - L * d + p * n, d};  // passes p from the centre, L before its foot
     const auto t = ray_sphere(ray, c, r, 100.0);
     ASSERT_TRUE(t) << k;
     EXPECT_NEAR(*t, L - std::sqrt(r * r - p * p), kTol) << k;
     EXPECT_FALSE(ray_sphere({c + L * d + p * n, d}, c, r, 100.0)) << "behind, " << k;
-    EXPECT_FALSE(ray_sphere({c - L * d + uniform(rng, 1.0 + 1e-6, 3.0) * r * n, d}, c, r, 100.0)) << "beside, " << k;
+    EXPECT_FALSE(ray_sphere({c - L * d + uniform_draw(rng, 1.0 + 1e-6, 3.0) * r * n, d}, c, r, 100.0)) << "beside, " << k;
     EXPECT_FALSE(ray_sphere(ray, c, r, *t - 1e-6)) << "beyond range, " << k;
-    EXPECT_EQ(ray_sphere({c + uniform(rng, 0.0, 0.999) * r * random_unit(rng), d}, c, r, 100.0), 0.0) << "inside";
+    EXPECT_EQ(ray_sphere({c + uniform_draw(rng, 0.0, 0.999) * r * random_unit(rng), d}, c, r, 100.0), 0.0) << "inside";
   }
 }
 
@@ -60,17 +62,17 @@ TEST(RayUprightCylinder, EntersTheSideAtTheAnalyticDistance) {
   Rng rng(12);
   for (int k = 0; k < 2000; ++k) {
     const Vec3 base = random_point(rng);
-    const double r = uniform(rng, 0.1, 4.0), h = uniform(rng, 0.5, 15.0);
-    const double az = uniform(rng, -M_PI, M_PI), L = uniform(rng, r + 0.01, 30.0), p = uniform(rng, 0.0, r);
+    const double r = uniform_draw(rng, 0.1, 4.0), h = uniform_draw(rng, 0.5, 15.0);
+    const double az = uniform_draw(rng, -M_PI, M_PI), L = uniform_draw(rng, r + 0.01, 30.0), p = uniform_draw(rng, 0.0, r);
     const Vec3 d(std::cos(az), std::sin(az), 0.0), n(-std::sin(az), std::cos(az), 0.0);
-    const double z = uniform(rng, 0.0, h);
+    const double z = uniform_draw(rng, 0.0, h);
     const Vec3 foot = base + Vec3(0, 0, z) + p * n;
     const auto t = ray_upright_cylinder({foot - L * d, d}, base, r, h, 100.0);
     ASSERT_TRUE(t) << k;
     EXPECT_NEAR(*t, L - std::sqrt(r * r - p * p), kTol) << k;
     // Tilted by an elevation e, the ray meets the side at the same horizontal run when it is still between the
     // caps there.
-    const double e = uniform(rng, -0.6, 0.6), run = L - std::sqrt(r * r - p * p);
+    const double e = uniform_draw(rng, -0.6, 0.6), run = L - std::sqrt(r * r - p * p);
     const Vec3 de = (std::cos(e) * d + Vec3(0, 0, std::sin(e))).normalized();
     const double dz_at_side = run * std::tan(e);
     const Vec3 origin = foot - L * d - dz_at_side * Vec3::UnitZ();
@@ -87,7 +89,7 @@ TEST(RayUprightCylinder, EntersTheSideAtTheAnalyticDistance) {
       ASSERT_TRUE(te) << k;
       EXPECT_NEAR(*te, expected, kTol) << k;
     }
-    EXPECT_FALSE(ray_upright_cylinder({foot - L * d + uniform(rng, 1.0 + 1e-6, 2.0) * r * n - p * n, d}, base, r, h, 100.0))
+    EXPECT_FALSE(ray_upright_cylinder({foot - L * d + uniform_draw(rng, 1.0 + 1e-6, 2.0) * r * n - p * n, d}, base, r, h, 100.0))
         << "beside, " << k;
     EXPECT_FALSE(ray_upright_cylinder({foot - L * d + Vec3(0, 0, h + 0.01), d}, base, r, h, 100.0)) << "above, " << k;
   }
@@ -97,15 +99,15 @@ TEST(RayUprightCylinder, EntersTheCapsAtTheAnalyticDistance) {
   Rng rng(13);
   for (int k = 0; k < 2000; ++k) {
     const Vec3 base = random_point(rng);
-    const double r = uniform(rng, 0.1, 4.0), h = uniform(rng, 0.5, 15.0);
+    const double r = uniform_draw(rng, 0.1, 4.0), h = uniform_draw(rng, 0.5, 15.0);
     // A point of the top (or bottom) disc, and a ray reaching it from above (below) at a polar angle of up to
     // 60 degrees; over that short a height above the cap it cannot have met the side first when the point
     // is well inside.
-    const double rho = uniform(rng, 0.0, 0.5 * r), phi = uniform(rng, -M_PI, M_PI);
+    const double rho = uniform_draw(rng, 0.0, 0.5 * r), phi = uniform_draw(rng, -M_PI, M_PI);
     const bool top = k % 2 == 0;
     const Vec3 on_cap = base + Vec3(rho * std::cos(phi), rho * std::sin(phi), top ? h : 0.0);
-    const double polar = uniform(rng, 0.0, M_PI / 3.0), az = uniform(rng, -M_PI, M_PI);
-    const double lift = uniform(rng, 0.01, 0.25 * r);  // height of the origin over the cap's plane
+    const double polar = uniform_draw(rng, 0.0, M_PI / 3.0), az = uniform_draw(rng, -M_PI, M_PI);
+    const double lift = uniform_draw(rng, 0.01, 0.25 * r);  // height of the origin over the cap's plane
     Vec3 d(std::sin(polar) * std::cos(az), std::sin(polar) * std::sin(az), top ? -std::cos(polar) : std::cos(polar));
     const double t_expected = lift / std::cos(polar);
     const Vec3 origin = on_cap - t_expected * d;
@@ -126,14 +128,13 @@ TEST(RayUprightCylinder, EntersTheCapsAtTheAnalyticDistance) {
 // against the analytic ones above, through the ranged functions.)
 TEST(RayEntry, AgreesWithTheRangedTestsToTheBit) {
   Rng rng(17);
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   int met = 0, missed = 0;
   for (int k = 0; k < 20000; ++k) {
     const Vec3 origin = random_point(rng, 10.0), centre = random_point(rng, 10.0);
     // Half the rays aimed near the solid, half anywhere.
     const Vec3 aim = centre + random_point(rng, 3.0) - origin;
     const Ray ray{origin, k % 2 == 0 && aim.norm() > 1e-6 ? Vec3(aim.normalized()) : random_unit(rng)};
-    const double r = uniform(rng, 0.1, 5.0), h = uniform(rng, 0.5, 15.0), range = uniform(rng, 1.0, 40.0);
+    const double r = uniform_draw(rng, 0.1, 5.0), h = uniform_draw(rng, 0.5, 15.0), range = uniform_draw(rng, 1.0, 40.0);
     const auto sphere = ray_sphere(ray, centre, r, range);
     const double sphere_entry = ray_sphere_entry(ray, centre, r);
     EXPECT_EQ(sphere.value_or(kInf), sphere_entry <= range ? sphere_entry : kInf) << k;
@@ -158,17 +159,17 @@ TEST(RayBox, EntersAFaceAtTheAnalyticDistance) {
   Rng rng(14);
   for (int k = 0; k < 2000; ++k) {
     const Vec3 lo = random_point(rng);
-    const Vec3 hi = lo + Vec3(uniform(rng, 0.1, 8), uniform(rng, 0.1, 8), uniform(rng, 0.1, 8));
+    const Vec3 hi = lo + Vec3(uniform_draw(rng, 0.1, 8), uniform_draw(rng, 0.1, 8), uniform_draw(rng, 0.1, 8));
     const int axis = k % 3;
     const bool upper = (k / 3) % 2 == 0;
     // A point of one face, reached from outside at up to 70 degrees from its normal, from a short way off.
     Vec3 on_face;
-    for (int j = 0; j < 3; ++j) on_face[j] = uniform(rng, lo[j] + 0.3 * (hi[j] - lo[j]), hi[j] - 0.3 * (hi[j] - lo[j]));
+    for (int j = 0; j < 3; ++j) on_face[j] = uniform_draw(rng, lo[j] + 0.3 * (hi[j] - lo[j]), hi[j] - 0.3 * (hi[j] - lo[j]));
     on_face[axis] = upper ? hi[axis] : lo[axis];
     Vec3 d = -random_unit(rng);
     if ((upper && d[axis] > 0) || (!upper && d[axis] < 0)) d[axis] = -d[axis];
     if (std::abs(d[axis]) < 0.35) continue;
-    const double gap = uniform(rng, 1e-3, 0.25 * std::min({hi.x() - lo.x(), hi.y() - lo.y(), hi.z() - lo.z()}));
+    const double gap = uniform_draw(rng, 1e-3, 0.25 * std::min({hi.x() - lo.x(), hi.y() - lo.y(), hi.z() - lo.z()}));
     const double t_expected = gap / std::abs(d[axis]);
     const auto t = ray_box({on_face - t_expected * d, d}, lo, hi, 100.0);
     ASSERT_TRUE(t) << k;
@@ -188,12 +189,12 @@ TEST(RayTriangle, MeetsAnyPointOfTheTriangleFromEitherSide) {
     const Vec3 a = random_point(rng), b = a + random_point(rng, 5.0), c = a + random_point(rng, 5.0);
     const Vec3 normal = (b - a).cross(c - a);
     if (normal.norm() < 1.0) continue;  // a sliver: its plane is ill-defined to 1e-9
-    double u = uniform(rng, 0, 1), v = uniform(rng, 0, 1);
+    double u = uniform_draw(rng, 0, 1), v = uniform_draw(rng, 0, 1);
     if (u + v > 1) u = 1 - u, v = 1 - v;
     const Vec3 p = a + u * (b - a) + v * (c - a);
     Vec3 d = random_unit(rng);
     if (std::abs(d.dot(normal.normalized())) < 0.1) continue;  // nearly edge-on
-    const double L = uniform(rng, 0.0, 30.0);
+    const double L = uniform_draw(rng, 0.0, 30.0);
     const auto t = ray_triangle({p - L * d, d}, a, b, c, 100.0);
     ASSERT_TRUE(t) << k;
     EXPECT_NEAR(*t, L, kTol * (1.0 + L)) << k;
@@ -216,10 +217,10 @@ TEST(RayShape, PosedShapesAgreeWithTheirSignedDistancePointByPoint) {
   for (int k = 0; k < 600; ++k) {
     Shape s;
     s.kind = static_cast<Shape::Kind>(k % 3);
-    s.radius = uniform(rng, 0.2, 2.0);
-    s.height = uniform(rng, 0.4, 4.0);
-    s.size = Vec3(uniform(rng, 0.3, 3), uniform(rng, 0.3, 3), uniform(rng, 0.3, 3));
-    const Pose pose{random_point(rng, 5.0), Quat(Eigen::AngleAxisd(uniform(rng, 0, M_PI), random_unit(rng)))};
+    s.radius = uniform_draw(rng, 0.2, 2.0);
+    s.height = uniform_draw(rng, 0.4, 4.0);
+    s.size = Vec3(uniform_draw(rng, 0.3, 3), uniform_draw(rng, 0.3, 3), uniform_draw(rng, 0.3, 3));
+    const Pose pose{random_point(rng, 5.0), Quat(Eigen::AngleAxisd(uniform_draw(rng, 0, M_PI), random_unit(rng)))};
     Vec3 origin;
     do origin = random_point(rng, 10.0);
     while (signed_distance(s, pose, origin) <= 0.05);
@@ -244,7 +245,7 @@ TEST(RayBoxExit, LeavesThroughTheNearestFaceAhead) {
   Rng rng(17);
   const Vec3 lo(0, 0, 0), hi(35, 35, 20);
   for (int k = 0; k < 2000; ++k) {
-    const Vec3 o(uniform(rng, 0, 35), uniform(rng, 0, 35), uniform(rng, 0, 20));
+    const Vec3 o(uniform_draw(rng, 0, 35), uniform_draw(rng, 0, 35), uniform_draw(rng, 0, 20));
     const Vec3 d = random_unit(rng);
     const BoxExit exit = ray_box_exit({o, d}, lo, hi);
     const double t = exit.distance;

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <limits>
 
 #include "core/error.hpp"
 #include "game/game_config.hpp"

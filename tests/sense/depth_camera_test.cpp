@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/random.hpp"
-#include "world/world_test_support.hpp"
 #include "support/numbers.hpp"
+#include "world/world_test_support.hpp"
 
 namespace peg3d::sense {
 namespace {

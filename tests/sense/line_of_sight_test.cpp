@@ -11,9 +11,9 @@
 #include <random>
 
 #include "core/random.hpp"
+#include "support/draws.hpp"
 #include "world/arena.hpp"
 #include "world/world_test_support.hpp"
-#include "support/draws.hpp"
 
 namespace peg3d::sense {
 namespace {

@@ -13,8 +13,8 @@
 #include <random>
 
 #include "core/random.hpp"
-#include "world/map/map_loader.hpp"
 #include "support/draws.hpp"
+#include "world/map/map_loader.hpp"
 
 namespace peg3d::sense {
 namespace {

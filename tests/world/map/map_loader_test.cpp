@@ -10,13 +10,14 @@
 #include "world/map/map_loader.hpp"
 #include "world/map/map_spec.hpp"
 #include "world/map/obstacle_geometry.hpp"
+#include "support/numbers.hpp"
 #include "world/map/random_obstacles.hpp"
 #include "world_test_support.hpp"
 
 namespace peg3d::world {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
+using peg3d::testing::kDeg;
 
 TEST(WorldMapLoader, MinimalMapTakesDefaults) {
   const auto file = testing::data_dir() / "maps" / "minimal.yaml";
