@@ -12,21 +12,25 @@
 #                                          (tests/python/check_versions.py)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+# configure_sanitized DIR SANITIZERS: the sanitized builds' configuration (once per folder). Benchmarks are timed,
+# never checked: they are left out. Warnings are the Release build's check (-Werror there); GCC 12 at -O1 with
+# ASan warns falsely inside <regex> (maybe-uninitialized), so here they stay warnings. -g1: line tables for the
+# sanitizers' stack traces, without the variables' debug information that cost a quarter of the compile time. A
+# unity build (CMake compiles each target's sources eight to a unit): every header is parsed and every template
+# instantiated once a unit, not once a file; a developer's Release build/ compiles file by file, which is what
+# catches a file that misses an include.
+configure_sanitized() {
+  if [[ ! -f $1/CMakeCache.txt ]]; then
+    cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+          -DPEG3D_SANITIZE="$2" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
+  fi
+}
+
 if [[ "${1:-}" == "--sanitize" ]]; then
   shift
   tools/deps.sh --test
-  if [[ ! -f build-sanitize/CMakeCache.txt ]]; then
-    # Benchmarks are timed, never checked: the sanitized build leaves them out and builds everything tested.
-    # Warnings are the Release build's check (-Werror there); GCC 12 at -O1 with ASan warns falsely inside
-    # <regex> (maybe-uninitialized), so here they stay warnings. -g1: line tables for the sanitizers' stack
-    # traces, without the variables' debug information that cost a quarter of the compile time. A unity build
-    # (CMake compiles each target's sources in batches of 8 as one unit): every header is parsed and every
-    # template instantiated once a batch, not once a file. The Release build stays file by file, which is what
-    # catches a file that misses an include.
-    cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-          -DPEG3D_SANITIZE="address;undefined" -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF \
-          -DCMAKE_UNITY_BUILD=ON >/dev/null
-  fi
+  configure_sanitized build-sanitize "address;undefined"  # everything tested is built
   cmake --build build-sanitize --parallel "$(nproc)" >&2
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -36,12 +40,9 @@ fi
 if [[ "${1:-}" == "--tsan" ]]; then
   shift
   tools/deps.sh  # these tests need nothing of the suite's extras (no browser, no Python)
-  if [[ ! -f build-tsan/CMakeCache.txt ]]; then
-    # As --sanitize: no benchmarks, warnings not errors, a unity build. The whole library is instrumented (a race
-    # inside it shows only then), but only the programs of target peg3d_thread_tests are built.
-    cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-          -DPEG3D_SANITIZE=thread -DPEG3D_BUILD_BENCHMARKS=OFF -DPEG3D_WERROR=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
-  fi
+  # The whole library is instrumented (a race inside it shows only then), but only the programs of target
+  # peg3d_thread_tests are built.
+  configure_sanitized build-tsan thread
   cmake --build build-tsan --parallel "$(nproc)" --target peg3d_thread_tests >&2
   # The first race ends the program (status 66), so its test fails.
   export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"
