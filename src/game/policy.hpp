@@ -51,6 +51,10 @@ struct AgentView {
   int index = 0;             ///< the agent's index in the game (pursuers first, then evaders)
   int opponent = -1;         ///< index of the opponent `other` describes
   KinematicState self;
+  /// Its team as it is now, itself included, in the order of their ranks (pursuers or evaders in index order):
+  /// teammates share where they are. Valid until the state's next step or reset.
+  std::span<const KinematicState> team;
+  int rank = 0;              ///< its place in `team`
   /// The opponent it plays against (game/sim.hpp, choose_opponent): its state, or with limited sight
   /// (AgentConfig::sight) the agent's estimate of it (SimState::known_state).
   KinematicState other;

@@ -120,6 +120,7 @@ void reset(const Sim& sim, SimState& st, const world::Scenario& scenario, std::u
   for (int i = 0; i < n; ++i) scan_all(sim, st, i);
   prepare_sight(sim, st);
   look(sim, st);
+  snapshot_teams(st);
   for (int i = 0; i < n; ++i) {
     AgentState& a = st.agents[std::size_t(i)];
     a.opponent = choose_opponent(st, i, g.team.opponent_rule(a.role));

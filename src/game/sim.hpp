@@ -244,6 +244,9 @@ class SimState {
   /// Whether agent i sees opponent j now (always with full information).
   bool sees(int i, int j) const { return !sight_limited(i) || sight.visible[std::size_t(i * agent_count() + j)] != 0; }
 
+  /// Every agent's kinematics at its last view, in index order: the views' `team` spans read it.
+  std::vector<KinematicState> team_states;
+
   /// What every agent's view writes its observation with (game/observation.hpp), made by the first reset.
   std::unique_ptr<ObservationWriter> observation_writer;
 

@@ -308,6 +308,7 @@ void observe(const Sim& sim, SimState& st) {
     st.moving_field->set_time(*sim.movers(), st.time);
   }
   look(sim, st);
+  snapshot_teams(st);
   const bool one_on_one = st.agent_count() == 2;
   for (int i = 0; i < st.agent_count(); ++i) {
     AgentState& a = st.agents[std::size_t(i)];

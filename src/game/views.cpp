@@ -38,6 +38,11 @@ double own_map_obstacle_distance(const Sim& sim, const SimState& st, int i, cons
       .obstacle.distance;
 }
 
+void snapshot_teams(SimState& st) {
+  st.team_states.resize(st.agents.size());
+  for (std::size_t i = 0; i < st.agents.size(); ++i) st.team_states[i] = st.agents[i].kinematics;
+}
+
 void update_view(const Sim& sim, SimState& st, int i) {
   AgentState& a = st.agents[std::size_t(i)];
   const AgentState& o = st.agents[std::size_t(a.opponent)];
@@ -46,6 +51,10 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.index = i;
   v.opponent = a.opponent;
   v.self = a.kinematics;
+  v.rank = a.rank;
+  const std::size_t first = a.role == Role::kPursuer ? 0 : std::size_t(st.pursuers);
+  const std::size_t size = a.role == Role::kPursuer ? std::size_t(st.pursuers) : st.agents.size() - first;
+  v.team = std::span<const KinematicState>(st.team_states).subspan(first, size);
   // With limited sight, the opponent as the agent knows it (SimState::known_state), and how it knows it.
   v.other = st.known_state(i, a.opponent);
   v.other_visible = st.sees(i, a.opponent);

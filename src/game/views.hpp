@@ -46,6 +46,9 @@ class StateProbe final : public ObstacleProbe {
   int hint_;
 };
 
+/// Takes every agent's kinematics for the views' `team` spans: before the views of a reset or a step are rebuilt.
+void snapshot_teams(SimState& state);
+
 /// Rebuilds agent i's view from its position and its opponent's state (its `opponent` must be set).
 void update_view(const Sim& sim, SimState& state, int i);
 

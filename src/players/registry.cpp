@@ -26,6 +26,11 @@ constexpr PlayerInfo kPlayers[] = {
      [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
        return std::make_unique<ProportionalNavigation>(c.pn_gain);
      }},
+    {"voronoi", kPursuers, 0, kNeedsNothing,
+     "a team shrinks the evader's Voronoi cell: each heads for the centre of the face it shares with it, else pn",
+     [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
+       return std::make_unique<VoronoiPursuer>(c.pn_gain);
+     }},
     {"apollonius", kPursuers, kPursuers, kNeedsNothing, "aims at the Apollonius interception point", plain<ApolloniusInterceptor>},
     {"flee", kEvaders, kEvaders, kNeedsNothing, "flees along the line of sight, repelled by walls and obstacles",
      plain<FleeLineOfSight>},

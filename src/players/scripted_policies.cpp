@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "geometry/apollonius.hpp"
+#include "geometry/plane_section.hpp"
 
 namespace peg3d::players {
 
@@ -72,6 +73,25 @@ Steering ApolloniusInterceptor::act(const game::AgentView& view) {
     if (x) return steer_toward(view, view.arena.clamp(*x) - p);
   }
   return steer_toward(view, e - p);
+}
+
+Steering VoronoiPursuer::act(const game::AgentView& view) {
+  const Vec3& e = view.other.position;
+  const Vec3& p = view.self.position;
+  if (view.team.size() < 2 || (e - p).norm() < kVoronoiChase || view.other_age > kVoronoiSightAge) return chase_.act(view);
+  // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:
+  // x . (q - e) <= (|q|^2 - |e|^2) / 2.
+  cuts_.clear();
+  for (std::size_t k = 0; k < view.team.size(); ++k) {
+    const Vec3& q = view.team[k].position;
+    const double apart = (q - e).norm();
+    if (int(k) == view.rank || apart == 0.0) continue;
+    cuts_.push_back({(q - e) / apart, 0.5 * (q.squaredNorm() - e.squaredNorm()) / apart});
+  }
+  const Vec3 normal = (p - e).normalized();
+  plane_section(0.5 * (p + e), normal, view.arena, cuts_, face_, scratch_);
+  if (face_.empty()) return chase_.act(view);
+  return steer_toward(view, polygon_centroid(face_, normal) - p);
 }
 
 Steering FleeLineOfSight::act(const game::AgentView& view) {

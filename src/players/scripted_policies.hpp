@@ -3,8 +3,10 @@
 // direction and requests the heading change towards it (the game clamps it to the steering bound).
 
 #include <random>
+#include <vector>
 
 #include "core/random.hpp"
+#include "geometry/half_spaces.hpp"
 #include "game/policy.hpp"
 
 namespace peg3d::players {
@@ -33,6 +35,31 @@ class ProportionalNavigation final : public game::Policy {
 class ApolloniusInterceptor final : public game::Policy {
  public:
   Steering act(const game::AgentView& view) override;
+};
+
+/// m: within this distance of the evader a VoronoiPursuer chases it (chosen among 1, 2, 4 and 8 m in OPEN's
+/// scenarios, docs/learning.md).
+inline constexpr double kVoronoiChase = 4.0;
+/// s: a VoronoiPursuer whose team's sighting of the evader is older than this chases the estimate, as pn does: the
+/// cell of a guessed position is a guess.
+inline constexpr double kVoronoiSightAge = 1.0;
+
+/// Voronoi pursuit for a team (Zhou, Zhang, Tomlin and Hoffmann, "Cooperative pursuit with Voronoi partitions",
+/// Automatica 2016): the evader's Voronoi cell among the team is the region it reaches before any pursuer of equal
+/// speed, and a pursuer whose cell borders it heads for the centroid of their shared face, which shrinks that
+/// cell fastest; a pursuer with no such face, within `kVoronoiChase` of the evader, or of a team that has not seen
+/// the evader for `kVoronoiSightAge`, pursues by proportional navigation. Obstacles are not in the cell. The face
+/// is the bisector plane of the two clipped by the arena and by the other pursuers' bisectors (exactly, a convex
+/// polygon: geometry/plane_section.hpp).
+class VoronoiPursuer final : public game::Policy {
+ public:
+  explicit VoronoiPursuer(double gain) : chase_(gain) {}
+  Steering act(const game::AgentView& view) override;
+
+ private:
+  ProportionalNavigation chase_;
+  std::vector<HalfSpace> cuts_;         // scratch: the other pursuers' bisectors
+  std::vector<Vec3> face_, scratch_;    // scratch: the face's corners
 };
 
 /// Flee along the line of sight, away from the pursuer, pushed off the arena boundary and the nearest

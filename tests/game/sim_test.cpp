@@ -295,6 +295,27 @@ TEST(Sim, OpponentsAreTheNearestOrTheAssignedOne) {
   EXPECT_EQ(observe(st2, 1).other.position, Vec3(30, 30, 10));
 }
 
+TEST(Sim, AViewsTeamIsItsRolesAgentsAsTheyAreNowInRankOrder) {
+  const auto s = team("3v2", {{5, 10, 10}, {5, 20, 10}, {5, 30, 10}}, {{25, 10, 10}, {25, 30, 10}});
+  const Sim sim(make_arena(kSize, {}, {s}), preset("peg3d"));
+  SimState st(sim);
+  reset(sim, st, s, 3);
+  for (int k = 0; k < 4; ++k) {
+    for (int i = 0; i < st.agent_count(); ++i) {
+      const AgentView& v = st.agents[std::size_t(i)].view;
+      const int first = i < st.pursuers ? 0 : st.pursuers;
+      ASSERT_EQ(int(v.team.size()), i < st.pursuers ? 3 : 2);
+      EXPECT_EQ(v.rank, i - first);
+      for (std::size_t m = 0; m < v.team.size(); ++m) {
+        EXPECT_EQ(v.team[m].position, st.agents[std::size_t(first) + m].kinematics.position);
+        EXPECT_EQ(v.team[m].heading.alpha, st.agents[std::size_t(first) + m].kinematics.heading.alpha);
+      }
+    }
+    const std::vector<Steering> turn(st.agents.size(), Steering{0.2, -0.1});
+    step(sim, st, turn);
+  }
+}
+
 TEST(Sim, AgentsCollideWhenConfiguredAndPassThroughOtherwise) {
   // Capture only at 0.1 m, radii 0.25 m: a pursuer closing on a standing evader from 5 m touches it after
   // 4.5 m, at 4.5 / 1.1 s, when agents collide; otherwise it captures at 5 - 0.11 k <= 0.1, k = 45.

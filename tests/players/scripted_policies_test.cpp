@@ -1,5 +1,10 @@
 #include "players/scripted_policies.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "geometry/apollonius.hpp"
@@ -45,6 +50,91 @@ TEST(ScriptedPolicies, ProportionalNavigationTurnsWithTheLineOfSight) {
   // A target behind gets pure pursuit.
   const AgentView behind = view_of({{10, 10, 10}, {0.0, kPi / 2}}, {{0, 10, 10}, {}}, 1.1, 1.0);
   EXPECT_NEAR(std::abs(pn.act(behind).d_alpha), kPi, 1e-12);
+}
+
+// The area centroid of the polygon in which the plane n.x = c cuts the box: its corners are where the box's 12
+// edges cross the plane, in order of angle about their mean.
+Vec3 cross_section_centroid(const Box& box, const Vec3& n, double c) {
+  std::vector<Vec3> corners;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int i = 0; i < 4; ++i) {
+      Vec3 a = box.lo, b = box.lo;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      a[u] = b[u] = (i & 1) ? box.hi[u] : box.lo[u];
+      a[w] = b[w] = (i & 2) ? box.hi[w] : box.lo[w];
+      b[axis] = box.hi[axis];
+      const double da = n.dot(a) - c, db = n.dot(b) - c;
+      if ((da < 0) != (db < 0)) corners.push_back(a + (da / (da - db)) * (b - a));
+    }
+  }
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& x : corners) mean += x / double(corners.size());
+  const auto [u, w] = perpendicular_frame(n);
+  std::sort(corners.begin(), corners.end(), [&](const Vec3& a, const Vec3& b) {
+    return std::atan2((a - mean).dot(w), (a - mean).dot(u)) < std::atan2((b - mean).dot(w), (b - mean).dot(u));
+  });
+  Vec3 sum = Vec3::Zero();
+  double area = 0.0;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Vec3& a = corners[i];
+    const Vec3& b = corners[(i + 1) % corners.size()];
+    const double t = 0.5 * (a - mean).cross(b - mean).dot(n);
+    sum += t * (mean + a + b) / 3.0;
+    area += t;
+  }
+  return sum / area;
+}
+
+// A team of four whose other three stand far outside the arena (their bisectors with the evader miss it).
+AgentView voronoi_view(const Vec3& p, const Vec3& e, std::vector<KinematicState>& team) {
+  team = {{{-500, 17, 10}, {}}, {p, {0.3, 1.2}}, {{600, 17, 10}, {}}, {{17, 900, 10}, {}}};
+  AgentView v = view_of(team[1], {e, {0.5, 1.4}}, 1.0, 1.3);
+  v.team = team;
+  v.rank = 1;
+  return v;
+}
+
+TEST(ScriptedPolicies, VoronoiHeadsForTheCentroidOfItsFaceOfTheEvadersCell) {
+  // With no other pursuer's bisector in the arena, the face is the whole cross-section of the arena by the
+  // bisector plane of pursuer and evader: the pursuer heads for its centroid.
+  std::mt19937_64 rng(52);
+  std::uniform_real_distribution<double> x(1.0, 34.0), z(1.0, 19.0);
+  VoronoiPursuer voronoi(3.0);
+  int tried = 0;
+  while (tried < 200) {
+    const Vec3 p(x(rng), x(rng), z(rng)), e(x(rng), x(rng), z(rng));
+    if ((p - e).norm() < kVoronoiChase + 1.0) continue;
+    ++tried;
+    std::vector<KinematicState> team;
+    const AgentView v = voronoi_view(p, e, team);
+    const Vec3 n = (p - e).normalized();
+    const Vec3 centroid = cross_section_centroid(v.arena, n, n.dot(0.5 * (p + e)));
+    EXPECT_LT((after(v, voronoi.act(v)) - (centroid - p).normalized()).norm(), 1e-9) << p.transpose() << " " << e.transpose();
+  }
+}
+
+TEST(ScriptedPolicies, VoronoiChasesByProportionalNavigationWhenItHasNoFaceIsNearOrHasLostTheEvader) {
+  VoronoiPursuer voronoi(3.0);
+  ProportionalNavigation pn(3.0);
+  auto same = [&](const AgentView& v) {
+    const Steering a = voronoi.act(v), b = pn.act(v);
+    return a.d_alpha == b.d_alpha && a.d_theta == b.d_theta;
+  };
+  std::vector<KinematicState> team;
+  AgentView v = voronoi_view({8, 17.5, 10}, {17.5, 17.5, 10}, team);
+  EXPECT_FALSE(same(v));  // its face: the plane x = 12.75
+  team[3].position = {16, 17.5, 10};  // a teammate nearer the evader on the same side: every point of x = 12.75 is its
+  EXPECT_TRUE(same(v));
+  v = voronoi_view({17.5 - kVoronoiChase + 0.01, 17.5, 10}, {17.5, 17.5, 10}, team);
+  EXPECT_TRUE(same(v));  // near: the chase
+  v = voronoi_view({8, 17.5, 10}, {17.5, 17.5, 10}, team);
+  v.other_age = kVoronoiSightAge + 0.1;
+  EXPECT_TRUE(same(v));  // an old sighting
+  v.other_age = kVoronoiSightAge;
+  EXPECT_FALSE(same(v));
+  v.team = v.team.subspan(1, 1);
+  v.rank = 0;
+  EXPECT_TRUE(same(v));  // alone
 }
 
 TEST(ScriptedPolicies, FleeRunsAwayAndTurnsOffTheWalls) {
