@@ -76,7 +76,9 @@ Steering ApolloniusInterceptor::act(const game::AgentView& view) {
 }
 
 Steering VoronoiPursuer::act(const game::AgentView& view) {
-  const Vec3& e = view.other.position;
+  // The evader where it will be in kVoronoiLead at its speed and heading, held in the arena.
+  const Vec3 e =
+      view.arena.clamp(view.other.position + kVoronoiLead * view.other_speed * peg3d::direction(view.other.heading));
   const Vec3& p = view.self.position;
   if (view.team.size() < 2 || (e - p).norm() < kVoronoiChase || view.other_age > kVoronoiSightAge) return chase_.act(view);
   // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:

@@ -44,13 +44,17 @@ inline constexpr double kVoronoiChase = 4.0;
 /// cell of a guessed position is a guess.
 inline constexpr double kVoronoiSightAge = 1.0;
 
+/// s: a VoronoiPursuer partitions about the evader where it will be this much later at its speed and heading
+/// (chosen among 0, 0.5, 1, 1.5 and 3 s in OPEN's scenarios, docs/learning.md).
+inline constexpr double kVoronoiLead = 1.0;
+
 /// Voronoi pursuit for a team (Zhou, Zhang, Tomlin and Hoffmann, "Cooperative pursuit with Voronoi partitions",
 /// Automatica 2016): the evader's Voronoi cell among the team is the region it reaches before any pursuer of equal
 /// speed, and a pursuer whose cell borders it heads for the centroid of their shared face, which shrinks that
-/// cell fastest; a pursuer with no such face, within `kVoronoiChase` of the evader, or of a team that has not seen
-/// the evader for `kVoronoiSightAge`, pursues by proportional navigation. Obstacles are not in the cell. The face
-/// is the bisector plane of the two clipped by the arena and by the other pursuers' bisectors (exactly, a convex
-/// polygon: geometry/plane_section.hpp).
+/// cell fastest. The evader is taken where it will be `kVoronoiLead` later. A pursuer with no such face, within
+/// `kVoronoiChase` of that point, or of a team that has not seen the evader for `kVoronoiSightAge`, pursues by
+/// proportional navigation. Obstacles are not in the cell. The face is the bisector plane of the two clipped by the
+/// arena and by the other pursuers' bisectors (exactly, a convex polygon: geometry/plane_section.hpp).
 class VoronoiPursuer final : public game::Policy {
  public:
   explicit VoronoiPursuer(double gain) : chase_(gain) {}

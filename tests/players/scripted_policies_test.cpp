@@ -94,21 +94,28 @@ AgentView voronoi_view(const Vec3& p, const Vec3& e, std::vector<KinematicState>
   return v;
 }
 
+// Where the view's evader will be kVoronoiLead later, in the arena: the point a VoronoiPursuer partitions about.
+Vec3 led(const AgentView& v) {
+  return v.arena.clamp(v.other.position + kVoronoiLead * v.other_speed * direction(v.other.heading));
+}
+
 TEST(ScriptedPolicies, VoronoiHeadsForTheCentroidOfItsFaceOfTheEvadersCell) {
   // With no other pursuer's bisector in the arena, the face is the whole cross-section of the arena by the
-  // bisector plane of pursuer and evader: the pursuer heads for its centroid.
+  // bisector plane of the pursuer and the evader ahead (kVoronoiLead): the pursuer heads for its centroid.
   std::mt19937_64 rng(52);
   std::uniform_real_distribution<double> x(1.0, 34.0), z(1.0, 19.0);
   VoronoiPursuer voronoi(3.0);
   int tried = 0;
   while (tried < 200) {
     const Vec3 p(x(rng), x(rng), z(rng)), e(x(rng), x(rng), z(rng));
-    if ((p - e).norm() < kVoronoiChase + 1.0) continue;
-    ++tried;
     std::vector<KinematicState> team;
-    const AgentView v = voronoi_view(p, e, team);
-    const Vec3 n = (p - e).normalized();
-    const Vec3 centroid = cross_section_centroid(v.arena, n, n.dot(0.5 * (p + e)));
+    AgentView v = voronoi_view(p, e, team);
+    v.other.heading = {x(rng) / 34.0 * 2.0 * kPi - kPi, z(rng) / 20.0 * kPi};  // any heading
+    const Vec3 ahead = led(v);
+    if ((p - ahead).norm() < kVoronoiChase + 1.0) continue;
+    const Vec3 n = (p - ahead).normalized();
+    const Vec3 centroid = cross_section_centroid(v.arena, n, n.dot(0.5 * (p + ahead)));
+    ++tried;
     EXPECT_LT((after(v, voronoi.act(v)) - (centroid - p).normalized()).norm(), 1e-9) << p.transpose() << " " << e.transpose();
   }
 }
@@ -121,13 +128,16 @@ TEST(ScriptedPolicies, VoronoiChasesByProportionalNavigationWhenItHasNoFaceIsNea
     return a.d_alpha == b.d_alpha && a.d_theta == b.d_theta;
   };
   std::vector<KinematicState> team;
-  AgentView v = voronoi_view({8, 17.5, 10}, {17.5, 17.5, 10}, team);
-  EXPECT_FALSE(same(v));  // its face: the plane x = 12.75
-  team[3].position = {16, 17.5, 10};  // a teammate nearer the evader on the same side: every point of x = 12.75 is its
-  EXPECT_TRUE(same(v));
-  v = voronoi_view({17.5 - kVoronoiChase + 0.01, 17.5, 10}, {17.5, 17.5, 10}, team);
+  AgentView v = voronoi_view({4, 17.5, 10}, {17.5, 17.5, 10}, team);
+  const Vec3 ahead = led(v);
+  EXPECT_FALSE(same(v));  // it has a face
+  team[3].position = ahead - Vec3(1, 0, 0);  // a teammate 1 m from the evader ahead, on the pursuer's side
+  EXPECT_TRUE(same(v));  // it is nearer than the evader to every point of the face, which is empty
+  v = voronoi_view(ahead - Vec3(kVoronoiChase - 0.01, 0, 0), {17.5, 17.5, 10}, team);
   EXPECT_TRUE(same(v));  // near: the chase
-  v = voronoi_view({8, 17.5, 10}, {17.5, 17.5, 10}, team);
+  v = voronoi_view(ahead - Vec3(kVoronoiChase + 0.01, 0, 0), {17.5, 17.5, 10}, team);
+  EXPECT_FALSE(same(v));
+  v = voronoi_view({4, 17.5, 10}, {17.5, 17.5, 10}, team);
   v.other_age = kVoronoiSightAge + 0.1;
   EXPECT_TRUE(same(v));  // an old sighting
   v.other_age = kVoronoiSightAge;
