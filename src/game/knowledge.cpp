@@ -74,7 +74,7 @@ void look(const Sim& sim, SimState& st) {
       }
     }
     const bool limited = seen != nullptr && a.active;
-    const int lo = a.role == Role::kPursuer ? st.pursuers : 0, hi = a.role == Role::kPursuer ? n : st.pursuers;
+    const auto [lo, hi] = st.of_role(opposing(a.role));
     for (int j = lo; j < hi; ++j) {
       const AgentState& o = st.agents[std::size_t(j)];
       const auto k = std::size_t(i * n + j);

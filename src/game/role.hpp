@@ -13,6 +13,8 @@ const char* to_string(Role r);
 /// role, and its rank k among the agents of that role.
 constexpr Role role_at(int i, int pursuers) { return i < pursuers ? Role::kPursuer : Role::kEvader; }
 constexpr int rank_at(int i, int pursuers) { return i < pursuers ? i : i - pursuers; }
+/// The role an agent of `role` plays against.
+constexpr Role opposing(Role role) { return role == Role::kPursuer ? Role::kEvader : Role::kPursuer; }
 /// The one name of agent `rank` (0 first) of a role, everywhere peg3d names agents: trajectory files, collision
 /// logs and cases, replays, results, Python (its agents, its `opponents` keys): "pursuer_0", "evader_1", ... The
 /// "<group>_<int>" form is the one multi-agent libraries group agents by (TorchRL, VMAS, BenchMARL).

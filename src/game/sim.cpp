@@ -59,8 +59,7 @@ const char* to_string(Outcome o) {
 
 int choose_opponent(const SimState& st, int i, OpponentChoice rule) {
   const AgentState& a = st.agents[std::size_t(i)];
-  const int lo = a.role == Role::kPursuer ? st.pursuers : 0;
-  const int hi = a.role == Role::kPursuer ? st.agent_count() : st.pursuers;
+  const auto [lo, hi] = st.of_role(opposing(a.role));
   if (hi - lo == 1) return st.agents[std::size_t(lo)].active ? lo : a.opponent;  // one against one
   if (rule == OpponentChoice::kAssigned && hi > lo) {
     const int k = lo + a.rank % (hi - lo);

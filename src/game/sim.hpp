@@ -268,6 +268,11 @@ class SimState {
   } scratch;
 
   int agent_count() const { return static_cast<int>(agents.size()); }
+  /// The agents of a role: indices [first, end) of `agents` (pursuers first, then evaders).
+  struct Agents {
+    int first = 0, end = 0;
+  };
+  Agents of_role(Role role) const { return role == Role::kPursuer ? Agents{0, pursuers} : Agents{pursuers, agent_count()}; }
   int evaders() const { return agent_count() - pursuers; }
 };
 

@@ -52,9 +52,8 @@ void update_view(const Sim& sim, SimState& st, int i) {
   v.opponent = a.opponent;
   v.self = a.kinematics;
   v.rank = a.rank;
-  const std::size_t first = a.role == Role::kPursuer ? 0 : std::size_t(st.pursuers);
-  const std::size_t size = a.role == Role::kPursuer ? std::size_t(st.pursuers) : st.agents.size() - first;
-  v.team = std::span<const KinematicState>(st.team_states).subspan(first, size);
+  const auto [first, end] = st.of_role(a.role);
+  v.team = std::span<const KinematicState>(st.team_states).subspan(std::size_t(first), std::size_t(end - first));
   // With limited sight, the opponent as the agent knows it (SimState::known_state), and how it knows it.
   v.other = st.known_state(i, a.opponent);
   v.other_visible = st.sees(i, a.opponent);
