@@ -40,9 +40,6 @@ void plane_section(const Vec3& point, const Vec3& normal, const Box& box, std::s
 
 Vec3 polygon_centroid(std::span<const Vec3> corners, const Vec3& normal) {
   assert(!corners.empty());
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& c : corners) mean += c;
-  mean /= double(corners.size());
   // A fan of triangles from the first corner, each weighted by its signed area.
   Vec3 sum = Vec3::Zero();
   double area = 0.0;
@@ -51,7 +48,10 @@ Vec3 polygon_centroid(std::span<const Vec3> corners, const Vec3& normal) {
     sum += a * (corners[0] + corners[i] + corners[i + 1]) / 3.0;
     area += a;
   }
-  return std::abs(area) > 1e-12 ? Vec3(sum / area) : mean;
+  if (std::abs(area) > 1e-12) return sum / area;
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& c : corners) mean += c;
+  return mean / double(corners.size());
 }
 
 }  // namespace peg3d
