@@ -5,6 +5,7 @@
 
 #include "core/step_profile.hpp"
 #include "geometry/angles.hpp"
+#include "game/views.hpp"
 #include "sense/sensor.hpp"
 
 namespace peg3d::game {
@@ -30,6 +31,7 @@ class WorldProbe final : public SightProbe {
     sense::cast_all(world_now(*sim_, *st_), {&ray, 1}, length, -1, {&hit, 1});
     return hit.target == sense::RayTarget::kNone;
   }
+  double clearance(const Vec3& p) const override { return sense_obstacle(*sim_, *st_, p).distance; }
   const Sim* sim_;
   const SimState* st_;
   int agent_;

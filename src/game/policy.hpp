@@ -4,6 +4,7 @@
 // world or the other agent's state beyond the view they are given.
 
 #include <filesystem>
+#include <limits>
 #include <span>
 
 #include "game/game_config.hpp"
@@ -27,6 +28,12 @@ class SightProbe {
   virtual bool mapped(const Vec3& p) const {
     (void)p;
     return false;
+  }
+  /// m from p to the nearest solid it knows (the distance field's shapes and the movers now), at most the field's
+  /// cap (world::Arena::max_distance); the arena's faces do not count. Infinite for a probe that knows no solids.
+  virtual double clearance(const Vec3& p) const {
+    (void)p;
+    return std::numeric_limits<double>::infinity();
   }
 };
 

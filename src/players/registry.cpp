@@ -31,6 +31,11 @@ constexpr PlayerInfo kPlayers[] = {
      [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
        return std::make_unique<VoronoiPursuer>(c.pn_gain);
      }},
+    {"voronoi-route", kPursuers, 0, kNeedsSight,
+     "the partial game: voronoi, going round the solids by a grid of open cells where its straight way is blocked",
+     [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
+       return std::make_unique<VoronoiPursuer>(c.pn_gain, true);
+     }},
     {"apollonius", kPursuers, kPursuers, kNeedsNothing, "aims at the Apollonius interception point", plain<ApolloniusInterceptor>},
     {"flee", kEvaders, kEvaders, kNeedsNothing, "flees along the line of sight, repelled by walls and obstacles",
      plain<FleeLineOfSight>},

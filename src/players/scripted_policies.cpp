@@ -75,25 +75,37 @@ Steering ApolloniusInterceptor::act(const game::AgentView& view) {
   return steer_toward(view, e - p);
 }
 
+void VoronoiPursuer::begin_episode(const game::AgentView& view, bool learning) {
+  (void)learning;
+  if (route_ && view.probe != nullptr) roadmap_.build(view.arena, *view.probe);  // the solids may have changed
+}
+
 Steering VoronoiPursuer::act(const game::AgentView& view) {
   // The evader where it will be in kVoronoiLead at its speed and heading, held in the arena.
   const Vec3 e =
       view.arena.clamp(view.other.position + kVoronoiLead * view.other_speed * peg3d::direction(view.other.heading));
   const Vec3& p = view.self.position;
-  if (view.team.size() < 2 || (e - p).norm() < kVoronoiChase || view.other_age > kVoronoiSightAge) return chase_.act(view);
-  // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:
-  // x . (q - e) <= (|q|^2 - |e|^2) / 2.
-  cuts_.clear();
-  for (std::size_t k = 0; k < view.team.size(); ++k) {
-    const Vec3& q = view.team[k].position;
-    const double apart = (q - e).norm();
-    if (int(k) == view.rank || apart == 0.0) continue;
-    cuts_.push_back({(q - e) / apart, 0.5 * (q.squaredNorm() - e.squaredNorm()) / apart});
+  bool chase = view.team.size() < 2 || (e - p).norm() < kVoronoiChase || view.other_age > kVoronoiSightAge;
+  Vec3 goal = view.other.position;
+  if (!chase) {
+    // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:
+    // x . (q - e) <= (|q|^2 - |e|^2) / 2.
+    cuts_.clear();
+    for (std::size_t k = 0; k < view.team.size(); ++k) {
+      const Vec3& q = view.team[k].position;
+      const double apart = (q - e).norm();
+      if (int(k) == view.rank || apart == 0.0) continue;
+      cuts_.push_back({(q - e) / apart, 0.5 * (q.squaredNorm() - e.squaredNorm()) / apart});
+    }
+    const Vec3 normal = (p - e).normalized();
+    plane_section(0.5 * (p + e), normal, view.arena, cuts_, face_, scratch_);
+    chase = face_.empty();
+    if (!chase) goal = polygon_centroid(face_, normal);
   }
-  const Vec3 normal = (p - e).normalized();
-  plane_section(0.5 * (p + e), normal, view.arena, cuts_, face_, scratch_);
-  if (face_.empty()) return chase_.act(view);
-  return steer_toward(view, polygon_centroid(face_, normal) - p);
+  if (route_ && view.probe != nullptr && roadmap_.cells() > 0 && !passable(*view.probe, p, goal, kPassage)) {
+    if (const auto way = roadmap_.waypoint(*view.probe, p, goal, kPassage)) return steer_toward(view, *way - p);
+  }
+  return chase ? chase_.act(view) : steer_toward(view, goal - p);
 }
 
 Steering FleeLineOfSight::act(const game::AgentView& view) {

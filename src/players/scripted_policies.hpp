@@ -8,6 +8,7 @@
 #include "core/random.hpp"
 #include "geometry/half_spaces.hpp"
 #include "game/policy.hpp"
+#include "players/roadmap.hpp"
 
 namespace peg3d::players {
 
@@ -54,14 +55,21 @@ inline constexpr double kVoronoiLead = 1.0;
 /// cell fastest. The evader is taken where it will be `kVoronoiLead` later. A pursuer with no such face, within
 /// `kVoronoiChase` of that point, or of a team that has not seen the evader for `kVoronoiSightAge`, pursues by
 /// proportional navigation. Obstacles are not in the cell. The face is the bisector plane of the two clipped by the
-/// arena and by the other pursuers' bisectors (exactly, a convex polygon: geometry/plane_section.hpp).
+/// arena and by the other pursuers' bisectors (exactly, a convex polygon: geometry/plane_section.hpp). Told to
+/// `route`, and with a probe (limited sight), a pursuer whose straight way to its goal (the face's centroid, or the
+/// evader it chases) is not passable (players/roadmap.hpp, kPassage) heads along the shortest way of its Roadmap
+/// there instead, when there is one; else it flies straight and the obstacle guard slides it along the solids.
+/// Allocates in begin_episode() only.
 class VoronoiPursuer final : public game::Policy {
  public:
-  explicit VoronoiPursuer(double gain) : chase_(gain) {}
+  explicit VoronoiPursuer(double gain, bool route = false) : chase_(gain), route_(route) {}
+  void begin_episode(const game::AgentView& view, bool learning) override;
   Steering act(const game::AgentView& view) override;
 
  private:
   ProportionalNavigation chase_;
+  bool route_;
+  Roadmap roadmap_;                     // with route_: the way around solids when the straight one is not passable
   std::vector<HalfSpace> cuts_;         // scratch: the other pursuers' bisectors
   std::vector<Vec3> face_, scratch_;    // scratch: the face's corners
 };

@@ -49,14 +49,7 @@ void SearchPursuer::choose(const game::AgentView& view) {
 }
 
 bool SearchPursuer::passable(const game::AgentView& view, const Vec3& a, const Vec3& b) {
-  const Vec3 line = b - a;
-  if (!(line.norm() > 0.0)) return true;
-  const auto [up, side] = perpendicular_frame(line.normalized());
-  for (const Vec3& off : {Vec3(Vec3::Zero()), Vec3(kPassage * up), Vec3(-kPassage * up), Vec3(kPassage * side),
-                          Vec3(-kPassage * side)}) {
-    if (!view.probe->clear(a + off, b + off)) return false;
-  }
-  return true;
+  return players::passable(*view.probe, a, b, kPassage);
 }
 
 bool SearchPursuer::stuck(const game::AgentView& view, int key, const Vec3& goal) {

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "players/roadmap.hpp"
 #include "players/scripted_policies.hpp"
 
 namespace peg3d::players {
@@ -28,7 +29,7 @@ class SearchPursuer final : public game::Policy {
   static constexpr double kProgress = 0.5;    ///< m nearer to its goal that counts as progress
   static constexpr double kStuck = 4.0;       ///< s without progress after which a blocked goal needs a detour
   static constexpr double kBlockedLeg = 10.0; ///< m added to a detour whose second leg is not passable
-  static constexpr double kPassage = 0.8;     ///< m each side of a straight way that must be clear (the guard's stop)
+  static constexpr double kPassage = players::kPassage;  ///< m each side of a straight way that must be clear
 
   void begin_episode(const game::AgentView& view, bool learning) override;
   Steering act(const game::AgentView& view) override;

@@ -2,6 +2,8 @@
 // known where it was last seen (or dead-reckoned), one in plain sight as it is; the field of view and the range
 // bound what is seen; teammates that share see what any of them sees; rewards keep measuring the true distance;
 // and on an open arena a game with sight on plays exactly as with full information.
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -199,6 +201,26 @@ TEST(GameSight, TheProbeKnowsWhatTheAgentsOwnMapHasSeen) {
   EXPECT_FALSE(evader->mapped({20, 15, 5}));    // no map
   EXPECT_TRUE(pursuer->clear({4, 15, 5}, {4, 25, 5}));
   EXPECT_FALSE(pursuer->clear({4, 15, 5}, {20, 15, 5}));  // through the pillar
+}
+
+TEST(GameSight, TheProbesClearanceIsTheDistanceToTheNearestSolidUpToTheFieldsCap) {
+  // The pillar of radius 3 m at (15, 15): from points at random bearings, heights and distances, the probe's
+  // clearance is the distance to its surface within the field's error (under one voxel diagonal, 0.43 m at 0.25 m;
+  // docs/maps.md), and the cap (5 m) beyond.
+  const Sim sim(pillar_room(), straight(true));
+  SimState st(sim);
+  reset(sim, st, testing::scenario("s", {4, 15, 5}, {26, 15, 5}), 1);
+  const SightProbe* probe = observe(st, 0).probe;
+  ASSERT_NE(probe, nullptr);
+  std::mt19937_64 rng(56);
+  std::uniform_real_distribution<double> bearing(-kPi, kPi), height(1.0, 9.0), out(0.3, 4.5);
+  for (int k = 0; k < 100; ++k) {
+    const double b = bearing(rng), d = out(rng);
+    const Vec3 p(15 + (3 + d) * std::cos(b), 15 + (3 + d) * std::sin(b), height(rng));
+    EXPECT_NEAR(probe->clearance(p), d, 0.25 * std::sqrt(3.0)) << p.transpose();
+  }
+  EXPECT_EQ(probe->clearance({27, 27, 5}), sim.arena().max_distance());  // 9 m from the pillar: the cap
+  EXPECT_EQ(probe->clearance({15, 15, 5}), 0.0);                         // inside it
 }
 
 }  // namespace

@@ -1,0 +1,168 @@
+#include "players/roadmap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace peg3d::players {
+
+bool passable(const game::SightProbe& probe, const Vec3& a, const Vec3& b, double margin) {
+  const Vec3 line = b - a;
+  if (!(line.norm() > 0.0)) return true;
+  const auto [up, side] = perpendicular_frame(line.normalized());
+  for (const Vec3& off : {Vec3(Vec3::Zero()), Vec3(margin * up), Vec3(-margin * up), Vec3(margin * side), Vec3(-margin * side)}) {
+    if (!probe.clear(a + off, b + off)) return false;
+  }
+  return true;
+}
+
+template <class F>
+void Roadmap::neighbours(int cell, F&& visit) const {
+  const int ci = cell % n_[0], cj = (cell / n_[0]) % n_[1], ck = cell / (n_[0] * n_[1]);
+  for (int dk = -1; dk <= 1; ++dk) {
+    for (int dj = -1; dj <= 1; ++dj) {
+      for (int di = -1; di <= 1; ++di) {
+        const int i = ci + di, j = cj + dj, k = ck + dk;
+        if ((di | dj | dk) == 0 || i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
+        visit(i + n_[0] * (j + n_[1] * k), Vec3(di * size_.x(), dj * size_.y(), dk * size_.z()).norm());
+      }
+    }
+  }
+}
+
+void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
+  arena_ = arena;
+  const Vec3 extent = arena.size();
+  double cell = kCell;
+  auto count = [&](int k) { return std::max(1, int(std::ceil(extent[k] / cell))); };
+  while (double(count(0)) * count(1) * count(2) > kMaxCells) cell *= 1.25;
+  for (int k = 0; k < 3; ++k) {
+    n_[k] = count(k);
+    size_[k] = extent[k] / n_[k];
+  }
+  const int n = n_[0] * n_[1] * n_[2];
+  region_.resize(std::size_t(n));
+  constexpr int kUnlabelled = -2;
+  for (int c = 0; c < n; ++c) region_[std::size_t(c)] = probe.clearance(centre(c)) >= kClearance ? kUnlabelled : -1;
+  int regions = 0;  // flood fill, cells in index order
+  for (int c = 0; c < n; ++c) {
+    if (region_[std::size_t(c)] != kUnlabelled) continue;
+    region_[std::size_t(c)] = regions;
+    stack_.assign(1, c);
+    while (!stack_.empty()) {
+      const int top = stack_.back();
+      stack_.pop_back();
+      neighbours(top, [&](int next, double) {
+        if (region_[std::size_t(next)] == kUnlabelled) region_[std::size_t(next)] = regions, stack_.push_back(next);
+      });
+    }
+    ++regions;
+  }
+  g_.resize(std::size_t(n));
+  parent_.resize(std::size_t(n));
+  stamp_.assign(std::size_t(n), 0);
+  search_ = 0;
+  start_ = goal_ = -1;
+  way_.clear();
+}
+
+Vec3 Roadmap::centre(int cell) const {
+  const int i = cell % n_[0], j = (cell / n_[0]) % n_[1], k = cell / (n_[0] * n_[1]);
+  return arena_.lo + Vec3((i + 0.5) * size_.x(), (j + 0.5) * size_.y(), (k + 0.5) * size_.z());
+}
+
+int Roadmap::cell_of(const Vec3& p) const {
+  int c[3];
+  for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - arena_.lo[k]) / size_[k])), 0, n_[k] - 1);
+  return c[0] + n_[0] * (c[1] + n_[1] * c[2]);
+}
+
+std::optional<Vec3> Roadmap::waypoint(const game::SightProbe& probe, const Vec3& from, const Vec3& to, double margin) {
+  const int start = cell_of(from);
+  int goal = cell_of(to);
+  if (start == goal) return to;
+  // The start's region: its cell's, or that of its open neighbour nearest to `from`.
+  int home = region_[std::size_t(start)];
+  if (home < 0) {
+    double nearest = std::numeric_limits<double>::infinity();
+    neighbours(start, [&](int next, double) {
+      const double d = (centre(next) - from).squaredNorm();
+      if (region_[std::size_t(next)] >= 0 && d < nearest) nearest = d, home = region_[std::size_t(next)];
+    });
+    if (home < 0) return std::nullopt;
+  }
+  Vec3 end = to;  // the point the way ends at
+  if (region_[std::size_t(goal)] != home) {
+    // A goal in a closed cell: the open neighbour of its cell in the start's region nearest to it, if any.
+    int inside = -1;
+    double nearest = std::numeric_limits<double>::infinity();
+    if (region_[std::size_t(goal)] < 0) {
+      neighbours(goal, [&](int next, double) {
+        const double d = (centre(next) - to).squaredNorm();
+        if (region_[std::size_t(next)] == home && d < nearest) nearest = d, inside = next;
+      });
+    }
+    if (inside < 0) return std::nullopt;
+    goal = inside;
+    end = centre(goal);
+    if (start == goal) return end;
+  }
+  // The way found last is kept while both ends stay in their cells, but not from a closed cell: where the way may
+  // leave it depends on where in it the way begins.
+  if (start != start_ || goal != goal_ || region_[std::size_t(start)] < 0) {
+    start_ = start, goal_ = goal;
+    way_.clear();
+    if (++search_ == 0) {  // the stamps wrapped: forget every older search
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      search_ = 1;
+    }
+    const Vec3 goal_centre = centre(goal);
+    // A* over the cells; the heap holds (f, cell), smallest f first and, among equal f, the smallest cell.
+    heap_.clear();
+    const auto later = std::greater<std::pair<double, int>>();
+    auto reach = [&](int cell, double g, int from_cell) {
+      stamp_[std::size_t(cell)] = search_;
+      g_[std::size_t(cell)] = g;
+      parent_[std::size_t(cell)] = from_cell;
+      heap_.push_back({g + (centre(cell) - goal_centre).norm(), cell});
+      std::push_heap(heap_.begin(), heap_.end(), later);
+    };
+    reach(start, 0.0, -1);
+    while (!heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), later);
+      const auto [f, cell] = heap_.back();
+      heap_.pop_back();
+      const double g = g_[std::size_t(cell)];
+      if (f > g + (centre(cell) - goal_centre).norm()) continue;  // a stale entry: reached cheaper since
+      if (cell == goal) {
+        for (int c = goal; c >= 0; c = parent_[std::size_t(c)]) way_.push_back(c);  // way_.back() is the start
+        break;
+      }
+      const bool closed_start = cell == start && region_[std::size_t(start)] < 0;
+      neighbours(cell, [&](int next, double step) {
+        if (next != goal && region_[std::size_t(next)] < 0) return;
+        // From a closed cell (next to a solid) only to the neighbours in plain sight of where the way begins.
+        if (closed_start && !probe.clear(from, centre(next))) return;
+        if (stamp_[std::size_t(next)] == search_ && g_[std::size_t(next)] <= g + step) return;
+        reach(next, g + step, cell);
+      });
+    }
+  }
+  if (way_.empty()) return std::nullopt;
+  // The farthest of the next kLookAhead cells (the goal's cell counting as `end` itself) that can be flown to straight
+  // with the margin, else the farthest whose line alone is clear, else the next.
+  const int last = int(way_.size()) - 2;  // the first cell after the start
+  const int first = std::max(0, last - (kLookAhead - 1));
+  auto point = [&](int w) { return w == 0 ? end : centre(way_[std::size_t(w)]); };
+  for (int w = first; w < last; ++w) {
+    if (passable(probe, from, point(w), margin)) return point(w);
+  }
+  for (int w = first; w <= last; ++w) {
+    if (probe.clear(from, point(w))) return point(w);
+  }
+  // Not even the next cell in sight (a corner between): the centre of its own cell first.
+  return probe.clear(from, centre(start)) ? centre(start) : point(last);
+}
+
+}  // namespace peg3d::players
