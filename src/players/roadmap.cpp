@@ -25,7 +25,7 @@ void Roadmap::neighbours(int cell, F&& visit) const {
       for (int di = -1; di <= 1; ++di) {
         const int i = ci + di, j = cj + dj, k = ck + dk;
         if ((di | dj | dk) == 0 || i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
-        visit(i + n_[0] * (j + n_[1] * k), Vec3(di * size_.x(), dj * size_.y(), dk * size_.z()).norm());
+        visit(i + n_[0] * (j + n_[1] * k), step_[(dk + 1) * 9 + (dj + 1) * 3 + (di + 1)]);
       }
     }
   }
@@ -41,7 +41,19 @@ void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
     n_[k] = count(k);
     size_[k] = extent[k] / n_[k];
   }
+  for (int dk = -1; dk <= 1; ++dk) {
+    for (int dj = -1; dj <= 1; ++dj) {
+      for (int di = -1; di <= 1; ++di) {
+        step_[(dk + 1) * 9 + (dj + 1) * 3 + (di + 1)] = Vec3(di * size_.x(), dj * size_.y(), dk * size_.z()).norm();
+      }
+    }
+  }
   const int n = n_[0] * n_[1] * n_[2];
+  centre_.resize(std::size_t(n));
+  for (int c = 0; c < n; ++c) {
+    const int i = c % n_[0], j = (c / n_[0]) % n_[1], k = c / (n_[0] * n_[1]);
+    centre_[std::size_t(c)] = arena_.lo + Vec3((i + 0.5) * size_.x(), (j + 0.5) * size_.y(), (k + 0.5) * size_.z());
+  }
   region_.resize(std::size_t(n));
   constexpr int kUnlabelled = -2;
   for (int c = 0; c < n; ++c) region_[std::size_t(c)] = probe.clearance(centre(c)) >= kClearance ? kUnlabelled : -1;
@@ -60,16 +72,12 @@ void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
     ++regions;
   }
   g_.resize(std::size_t(n));
+  h_.resize(std::size_t(n));
   parent_.resize(std::size_t(n));
   stamp_.assign(std::size_t(n), 0);
   search_ = 0;
   start_ = goal_ = -1;
   way_.clear();
-}
-
-Vec3 Roadmap::centre(int cell) const {
-  const int i = cell % n_[0], j = (cell / n_[0]) % n_[1], k = cell / (n_[0] * n_[1]);
-  return arena_.lo + Vec3((i + 0.5) * size_.x(), (j + 0.5) * size_.y(), (k + 0.5) * size_.z());
 }
 
 int Roadmap::cell_of(const Vec3& p) const {
@@ -122,10 +130,11 @@ std::optional<Vec3> Roadmap::waypoint(const game::SightProbe& probe, const Vec3&
     heap_.clear();
     const auto later = std::greater<std::pair<double, int>>();
     auto reach = [&](int cell, double g, int from_cell) {
+      if (stamp_[std::size_t(cell)] != search_) h_[std::size_t(cell)] = (centre(cell) - goal_centre).norm();
       stamp_[std::size_t(cell)] = search_;
       g_[std::size_t(cell)] = g;
       parent_[std::size_t(cell)] = from_cell;
-      heap_.push_back({g + (centre(cell) - goal_centre).norm(), cell});
+      heap_.push_back({g + h_[std::size_t(cell)], cell});
       std::push_heap(heap_.begin(), heap_.end(), later);
     };
     reach(start, 0.0, -1);
@@ -134,7 +143,7 @@ std::optional<Vec3> Roadmap::waypoint(const game::SightProbe& probe, const Vec3&
       const auto [f, cell] = heap_.back();
       heap_.pop_back();
       const double g = g_[std::size_t(cell)];
-      if (f > g + (centre(cell) - goal_centre).norm()) continue;  // a stale entry: reached cheaper since
+      if (f > g + h_[std::size_t(cell)]) continue;  // a stale entry: reached cheaper since
       if (cell == goal) {
         for (int c = goal; c >= 0; c = parent_[std::size_t(c)]) way_.push_back(c);  // way_.back() is the start
         break;

@@ -43,7 +43,7 @@ class Roadmap {
   std::optional<Vec3> waypoint(const game::SightProbe& probe, const Vec3& from, const Vec3& to, double margin);
 
   int cells() const { return int(region_.size()); }
-  Vec3 centre(int cell) const;
+  Vec3 centre(int cell) const { return centre_[std::size_t(cell)]; }
   int cell_of(const Vec3& p) const;
   /// The region of an open cell (0, 1, ...), -1 for a closed one.
   int region(int cell) const { return region_[std::size_t(cell)]; }
@@ -55,12 +55,14 @@ class Roadmap {
   Box arena_;
   int n_[3] = {0, 0, 0};
   Vec3 size_ = Vec3::Zero();     // m, a cell's extent along each axis
+  double step_[27] = {};         // m between the centres of neighbours, by offset (di, dj, dk) + 1 in base 3
+  std::vector<Vec3> centre_;     // per cell
   std::vector<int> region_;      // per cell: its region, -1 closed
   // The last way found (from start_ to goal_, way_.back() the start), kept while both stay in their cells.
   int start_ = -1, goal_ = -1;
   std::vector<int> way_;
   // Scratch of the search, kept between calls (`stamp_` tells this search's entries from older ones).
-  std::vector<double> g_;
+  std::vector<double> g_, h_;    // m: from the start, and straight on to the goal
   std::vector<int> parent_;
   std::vector<std::uint32_t> stamp_;
   std::uint32_t search_ = 0;
