@@ -27,7 +27,7 @@ class Roadmap {
  public:
   static constexpr double kCell = 1.0;         ///< m, the widest a cell may be (narrower when the arena divides so)
   static constexpr double kClearance = 0.25;   ///< m, from a cell's centre to the nearest solid for it to be open (an agent's radius)
-  static constexpr int kMaxCells = 1 << 18;    ///< a larger arena gets wider cells
+  static constexpr int kMaxCells = 1 << 16;    ///< a larger arena gets wider cells (a roadmap holds about 50 bytes a cell)
   static constexpr int kLookAhead = 6;         ///< cells along the way tried as the point to head for
 
   /// Cells over `arena`, each judged with `probe`, and their regions.
