@@ -195,6 +195,21 @@ TEST(ScriptedPolicies, VoronoiRouteGoesRoundAWallThatBlocksItsWayToTheFace) {
   EXPECT_GE(straight, 5);
 }
 
+TEST(ScriptedPolicies, VoronoiRouteWithoutAProbePlaysAsVoronoi) {
+  std::mt19937_64 rng(57);
+  std::uniform_real_distribution<double> x(1.0, 34.0), z(1.0, 19.0);
+  VoronoiPursuer plain(3.0), routed(3.0, true);
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<KinematicState> team;
+    AgentView v = voronoi_view({x(rng), x(rng), z(rng)}, {x(rng), x(rng), z(rng)}, team);
+    plain.begin_episode(v, false);
+    routed.begin_episode(v, false);
+    const Steering a = plain.act(v), b = routed.act(v);
+    EXPECT_EQ(a.d_alpha, b.d_alpha);
+    EXPECT_EQ(a.d_theta, b.d_theta);
+  }
+}
+
 TEST(ScriptedPolicies, FleeRunsAwayAndTurnsOffTheWalls) {
   FleeLineOfSight f;
   const AgentView open = view_of({{17, 17, 10}, {0.0, kPi / 2}}, {{10, 17, 10}, {}}, 1.0, 1.1);
