@@ -80,6 +80,17 @@ void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
   way_.clear();
 }
 
+int Roadmap::nearest_open(int cell, const Vec3& p, int region) const {
+  int best = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  neighbours(cell, [&](int next, double) {
+    const int r = region_[std::size_t(next)];
+    const double d = (centre(next) - p).squaredNorm();
+    if (r >= 0 && (region < 0 || r == region) && d < nearest) nearest = d, best = next;
+  });
+  return best;
+}
+
 int Roadmap::cell_of(const Vec3& p) const {
   int c[3];
   for (int k = 0; k < 3; ++k) c[k] = std::clamp(int(std::floor((p[k] - arena_.lo[k]) / size_[k])), 0, n_[k] - 1);
@@ -93,24 +104,14 @@ std::optional<Vec3> Roadmap::waypoint(const game::SightProbe& probe, const Vec3&
   // The start's region: its cell's, or that of its open neighbour nearest to `from`.
   int home = region_[std::size_t(start)];
   if (home < 0) {
-    double nearest = std::numeric_limits<double>::infinity();
-    neighbours(start, [&](int next, double) {
-      const double d = (centre(next) - from).squaredNorm();
-      if (region_[std::size_t(next)] >= 0 && d < nearest) nearest = d, home = region_[std::size_t(next)];
-    });
-    if (home < 0) return std::nullopt;
+    const int beside = nearest_open(start, from, -1);
+    if (beside < 0) return std::nullopt;
+    home = region_[std::size_t(beside)];
   }
   Vec3 end = to;  // the point the way ends at
   if (region_[std::size_t(goal)] != home) {
     // A goal in a closed cell: the open neighbour of its cell in the start's region nearest to it, if any.
-    int inside = -1;
-    double nearest = std::numeric_limits<double>::infinity();
-    if (region_[std::size_t(goal)] < 0) {
-      neighbours(goal, [&](int next, double) {
-        const double d = (centre(next) - to).squaredNorm();
-        if (region_[std::size_t(next)] == home && d < nearest) nearest = d, inside = next;
-      });
-    }
+    const int inside = region_[std::size_t(goal)] < 0 ? nearest_open(goal, to, home) : -1;
     if (inside < 0) return std::nullopt;
     goal = inside;
     end = centre(goal);

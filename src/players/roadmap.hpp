@@ -52,6 +52,8 @@ class Roadmap {
   // Calls visit(next, step) for each of the cell's 26 neighbours inside the grid (step: m between the centres).
   template <class F>
   void neighbours(int cell, F&& visit) const;
+  // The neighbour of `cell` nearest to p that is open and in `region` (any region for -1); -1 for none.
+  int nearest_open(int cell, const Vec3& p, int region) const;
   Box arena_;
   int n_[3] = {0, 0, 0};
   Vec3 size_ = Vec3::Zero();     // m, a cell's extent along each axis
