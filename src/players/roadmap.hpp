@@ -22,7 +22,8 @@ bool passable(const game::SightProbe& probe, const Vec3& a, const Vec3& b, doubl
 /// (m) of its centre, judged once an episode (build(): the solids where they are then), and the open cells joined
 /// into regions (26 neighbours). A way between two points is a shortest chain of open cells, each joined to its 26
 /// neighbours at the distance of their centres (A*, ties broken by cell index, so the same question gets the same
-/// answer). Allocates in build() only (per arena size).
+/// answer). Allocates in build() (per arena size); the search's queue and way grow in waypoint() until they hold the
+/// largest search yet, and are reused after that.
 class Roadmap {
  public:
   static constexpr double kCell = 1.0;         ///< m, the widest a cell may be (narrower when the arena divides so)

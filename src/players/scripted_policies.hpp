@@ -59,7 +59,7 @@ inline constexpr double kVoronoiLead = 1.0;
 /// `route`, and with a probe (limited sight), a pursuer whose straight way to its goal (the face's centroid, or the
 /// evader it chases) is not passable (players/roadmap.hpp, kPassage) heads along the shortest way of its Roadmap
 /// there instead, when there is one; else it flies straight and the obstacle guard slides it along the solids.
-/// Allocates in begin_episode() only.
+/// Its scratch (the cuts, the face, the roadmap's search) grows in the first calls and is reused after that.
 class VoronoiPursuer final : public game::Policy {
  public:
   explicit VoronoiPursuer(double gain, bool route = false) : chase_(gain), route_(route) {}
