@@ -3,6 +3,7 @@
 #include <octomap/OcTree.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <sstream>
@@ -78,7 +79,7 @@ long long ScanMap::cells(const ScanMapConfig& config, const Vec3& lo, const Vec3
 
 std::size_t ScanMap::bytes_most(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi, int rays, double range,
                                 long long scans) {
-  // As the constructor and hold() lay the map out: the chunk table, then per brick reached its cells, bits, count
+  // As the constructor and hold() lay the map out: the chunk table, then per brick reached its cells, marks, count
   // and place, and per chunk reached its block of slots, its count of occupied cells and its place in a list.
   const double factor = 1.0 / config.resolution;
   double bricks = 1.0, chunks = 1.0;
@@ -90,9 +91,11 @@ std::size_t ScanMap::bytes_most(const ScanMapConfig& config, const Vec3& lo, con
   // A ray of length L crosses at most 3 L / e + 4 bricks of edge e (one per face it passes, and its ends').
   const double per_ray = 3.0 * std::ceil(range / (double(kBrick) * config.resolution)) + 4.0;
   const double reached = scans < 0 ? bricks : std::min(bricks, double(scans) * double(rays) * per_ray);
-  const double per_brick = double(kBrickCells * sizeof(float) + sizeof(BrickBits) + 1 + 2 * sizeof(std::uint32_t));
+  const double per_brick = double(kBrickCells * sizeof(float) + sizeof(BrickMarks) + 1 + 2 * sizeof(std::uint32_t));
   const double cells_per_ray = 3.0 * std::ceil(range / config.resolution) + 4.0;
-  const double lists = double(rays) * cells_per_ray * 3.0 * sizeof(std::uint32_t);
+  const double traced = std::ceil(double(rays) / 8.0) * 8.0 * (std::sqrt(3.0) * range / config.resolution + 10.0);
+  const double lists = double(rays) * cells_per_ray * 3.0 * sizeof(std::uint32_t) + traced * sizeof(std::uint64_t) +
+                       double(rays) * double(sizeof(RayKeySpan) + 3 * sizeof(float));
   const double dense = bricks <= double(kDenseCountBricks) ? bricks : 0.0;
   return std::size_t(chunks * sizeof(std::uint32_t) + dense + reached * per_brick +
                      std::min(chunks, reached) * double((kChunkBricks + 2) * sizeof(std::uint32_t)) + lists);
@@ -137,13 +140,13 @@ std::uint32_t ScanMap::hold(std::size_t bx, std::size_t by, std::size_t bz) {
     const std::size_t n = std::max<std::size_t>(64, 2 * slot);
     grow(brick_of_, n);
     grow(cells_, n * kBrickCells);
-    grow(bits_, n);
+    grow(marks_, n);
     grow(brick_occupied_, n);
     grow(sorted_, n);
   }
   entry = std::uint32_t(slot);
   brick_of_.push_back(std::uint32_t((bx * bricks_[1] + by) * bricks_[2] + bz));
-  bits_.push_back(BrickBits{});
+  marks_.push_back(BrickMarks{});
   // Every cell unknown; those of the last bricks that lie beyond the box are marked kOutside, never known.
   cells_.resize(cells_.size() + kBrickCells, kUnknown);
   int inside = kBrickCells;
@@ -178,7 +181,7 @@ void ScanMap::clear() {
   block_occupied_.clear();
   slot_.clear();
   cells_.clear();
-  bits_.clear();
+  marks_.clear();
   brick_occupied_.clear();
   brick_of_.clear();
   known_ = occupied_ = 0;
@@ -201,11 +204,18 @@ void ScanMap::reserve(int rays, double range) {
   const double per_ray = 3.0 * std::ceil(range / config_.resolution) + 4.0;
   const auto total = double(n_[0]) * double(n_[1]) * double(n_[2]);
   const auto most = std::size_t(std::min(total, double(rays) * per_ray));
-  grow(free_list_, most);
   grow(crossed_, most);
   crossed_.resize(crossed_.capacity());  // written through a pointer: its size is its room
   grow(hit_list_, std::min(most, std::size_t(rays)));
-  grow(flips_, free_list_.capacity() + hit_list_.capacity());  // every changed cell is in one of the lists
+  grow(ends_, std::size_t(rays));
+  grow(spans_, std::size_t(rays));
+  // The rays' keys, traced eight at a time: per ray as many words as its most cells (ray_keys.cpp) and one more.
+  const std::size_t words = (std::size_t(rays) + 7) / 8 * 8 * (std::size_t(std::sqrt(3.0) * range / config_.resolution) + 10);
+  if (words > traced_.size()) {
+    grow(traced_, words);
+    traced_.resize(traced_.capacity());
+  }
+  grow(flips_, crossed_.capacity() + hit_list_.capacity());  // every changed cell is in one of the lists
 }
 
 CellKey ScanMap::key_of(const Vec3& p) const {
@@ -232,153 +242,18 @@ float ScanMap::log_odds(const CellKey& key) const {
   return slot == kNone ? kUnknown : cells_[cell_index(slot, x, y, z)];
 }
 
-std::uint32_t* ScanMap::ray_cells(const octomap::point3d& origin, const octomap::point3d& end, std::uint32_t* out) {
-  // OcTreeBaseImpl::computeRayKeys (Amanatides and Woo's traversal) step for step, in the same types and the same
-  // operations, so that it meets the same keys; each is written as it is met instead of stored as a key. The state
-  // is kept per axis in scalars, not arrays indexed by the step's axis, so that it stays in registers.
-  octomap::OcTreeKey key_origin, key_end;
-  if (!keys_->coordToKeyChecked(origin, key_origin) || !keys_->coordToKeyChecked(end, key_end)) return out;
-  if (key_origin == key_end) return out;
-  octomap::point3d direction = end - origin;
-  const float length = float(direction.norm());
-  direction /= length;
-  const double resolution = keys_->getResolution();
-  // Per axis: the cell's place in the grid (below the box: negative; keys and places move together, and both ends
-  // lie inside the keys' range), the end's, the step, the next border's t and the t between borders.
-  long place[3], last[3];
-  int step[3];
-  double t_max[3], t_delta[3];
-  for (unsigned i = 0; i < 3; ++i) {
-    place[i] = long(key_origin[i]) - long(k0_[i]);
-    last[i] = long(key_end[i]) - long(k0_[i]);
-    step[i] = direction(i) > 0.0 ? 1 : direction(i) < 0.0 ? -1 : 0;
-    if (step[i] != 0) {
-      double border = keys_->keyToCoord(key_origin[i]);
-      border += float(step[i] * resolution * 0.5);
-      t_max[i] = (border - origin(i)) / direction(i);
-      t_delta[i] = resolution / std::fabs(direction(i));
-    } else {
-      t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
-    }
-  }
-  long px = place[0], py = place[1], pz = place[2];
-  double tx = t_max[0], ty = t_max[1], tz = t_max[2];
-  const double dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
-  const int sx = step[0], sy = step[1], sz = step[2];
-  // A place's first cell in its brick when entered along a step (0 going up, 3 going down).
-  const long fx = sx > 0 ? 0 : 3, fy = sy > 0 ? 0 : 3, fz = sz > 0 ? 0 : 3;
-  const long nx = long(n_[0]), ny = long(n_[1]), nz = long(n_[2]);
-  const long ebx = last[0] >> 2, eby = last[1] >> 2, ebz = last[2] >> 2;
-  const auto inside = [&] { return std::size_t(px) < std::size_t(nx) && std::size_t(py) < std::size_t(ny) && std::size_t(pz) < std::size_t(nz); };
-  // The slot of the cell's brick, found (and held) when the traversal enters a brick with a cell inside the box;
-  // whether that brick's cells are all at the lower clamp (so it lies wholly inside the box) and the end's cell is
-  // not among them: then the traversal may cross it without a visit.
-  std::uint32_t slot = kNone;
-  std::size_t base = 0;
-  bool entered = true, crossable = false;
-  // The chunk last entered and its block of slots (a ray crosses several bricks of a chunk).
-  std::size_t chunk = std::size_t(-1);
-  const std::uint32_t* block = nullptr;
-  const auto enter = [&] {
-    entered = false;
-    const std::size_t bx = std::size_t(px) >> 2, by = std::size_t(py) >> 2, bz = std::size_t(pz) >> 2;
-    const std::size_t ch = chunk_of(bx, by, bz);
-    if (ch != chunk || block == nullptr) {
-      chunk = ch;
-      block = chunk_[ch] == kNone ? nullptr : slot_.data() + std::size_t(chunk_[ch]) * kChunkBricks;
-    }
-    const std::uint32_t got = block == nullptr ? kNone : block[place_in_chunk(bx, by, bz)];
-    if (got != kNone) {
-      slot = got;
-    } else {
-      slot = hold(bx, by, bz);
-      block = nullptr;  // slot_ may have moved
-    }
-    base = std::size_t(slot) * kBrickCells;
-    crossable = bits_[slot].at_min == ~std::uint64_t{0} &&
-                !(long(bx) == ebx && long(by) == eby && long(bz) == ebz);
-  };
-  const auto write = [&] {
-    const std::size_t c = base + (std::size_t(px & 3) << 4 | std::size_t(py & 3) << 2 | std::size_t(pz & 3));
-    __builtin_prefetch(&cells_[c]);
-    *out++ = std::uint32_t(c);
-  };
-  bool in = inside();
-  if (in) {
-    enter();
-    write();
-  }
-  for (;;) {
-    if (crossable && in && !entered) {
-      // The steps the traversal would take through this brick, whose cells no miss can change, taken at once. Its
-      // steps along axis i come at t_max[i], t_max[i] + t_delta[i], ... (the same additions), and it takes the
-      // least, on a tie the higher axis. The step that leaves the brick is the first, in that order, of each
-      // axis's step out of it; every other axis takes its steps that come before that one.
-      place[0] = px, place[1] = py, place[2] = pz;
-      t_max[0] = tx, t_max[1] = ty, t_max[2] = tz;
-      double leave[3];
-      int steps_out[3];
-      for (unsigned i = 0; i < 3; ++i) {
-        leave[i] = t_max[i];
-        steps_out[i] = step[i] > 0 ? 4 - int(place[i] & 3) : int(place[i] & 3) + 1;
-        if (step[i] != 0) {
-          for (int k = 1; k < steps_out[i]; ++k) leave[i] += t_delta[i];
-        }
-      }
-      const unsigned e = leave[0] < leave[1] ? (leave[0] < leave[2] ? 0 : 2) : (leave[1] < leave[2] ? 1 : 2);
-      for (unsigned i = 0; i < 3; ++i) {
-        int taken = 0;
-        if (i == e) {
-          taken = steps_out[i];
-          t_max[i] = leave[i] + t_delta[i];
-        } else if (step[i] != 0) {
-          while (taken < steps_out[i] && (t_max[i] < leave[e] || (t_max[i] == leave[e] && i > e))) {
-            t_max[i] += t_delta[i];
-            ++taken;
-          }
-        }
-        place[i] += taken * step[i];
-      }
-      px = place[0], py = place[1], pz = place[2];
-      tx = t_max[0], ty = t_max[1], tz = t_max[2];
-      entered = true;
-      ++skipped_;
-    } else if (tx < ty ? tx < tz : false) {
-      px += sx, tx += dx;
-      entered = entered || (px & 3) == fx;
-    } else if (!(tx < ty) && ty < tz) {
-      py += sy, ty += dy;
-      entered = entered || (py & 3) == fy;
-    } else {
-      pz += sz, tz += dz;
-      entered = entered || (pz & 3) == fz;
-    }
-    // After the skipped steps the traversal would have stopped at the first of them that ended it: none reached
-    // the end's cell (not in the brick), and the least t grows with every step, so this check covers them.
-    if (px == last[0] && py == last[1] && pz == last[2]) return out;
-    if (std::min(std::min(tx, ty), tz) > length) return out;  // missed the end's cell: stop
-    in = inside();
-    if (!in) continue;
-    if (entered) enter();
-    write();
-  }
-}
-
 void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double max_range) {
   const octomap::point3d origin(float(origin_d.x()), float(origin_d.y()), float(origin_d.z()));
-  free_list_.clear();
   hit_list_.clear();
   flips_.clear();
   obstacles_moved_ = false;
-  // A brick's 64 cells have one word of each set: bit l of word b is cell b * 64 + l.
   const auto mark_hit = [&](const octomap::OcTreeKey& k) {
     std::size_t x = 0, y = 0, z = 0;
     if (!place_of({k[0], k[1], k[2]}, x, y, z)) return;
     const std::size_t c = cell_index(hold(x / kBrick, y / kBrick, z / kBrick), x, y, z);
-    std::uint64_t& word = bits_[c / kBrickCells].hit;
-    const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
-    if ((word & bit) != 0) return;
-    word |= bit;
+    std::uint8_t& mark = mark_of(c);
+    if (mark != 0) return;
+    mark = kMarkHit;
     grow(hit_list_, hit_list_.size() + 1);
     hit_list_.push_back(std::uint32_t(c));
   };
@@ -390,10 +265,6 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     if (next < min_) next = min_;
     if (next > max_) next = max_;
     v = next;
-    // Cells at the lower clamp are also a bit of their brick's word: a ray crossing them needs no load of the value.
-    const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
-    std::uint64_t& at_min = bits_[c / kBrickCells].at_min;
-    at_min = next == min_ ? at_min | bit : at_min & ~bit;
     known_ += !was_known;
     const int change_occupied = int(next > 0.0f) - int(was_occupied);
     occupied_ += change_occupied;
@@ -411,7 +282,7 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
       obstacles_moved_ = true;
     }
   };
-  // OccupancyOcTreeBase::computeUpdate with the key sets as bits over the bricks, and each cell updated once, as
+  // OccupancyOcTreeBase::computeUpdate with the key sets as marks on the cells, and each cell updated once, as
   // insertPointCloud updates it. First the occupied set: the endpoints within max_range (they win over free).
   for (const Vec3& pd : points) {
     const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
@@ -421,49 +292,101 @@ void ScanMap::insert(const Vec3& origin_d, std::span<const Vec3> points, double 
     }
   }
   // Then every ray's free cells, each updated when first met: a miss, unless it is an endpoint's cell or already
-  // at the lower clamp (OctoMap's early abort). The rays are traversed first, each cell's value prefetched as it
-  // is found, and the cells updated after, in the same order: the traversal's arithmetic then overlaps the cache
-  // misses of a map whose lines other work has evicted (a game's, between scans).
-  // Room for every ray's cells before it is traversed: at most 3 a resolution of its length and 4 at its ends.
-  std::size_t crossed = 0;
-  const auto traverse = [&](const octomap::point3d& end) {
-    const std::size_t most = std::size_t(3.0 * std::ceil(double((end - origin).norm()) / config_.resolution)) + 8;
-    if (crossed + most > crossed_.size()) {
-      grow(crossed_, crossed + most);
-      crossed_.resize(crossed_.capacity());
-    }
-    crossed = std::size_t(ray_cells(origin, end, crossed_.data() + crossed) - crossed_.data());
-    assert(crossed <= crossed_.size());
-  };
+  // at the lower clamp (OctoMap's early abort). The rays are traversed first (several at a time: ray_keys.hpp),
+  // then their keys become cells, each cell's value prefetched, and the cells are updated after, in the rays'
+  // order: the arithmetic then overlaps the cache misses of a map whose lines other work has evicted (a game's,
+  // between scans). The ends are insertPointCloud's: each endpoint, or the point at max_range along its ray.
+  grow(ends_, points.size());
+  ends_.clear();
   for (const Vec3& pd : points) {
     const octomap::point3d p(float(pd.x()), float(pd.y()), float(pd.z()));
     if (max_range < 0.0 || (p - origin).norm() <= max_range) {
-      traverse(p);
+      ends_.push_back(p);
     } else {
       const octomap::point3d direction = (p - origin).normalized();
-      traverse(origin + direction * float(max_range));
+      ends_.push_back(origin + direction * float(max_range));
     }
   }
-  grow(free_list_, crossed);
-  grow(flips_, crossed + hit_list_.size());
-  for (const std::uint32_t c : std::span(crossed_.data(), crossed)) {
-    BrickBits& brick = bits_[c / kBrickCells];
-    const std::uint64_t bit = std::uint64_t{1} << (c % kBrickCells);
-    if (((brick.free | brick.hit | brick.at_min) & bit) != 0) continue;  // met, an endpoint, or no change
-    brick.free |= bit;
-    free_list_.push_back(c);
-    float& v = cells_[c];
-    if (v <= 0.0f) {  // known and free (false for unknown, NaN): a miss keeps it free, the counts stand
-      v = std::max(v + miss_, min_);
-      if (v == min_) brick.at_min |= bit;
-      continue;
-    }
-    update(c, miss_);
+  const std::size_t room = traced_.size();
+  trace_rays(*keys_, origin, ends_, traced_, spans_);
+  allocations_ += traced_.size() != room;
+  std::size_t most = 0;
+  for (const RayKeySpan& span : spans_) most += span.count;
+  if (most > crossed_.size()) {
+    grow(crossed_, most);
+    crossed_.resize(crossed_.capacity());
   }
-  for (std::uint32_t c : free_list_) bits_[c / kBrickCells].free = 0;
+  grow(flips_, most + hit_list_.size());
+  // A ray's keys met inside the box become its cells' storage indices, their bricks held, each cell's value and
+  // mark prefetched for the updates; a ray's cells are updated after the next ray's are found, so that what was
+  // prefetched is still in the first-level cache. Every cell's brick is looked up in the tables: a test for the
+  // ray entering another brick would be mispredicted every few cells.
+  std::size_t crossed = 0;
+  const auto unpacked = [](std::uint64_t word) { return CellKey{packed_key(word, 0), packed_key(word, 1), packed_key(word, 2)}; };
+  // The table entries of the bricks a ray crosses, fetched into the cache while the ray before it is handled.
+  const auto prefetch_slots = [&](const RayKeySpan& span) {
+    const std::uint64_t* key = traced_.data() + span.offset;
+    for (std::uint32_t j = 0; j < span.count; j += 2, key += 2 * span.stride) {
+      std::size_t x = 0, y = 0, z = 0;
+      if (!place_of(unpacked(*key), x, y, z)) continue;
+      if (const std::uint32_t block = chunk_[chunk_of(x >> 2, y >> 2, z >> 2)]; block != kNone) {
+        __builtin_prefetch(&slot_[std::size_t(block) * kChunkBricks + place_in_chunk(x >> 2, y >> 2, z >> 2)]);
+      }
+    }
+  };
+  const auto find_cells = [&](const RayKeySpan& span) {
+    const std::uint64_t* key = traced_.data() + span.offset;
+    for (std::uint32_t j = 0; j < span.count; ++j, key += span.stride) {
+      std::size_t x = 0, y = 0, z = 0;
+      if (!place_of(unpacked(*key), x, y, z)) continue;
+      std::uint32_t slot = slot_of(x >> 2, y >> 2, z >> 2);
+      if (slot == kNone) slot = hold(x >> 2, y >> 2, z >> 2);
+      const std::size_t c = std::size_t(slot) * kBrickCells + ((x & 3) << 4 | (y & 3) << 2 | (z & 3));
+      __builtin_prefetch(&cells_[c]);
+      __builtin_prefetch(&mark_of(c));
+      crossed_[crossed++] = std::uint32_t(c);
+    }
+  };
+  // Whether a cell is updated (not met before in this scan, not an endpoint's) and whether it was unknown change
+  // from cell to cell without a pattern, so the common cases (unknown or known free, and with unknown_is_occupied
+  // only known free) are taken without a branch; a cell whose occupancy a miss can change takes update(), which
+  // keeps the counts. A cell at the lower clamp is updated to the same value (OctoMap leaves it: the same cell). A
+  // byte per cell marks the scan's sets, so that consecutive cells of a brick do not wait on each other's stores.
+  const bool unknown_blocks = config_.unknown_is_occupied;
+  long long known = 0;
+  const auto update_cells = [&](std::size_t from, std::size_t to) {
+    for (const std::uint32_t c : std::span(crossed_.data() + from, to - from)) {
+      std::uint8_t& mark = mark_of(c);
+      float& v = cells_[c];
+      const float old = v;
+      const bool fresh = mark == 0, was_known = old == old;  // was_known: false for NaN
+      mark |= kMarkMet;
+      // Bitwise on the conditions, and masks for the choice: the compiler would otherwise branch on them.
+      if (fresh & ((old > 0.0f) | (unknown_blocks & !was_known))) {
+        update(c, miss_);
+        continue;
+      }
+      const float next = std::max((was_known ? old : 0.0f) + miss_, min_);
+      const std::uint32_t keep = std::uint32_t{0} - std::uint32_t(!fresh);
+      v = std::bit_cast<float>((std::bit_cast<std::uint32_t>(old) & keep) | (std::bit_cast<std::uint32_t>(next) & ~keep));
+      known += std::uint64_t(fresh & !was_known);
+    }
+  };
+  std::size_t updated = 0;
+  for (std::size_t r = 0; r < spans_.size(); ++r) {
+    const RayKeySpan& span = spans_[r];
+    const std::size_t found = crossed;
+    if (r + 1 < spans_.size()) prefetch_slots(spans_[r + 1]);
+    find_cells(span);
+    update_cells(updated, found);
+    updated = found;
+  }
+  update_cells(updated, crossed);
+  known_ += known;
+  for (const std::uint32_t c : std::span(crossed_.data(), crossed)) mark_of(c) = 0;
   for (std::uint32_t c : hit_list_) {
     update(c, hit_);
-    bits_[c / kBrickCells].hit = 0;
+    mark_of(c) = 0;
   }
 }
 
@@ -547,8 +470,9 @@ void ScanMap::write_bt(const std::filesystem::path& file) const {
 
 std::size_t ScanMap::bytes() const {
   const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return held(chunk_) + held(slot_) + held(held_chunks_) + held(block_occupied_) + held(cells_) + held(bits_) + held(brick_occupied_) + held(brick_blocked_) +
-         held(brick_of_) + held(sorted_) + held(free_list_) + held(hit_list_) + held(crossed_) + held(flips_);
+  return held(chunk_) + held(slot_) + held(held_chunks_) + held(block_occupied_) + held(cells_) + held(marks_) + held(brick_occupied_) + held(brick_blocked_) +
+         held(brick_of_) + held(sorted_) + held(ends_) + held(traced_) + held(spans_) + held(hit_list_) +
+         held(crossed_) + held(flips_);
 }
 
 }  // namespace peg3d::sense

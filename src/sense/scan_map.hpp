@@ -4,7 +4,7 @@
 //
 // Each scan is inserted as OctoMap's OccupancyOcTreeBase::insertPointCloud(scan, origin, max_range) inserts it:
 // the same float point cloud, the same keys (OctoMap's coordToKeyChecked, and its computeRayKeys traversal step for
-// step in the same arithmetic, each cell handled as it is met instead of stored), the same sets
+// step in the same arithmetic), the same sets
 // (every cell a ray crosses is free, the cell of an endpoint within max_range is occupied and wins over free, an
 // endpoint beyond max_range carves free space up to max_range only), and the same float log-odds updates with
 // OctoMap's clamping. So every cell's log-odds equals what an octomap::OcTree holds after insertPointCloud of the
@@ -15,11 +15,9 @@
 // and a brick is allocated when a scan first reaches one of its cells (issue 53): a map holds what its agent saw,
 // not the arena. Bricks are found through two tables: per chunk of 8 x 8 x 8 bricks (4 bytes each, made with the
 // map) the chunk's block of 512 brick slots (2 KB, made when the chunk is first reached). Per allocated brick: 256
-// bytes of cells, 32 of bits (a scan's two sets, and the cells at the lower clamp, which a ray crosses without an
-// update, in one aligned block), its count of occupied cells and its place (bytes()); arenas of up to 2^22 bricks
-// also keep a byte per brick of the grid, its count of occupied cells, for nearest_occupied. A ray crosses a brick
-// whose 64 cells are all at the lower clamp without visiting them: no miss can change such a cell, and the step that
-// leaves the brick is found by the traversal's own additions, so the cells met after it are OctoMap's.
+// bytes of cells, 64 of marks (a byte per cell: met by a ray of the scan, an endpoint's), its count of occupied cells and its place (bytes()); arenas of up to 2^22 bricks
+// also keep a byte per brick of the grid, its count of occupied cells, for nearest_occupied. A scan's rays are
+// traversed first, eight at a time (ray_keys.hpp), then their keys become cells, then the cells are updated.
 // clear() forgets every brick and keeps the memory, so a map that has held as many bricks allocates nothing.
 
 #include <array>
@@ -32,13 +30,7 @@
 
 #include "core/config_fields.hpp"
 #include "geometry/vector.hpp"
-
-namespace octomath {
-class Vector3;
-}  // namespace octomath
-namespace octomap {
-class OcTree;
-}  // namespace octomap
+#include "sense/ray_keys.hpp"  // also declares octomath::Vector3 and octomap::OcTree
 
 namespace peg3d::sense {
 
@@ -150,8 +142,6 @@ class ScanMap {
   long long occupied_cells() const { return occupied_; }
   /// Bricks (4 x 4 x 4 cells) the map holds: those a scan reached since it was made or cleared.
   std::size_t held_bricks() const { return brick_of_.size(); }
-  /// Bricks whose cells a ray crossed without visiting them (all at the lower clamp), since the map was made.
-  long long skipped_bricks() const { return skipped_; }
   /// Calls f(key, log_odds) for every known cell in key order by brick (bricks x slowest, then the brick's cells
   /// x slowest). Allocates nothing: it sorts the bricks in a scratch array of the map's, so two threads must not
   /// call it on one map at once (a map belongs to one game state).
@@ -238,11 +228,6 @@ class ScanMap {
   void grow(std::vector<T>& v, std::size_t n);
   /// The held bricks' slots in the order of their places in the grid (x slowest), in a scratch array.
   std::span<const std::uint32_t> sorted_slots() const;
-  /// Writes to out the storage index of each cell computeRayKeys(origin, end) gives, in its order, that lies
-  /// inside the box, holding its brick; none when it fails. Bricks whose cells are all at the lower clamp are
-  /// crossed without a visit. Returns the end of what it wrote; out has room for 3 cells a resolution of the ray's
-  /// length and 4 more.
-  std::uint32_t* ray_cells(const octomath::Vector3& origin, const octomath::Vector3& end, std::uint32_t* out);
 
   ScanMapConfig config_;
   std::unique_ptr<octomap::OcTree> keys_;     // an empty tree: OctoMap's key arithmetic and ray keys
@@ -257,12 +242,13 @@ class ScanMap {
   std::vector<std::uint32_t> block_occupied_;  // per block (held chunk): its occupied cells, for nearest_occupied
   // Per slot (a held brick):
   std::vector<float> cells_;                  // 64 log-odds (x slowest); NaN: unknown; -inf: beyond the box
-  /// A brick's cells as bits (bit l: cell l of the brick): a scan's two sets, and the cells at the lower clamp.
-  /// Side by side, so that a ray's step into a brick reads one cache line of them.
-  struct alignas(32) BrickBits {
-    std::uint64_t free = 0, hit = 0, at_min = 0;
+  /// A brick's cells' marks in a scan (a byte per cell, in one cache line): met by a ray, an endpoint's.
+  struct alignas(64) BrickMarks {
+    std::uint8_t cell[kBrickCells] = {};
   };
-  std::vector<BrickBits> bits_;
+  static constexpr std::uint8_t kMarkMet = 1, kMarkHit = 2;
+  std::vector<BrickMarks> marks_;
+  std::uint8_t& mark_of(std::size_t c) { return marks_[c / kBrickCells].cell[c % kBrickCells]; }
   std::vector<std::uint8_t> brick_occupied_;  // occupied cells (with unknown_is_occupied: or unknown)
   /// The same count per brick of the grid, held or not, when the grid has at most kDenseCountBricks bricks (1 byte
   /// a brick: 27 KB for the paper arena at 0.25 m): nearest_occupied then passes an empty brick with one load.
@@ -270,13 +256,16 @@ class ScanMap {
   static constexpr std::size_t kDenseCountBricks = std::size_t{1} << 22;
   std::vector<std::uint32_t> brick_of_;       // its place in the grid of bricks, (bx * by_count + by) * bz_count + bz
   mutable std::vector<std::uint32_t> sorted_;  // scratch of sorted_slots(), as large as brick_of_'s capacity
-  std::vector<std::uint32_t> free_list_, hit_list_;  // a scan's sets' cells
+  std::vector<octomath::Vector3> ends_;               // a scan's rays' ends, as insertPointCloud traces them
+  std::vector<std::uint64_t> traced_;                // the keys its rays meet (trace_rays); its size is its room
+  std::vector<RayKeySpan> spans_;                    // where each ray's keys lie in traced_
+  std::vector<std::uint32_t> hit_list_;              // a scan's endpoints' cells
   std::vector<std::uint32_t> crossed_;               // every cell a scan's rays cross, in order (repeats kept); its
                                                      // size is its capacity
   std::vector<std::uint32_t> flips_;                 // the cells whose occupancy the latest insert changed
   bool obstacles_moved_ = false;                     // the latest insert changed a brick's count of blocked cells
   float hit_ = 0.0f, miss_ = 0.0f, min_ = 0.0f, max_ = 0.0f;  // log-odds
-  long long known_ = 0, occupied_ = 0, skipped_ = 0, allocations_ = 0;
+  long long known_ = 0, occupied_ = 0, allocations_ = 0;
 };
 
 }  // namespace peg3d::sense

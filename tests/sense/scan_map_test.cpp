@@ -325,10 +325,10 @@ TEST(ScanMap, ABoxTooFineForItsTablesIsRefused) {
   EXPECT_LT(paper.bytes(), 28u << 10);  // 5 x 5 x 3 chunks, and a byte for each of its 36 x 36 x 21 bricks
 }
 
-// Scans from points about one place, in every direction and along the axes, diagonals and brick faces: after a few
-// scans the bricks about it are all at the lower clamp and rays cross them without visiting their cells. Every cell
-// still equals OctoMap's, so the step that leaves such a brick is the one the traversal takes.
-TEST(ScanMap, RaysCrossingBricksAtTheLowerClampMeetOctomapsCells) {
+// Scans from points about one place, in every direction and along the axes and diagonals, now and then from a
+// cell's corner or centre (where the traversal's ties between axes fall): the cells about it are met by many rays
+// and reach the lower clamp, and every cell equals OctoMap's.
+TEST(ScanMap, RaysAlongAxesAndDiagonalsFromCornersMeetOctomapsCells) {
   for (const double resolution : {0.25, 0.1, 0.4}) {
     SCOPED_TRACE(resolution);
     ScanMapConfig c;
@@ -366,9 +366,6 @@ TEST(ScanMap, RaysCrossingBricksAtTheLowerClampMeetOctomapsCells) {
       if (s % 40 == 39) expect_same_cells(map, tree, lo, hi, "about one place");
       if (::testing::Test::HasFailure()) return;
     }
-    std::printf("at %.2f m: %lld bricks crossed without a visit, %zu held\n", resolution, map.skipped_bricks(),
-                map.held_bricks());
-    EXPECT_GT(map.skipped_bricks(), 50);
   }
 }
 

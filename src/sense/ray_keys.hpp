@@ -1,0 +1,56 @@
+#pragma once
+// OctoMap's computeRayKeys for a scan's rays, several rays at a time (issue 53, part 1).
+//
+// The traversal (Amanatides and Woo's, as OcTreeBaseImpl::computeRayKeys steps it) takes, at each step, the axis
+// whose next border comes first, and which axis that is changes from step to step without a pattern a branch
+// predictor can learn: one ray at a time, a step costs a mispredicted branch about every other cell. Here the
+// rays of a scan are stepped eight at a time in two sets of four vector lanes (AVX2, where the processor has it),
+// each lane choosing its axis with masks: the same double additions and comparisons in the same order per ray, so
+// each ray meets exactly OctoMap's keys. Without AVX2 the rays are stepped one at a time, with the same answers.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace octomath {
+class Vector3;
+}  // namespace octomath
+namespace octomap {
+class OcTree;
+}  // namespace octomap
+
+namespace peg3d::sense {
+
+/// How trace_rays steps the rays.
+enum class RayLanes {
+  kBest,    ///< in vector lanes when the processor has AVX2, else one at a time
+  kScalar,  ///< one ray at a time
+  kVector,  ///< in vector lanes (the caller checks vector_lanes_available())
+};
+
+/// Whether this processor can step rays in vector lanes (AVX2).
+bool vector_lanes_available();
+
+/// The keys one ray met, in order: keys[offset + i * stride] for i < count.
+struct RayKeySpan {
+  std::uint32_t offset = 0, stride = 1, count = 0;
+};
+
+/// A cell's key packed in one word: each axis's key plus kKeyBias in 21 bits (x lowest), so that a step of one
+/// cell either way never borrows from or carries into the next axis.
+inline constexpr std::uint64_t kKeyBias = std::uint64_t{1} << 19;
+inline constexpr std::uint64_t kKeyMask = (std::uint64_t{1} << 21) - 1;
+inline std::uint16_t packed_key(std::uint64_t word, int axis) {
+  return std::uint16_t(((word >> (21 * axis)) & kKeyMask) - kKeyBias);
+}
+
+/// For each ray from `origin` to ends[i], the keys OctoMap's tree.computeRayKeys(origin, ends[i], ...) gives
+/// (nothing when it fails: an end beyond the keys' range, or both ends in one cell), packed, into keys, and where
+/// they are into spans[i] (in vector lanes a ray's keys lie `stride` apart). keys' size is its room: it is resized
+/// (doubling) only when the rays need more than it has, and its words past the returned count mean nothing.
+/// Returns the words of keys used.
+std::size_t trace_rays(const octomap::OcTree& tree, const octomath::Vector3& origin,
+                       std::span<const octomath::Vector3> ends, std::vector<std::uint64_t>& keys,
+                       std::vector<RayKeySpan>& spans, RayLanes lanes = RayLanes::kBest);
+
+}  // namespace peg3d::sense
