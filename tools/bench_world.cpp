@@ -23,8 +23,9 @@
 //   BM_MapInsert/<method>           one 64-ray scan of BM_StaticScan/1 (forest) at 10 m range inserted into an agent's
 //                                   map at 0.25 m: method 0 sense::ScanMap::insert, 1 OctoMap's
 //                                   OcTree::insertPointCloud (the same scans: the same cells), 2 OctoMap's
-//                                   computeRayKeys alone for the same rays (the traversal, no cell updated: what
-//                                   visiting every crossed cell costs at least); the walk's 2000 scans, then the
+//                                   computeRayKeys alone for the same rays (the traversal, no cell updated), 3
+//                                   sense::trace_rays for them (the same keys, eight rays at a time in vector
+//                                   lanes where the processor has AVX2); the walk's 2000 scans, then the
 //                                   walk again into the same map; items_per_second is rays per second; counter
 //                                   free_cells_per_ray
 //   BM_MapNearest/<cap_m>           the nearest occupied cell of that map (all 2000 scans in) from the walk's points,
@@ -46,6 +47,7 @@
 
 #include "cli_common.hpp"
 #include "core/random.hpp"
+#include "sense/ray_keys.hpp"
 #include "sense/scan_map.hpp"
 #include "world/arena.hpp"
 #include "world/collision/collision_world.hpp"
@@ -365,7 +367,7 @@ BENCHMARK(BM_SightTest)->Arg(1)->Arg(5)->Arg(9)->Unit(benchmark::kMicrosecond);
 
 // BM_MapInsert/<method>: the scans' endpoints (an echo's, or one beyond the range) along the forest walk.
 void BM_MapInsert(benchmark::State& state) {
-  const bool octomap_tree = state.range(0) == 1, keys_only = state.range(0) == 2;
+  const bool octomap_tree = state.range(0) == 1, keys_only = state.range(0) == 2, traced = state.range(0) == 3;
   const auto arena = scan_arena(1);
   const sense::StaticRayScene scene(*arena);
   constexpr double kRange = 10.0;
@@ -394,10 +396,20 @@ void BM_MapInsert(benchmark::State& state) {
   }
   long scans = 0;
   octomap::KeyRay ray_keys;
+  std::vector<octomap::point3d> ends;
+  std::vector<std::uint64_t> packed;
+  std::vector<sense::RayKeySpan> spans;
   for (auto _ : state) {
     const auto s = std::size_t(scans % kScans);
     const Vec3& o = origins[s];
-    if (keys_only) {
+    if (traced) {
+      const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
+      ends.clear();
+      for (const octomap::point3d& q : clouds[s]) {
+        ends.push_back((q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange));
+      }
+      benchmark::DoNotOptimize(sense::trace_rays(tree, origin, ends, packed, spans));
+    } else if (keys_only) {
       // As insertPointCloud traces them: each endpoint, or the point at the range along its ray.
       const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
       for (const octomap::point3d& q : clouds[s]) {
@@ -426,7 +438,7 @@ void BM_MapInsert(benchmark::State& state) {
   }
   state.counters["free_cells_per_ray"] = double(free_cells) / (100.0 * kRays);
 }
-BENCHMARK(BM_MapInsert)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MapInsert)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 // BM_MapNearest/<cap_m>: the nearest occupied cell of the map BM_MapInsert/0 builds from the walk's 2000 scans, from
 // each scan's origin in turn, within cap_m.
