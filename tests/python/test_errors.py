@@ -123,10 +123,10 @@ def test_a_batch_over_its_memory_budget_is_refused_before_its_games_are_made():
                                "pursuer.map.enabled": True, "pursuer.map.resolution": 0.08})
     # 2048 games with 0.08 m maps of the paper's arena (it once allocated on). A map is budgeted at the bricks an
     # episode's scans can reach: 32 scans (3 s at 10 Hz, and the resets') of 8 rays, each crossing at most 100
-    # bricks of 0.32 m, 297 bytes a brick (7.6 MB), the blocks of all 1568 chunks (3.2 MB) and a byte per brick
-    # (0.8 MB): about 11.6 MB a game, 24 GB in all (dense, they were 220 MB each)
-    with pytest.raises(peg3d.MemoryBudgetError, match=r"2048 games of about 11\.\d MB each .* 11\.6 MB for its "
-                                                      r"agents' own maps\) would take about 24\d{3}\.\d MB, more than "
+    # bricks of 0.32 m, 329 bytes a brick (8.4 MB), the blocks of all 1568 chunks (3.2 MB) and a byte per brick
+    # (0.8 MB): about 12.5 MB a game, 26 GB in all (dense, they were 220 MB each)
+    with pytest.raises(peg3d.MemoryBudgetError, match=r"2048 games of about 12\.\d MB each .* 12\.5 MB for its "
+                                                      r"agents' own maps\) would take about 25\d{3}\.\d MB, more than "
                                                       r"the memory budget of 1000\.0 MB") as refused:
         peg3d.vector_env(num_envs=2048, set=fine_maps, memory_budget=10**9)
     assert isinstance(refused.value, MemoryError)
