@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -180,8 +181,10 @@ std::size_t trace_rays(const octomap::OcTree& tree, const octomap::point3d& orig
     if (used + n > keys.size()) keys.resize(std::max(used + n, 2 * keys.size()));
     return keys.data() + used;
   };
+  if (lanes == RayLanes::kVector && !vector_lanes_available()) {
+    throw std::invalid_argument("trace_rays: vector lanes asked for, and this processor has no AVX2");
+  }
   const bool vector = lanes == RayLanes::kVector || (lanes == RayLanes::kBest && vector_lanes_available());
-  assert(!vector || vector_lanes_available());
 #ifdef PEG3D_RAY_LANES
   if (vector) {
     for (std::size_t g = 0; g < ends.size(); g += kLanes) {

@@ -25,7 +25,7 @@ namespace peg3d::sense {
 enum class RayLanes {
   kBest,    ///< in vector lanes when the processor has AVX2, else one at a time
   kScalar,  ///< one ray at a time
-  kVector,  ///< in vector lanes (the caller checks vector_lanes_available())
+  kVector,  ///< in vector lanes; trace_rays throws std::invalid_argument where vector_lanes_available() is false
 };
 
 /// Whether this processor can step rays in vector lanes (AVX2).

@@ -9,6 +9,7 @@
 #include <octomap/OcTree.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "core/random.hpp"
@@ -72,8 +73,16 @@ void expect_octomaps_keys(RayLanes lanes) {
 
 TEST(RayKeys, RaysOneAtATimeMeetOctomapsKeys) { expect_octomaps_keys(RayLanes::kScalar); }
 
+// Where the processor has no AVX2, asking for vector lanes is refused instead of running instructions it lacks.
 TEST(RayKeys, RaysInVectorLanesMeetOctomapsKeys) {
-  if (!vector_lanes_available()) GTEST_SKIP() << "this processor has no AVX2";
+  if (!vector_lanes_available()) {
+    const octomap::OcTree tree(0.25);
+    std::vector<std::uint64_t> keys;
+    std::vector<RayKeySpan> spans;
+    const std::vector<octomap::point3d> ends{octomap::point3d(3, 2, 1)};
+    EXPECT_THROW(trace_rays(tree, octomap::point3d(0, 0, 0), ends, keys, spans, RayLanes::kVector), std::invalid_argument);
+    GTEST_SKIP() << "this processor has no AVX2: vector lanes are refused";
+  }
   expect_octomaps_keys(RayLanes::kVector);
 }
 
