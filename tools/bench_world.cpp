@@ -395,6 +395,10 @@ void BM_MapInsert(benchmark::State& state) {
     }
   }
   long scans = 0;
+  // The end of a ray as insertPointCloud traces it: its endpoint, or the point at the range along it.
+  const auto traced_end = [&](const octomap::point3d& origin, const octomap::point3d& q) {
+    return (q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange);
+  };
   octomap::KeyRay ray_keys;
   std::vector<octomap::point3d> ends;
   std::vector<std::uint64_t> packed;
@@ -406,15 +410,13 @@ void BM_MapInsert(benchmark::State& state) {
       const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
       ends.clear();
       for (const octomap::point3d& q : clouds[s]) {
-        ends.push_back((q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange));
+        ends.push_back(traced_end(origin, q));
       }
       benchmark::DoNotOptimize(sense::trace_rays(tree, origin, ends, packed, spans));
     } else if (keys_only) {
-      // As insertPointCloud traces them: each endpoint, or the point at the range along its ray.
       const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
       for (const octomap::point3d& q : clouds[s]) {
-        const octomap::point3d end = (q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange);
-        tree.computeRayKeys(origin, end, ray_keys);
+        tree.computeRayKeys(origin, traced_end(origin, q), ray_keys);
         benchmark::DoNotOptimize(ray_keys.size());
       }
     } else if (octomap_tree) {
@@ -432,8 +434,7 @@ void BM_MapInsert(benchmark::State& state) {
     const Vec3& o = origins[std::size_t(s)];
     const octomap::point3d origin(float(o.x()), float(o.y()), float(o.z()));
     for (const octomap::point3d& q : clouds[std::size_t(s)]) {
-      const octomap::point3d end = (q - origin).norm() <= kRange ? q : origin + (q - origin).normalized() * float(kRange);
-      if (tree.computeRayKeys(origin, end, keys)) free_cells += static_cast<long>(keys.size());
+      if (tree.computeRayKeys(origin, traced_end(origin, q), keys)) free_cells += static_cast<long>(keys.size());
     }
   }
   state.counters["free_cells_per_ray"] = double(free_cells) / (100.0 * kRays);

@@ -58,8 +58,7 @@ RayStart start_ray(const octomap::OcTree& tree, const octomap::point3d& origin, 
       r.t[i] = r.delta[i] = std::numeric_limits<double>::max();
     }
   }
-  // Each axis steps while its t is at most the length: at most length |direction(i)| / resolution + 1 times.
-  r.most = std::size_t(std::sqrt(3.0) * double(length) / resolution) + 8;
+  r.most = ray_keys_most(length, resolution);
   return r;
 }
 

@@ -8,7 +8,9 @@
 // each lane choosing its axis with masks: the same double additions and comparisons in the same order per ray, so
 // each ray meets exactly OctoMap's keys. Without AVX2 the rays are stepped one at a time, with the same answers.
 
+#include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -42,6 +44,17 @@ inline constexpr std::uint64_t kKeyBias = std::uint64_t{1} << 19;
 inline constexpr std::uint64_t kKeyMask = (std::uint64_t{1} << 21) - 1;
 inline std::uint16_t packed_key(std::uint64_t word, int axis) {
   return std::uint16_t(((word >> (21 * axis)) & kKeyMask) - kKeyBias);
+}
+
+/// The most keys computeRayKeys gives for a ray of `length` m at `resolution` m: each axis steps while its border
+/// lies within the length, at most length |direction(i)| / resolution + 1 times, and a few more for rounding.
+inline std::size_t ray_keys_most(double length, double resolution) {
+  return std::size_t(std::numbers::sqrt3 * length / resolution) + 8;
+}
+/// The room (words of keys) trace_rays needs for `rays` rays of at most `range` m: per group of eight rays, as
+/// many rows as the longest one's keys and one more, and one for a length rounded up to float.
+inline std::size_t trace_room(std::size_t rays, double range, double resolution) {
+  return (rays + 7) / 8 * 8 * (ray_keys_most(range, resolution) + 2);
 }
 
 /// For each ray from `origin` to ends[i], the keys OctoMap's tree.computeRayKeys(origin, ends[i], ...) gives

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cassert>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -93,7 +92,7 @@ std::size_t ScanMap::bytes_most(const ScanMapConfig& config, const Vec3& lo, con
   const double reached = scans < 0 ? bricks : std::min(bricks, double(scans) * double(rays) * per_ray);
   const double per_brick = double(kBrickCells * sizeof(float) + sizeof(BrickMarks) + 1 + 2 * sizeof(std::uint32_t));
   const double cells_per_ray = 3.0 * std::ceil(range / config.resolution) + 4.0;
-  const double traced = std::ceil(double(rays) / 8.0) * 8.0 * (std::sqrt(3.0) * range / config.resolution + 10.0);
+  const double traced = double(trace_room(std::size_t(rays), range, config.resolution));
   const double lists = double(rays) * cells_per_ray * 3.0 * sizeof(std::uint32_t) + traced * sizeof(std::uint64_t) +
                        double(rays) * double(sizeof(RayKeySpan) + 3 * sizeof(float));
   const double dense = bricks <= double(kDenseCountBricks) ? bricks : 0.0;
@@ -209,8 +208,7 @@ void ScanMap::reserve(int rays, double range) {
   grow(hit_list_, std::min(most, std::size_t(rays)));
   grow(ends_, std::size_t(rays));
   grow(spans_, std::size_t(rays));
-  // The rays' keys, traced eight at a time: per ray as many words as its most cells (ray_keys.cpp) and one more.
-  const std::size_t words = (std::size_t(rays) + 7) / 8 * 8 * (std::size_t(std::sqrt(3.0) * range / config_.resolution) + 10);
+  const std::size_t words = trace_room(std::size_t(rays), range, config_.resolution);  // the rays' keys
   if (words > traced_.size()) {
     grow(traced_, words);
     traced_.resize(traced_.capacity());

@@ -15,9 +15,10 @@
 // and a brick is allocated when a scan first reaches one of its cells (issue 53): a map holds what its agent saw,
 // not the arena. Bricks are found through two tables: per chunk of 8 x 8 x 8 bricks (4 bytes each, made with the
 // map) the chunk's block of 512 brick slots (2 KB, made when the chunk is first reached). Per allocated brick: 256
-// bytes of cells, 64 of marks (a byte per cell: met by a ray of the scan, an endpoint's), its count of occupied cells and its place (bytes()); arenas of up to 2^22 bricks
-// also keep a byte per brick of the grid, its count of occupied cells, for nearest_occupied. A scan's rays are
-// traversed first, eight at a time (ray_keys.hpp), then their keys become cells, then the cells are updated.
+// bytes of cells, 64 of marks (a byte per cell: met by a ray of the scan, an endpoint's), its count of occupied
+// cells and its place (bytes()); arenas of up to 2^22 bricks also keep a byte per brick of the grid, its count of
+// occupied cells, for nearest_occupied. A scan's rays are traversed first, eight at a time (ray_keys.hpp), then
+// their keys become cells, then the cells are updated.
 // clear() forgets every brick and keeps the memory, so a map that has held as many bricks allocates nothing.
 
 #include <array>
