@@ -12,7 +12,7 @@
 // cells of median splits along the widest spread), the clusters' bounds, and the bounds of groups of eight
 // neighbouring clusters (the cells a few splits up), so that a query near nothing is over at the top. Each
 // level's bounds lie side by side, one coordinate of every box in a row, so a query measures four boxes with
-// one instruction each (SSE2,
+// one instruction each (SSE2, a fan's rays eight at a time with AVX2 where the processor has it,
 // or plain loops elsewhere: the same floats) in straight-line code that reads memory in order: no chain of
 // dependent loads from node to node, which costs a cache miss a level when a window's index is cold. Bounds are
 // relative to the boxes' lowest corner, rounded outwards: floats for groups and clusters, and for the boxes

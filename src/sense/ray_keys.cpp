@@ -1,5 +1,7 @@
 #include "sense/ray_keys.hpp"
 
+#include "core/cpu.hpp"
+
 #include <octomap/OcTree.h>
 
 #include <algorithm>
@@ -163,8 +165,7 @@ __attribute__((target("avx2"))) void step_eight(const RayStart* r, std::uint64_t
 
 bool vector_lanes_available() {
 #ifdef PEG3D_RAY_LANES
-  static const bool available = __builtin_cpu_supports("avx2");
-  return available;
+  return cpu_has_avx2();
 #else
   return false;
 #endif
