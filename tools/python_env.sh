@@ -4,7 +4,7 @@
 # build backend and pybind11, moviepy (for Gymnasium's RecordVideo), PyTorch (CPU), Stable-Baselines3,
 # SuperSuit and Ray (peg3d.selfplay's clusters). Fast when they are there.
 #   tools/python_env.sh            create it or bring it up to date
-#   tools/python_env.sh --package  then build and install peg3d into it (pip install ., into build/)
+#   tools/python_env.sh --package  then build and install peg3d into it (pip install ., from the tree build/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ ! -x .venv/bin/python ]]; then
@@ -17,6 +17,8 @@ if [[ "$(cat .venv/.peg3d-constraints 2>/dev/null)" != "$want" ]]; then
   echo "$want" > .venv/.peg3d-constraints
 fi
 if [[ "${1:-}" == "--package" ]]; then
-  # No build isolation: the backend is the one just installed, and the build tree is build/ (pyproject.toml).
-  .venv/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --no-deps . >&2
+  # No build isolation: the backend is the one just installed; the build tree is build/, tools/build.sh's (a pip
+  # install by hand builds in build/pip: pyproject.toml).
+  .venv/bin/python -m pip install --quiet --disable-pip-version-check --no-build-isolation --no-deps \
+      --config-settings=build-dir=build . >&2
 fi

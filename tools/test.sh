@@ -52,7 +52,8 @@ fi
 if [[ "${1:-}" == "--python-versions" ]]; then
   tools/python_env.sh
   rm -rf build/wheel build/venv-newest build/venv-oldest
-  .venv/bin/python -m pip wheel --quiet --no-build-isolation --no-deps -w build/wheel . >&2
+  .venv/bin/python -m pip wheel --quiet --no-build-isolation --no-deps --config-settings=build-dir=build \
+      -w build/wheel . >&2
   wheel=$(ls build/wheel/peg3d-*.whl)
   for which in newest oldest; do
     venv=build/venv-$which
