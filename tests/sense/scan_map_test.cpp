@@ -167,6 +167,60 @@ TEST(ScanMap, TheNearestOccupiedCellEqualsTestingEveryCell) {
   }
 }
 
+TEST(ScanMap, WithUnknownCellsAsObstaclesTheNearestEqualsTestingEveryCell) {
+  // unknown_is_occupied: every cell of the box no scan has touched counts, as well as the occupied ones. Random
+  // scans in a box whose grid ends inside its last bricks (cells beyond it count as nothing); each query's answer
+  // equals testing every cell of the box, held bricks and bricks not held alike.
+  const Vec3 lo(0.3, -1.1, 0.2), hi(13.7, 9.9, 6.6);
+  ScanMapConfig c;
+  c.resolution = 0.3;
+  c.unknown_is_occupied = true;
+  ScanMap map(c, lo, hi);
+  Rng rng(8);
+  const CellKey k0 = map.key_of(lo), k1 = map.key_of(hi);
+  int checked = 0, at_unknown = 0, at_occupied = 0;
+  for (int s = 0; s < 12; ++s) {
+    const Vec3 o = lo + (hi - lo).cwiseProduct(Vec3(uniform(rng, 0, 1), uniform(rng, 0, 1), uniform(rng, 0, 1)));
+    std::vector<Vec3> points;
+    for (int k = 0; k < 60; ++k) points.push_back(o + Vec3(uniform(rng, -8, 8), uniform(rng, -8, 8), uniform(rng, -4, 4)));
+    map.insert(o, points, 6.0);
+    std::vector<std::pair<Vec3, bool>> blocked;  // centre, unknown
+    for (int x = k0[0]; x <= k1[0]; ++x) {
+      for (int y = k0[1]; y <= k1[1]; ++y) {
+        for (int z = k0[2]; z <= k1[2]; ++z) {
+          const CellKey key{std::uint16_t(x), std::uint16_t(y), std::uint16_t(z)};
+          const float v = map.log_odds(key);
+          if (v != v || v > 0.0f) blocked.emplace_back(map.centre(key), v != v);
+        }
+      }
+    }
+    std::vector<Vec3> ends;  // the endpoints within range: their cells are occupied
+    for (const Vec3& e : points) {
+      if ((e - o).norm() < 5.9) ends.push_back(e);
+    }
+    for (int q = 0; q < 25; ++q) {
+      const Vec3 p = q % 3 == 0 && !ends.empty() ? ends[std::size_t(q) % ends.size()]
+                                                 : Vec3(o + Vec3(uniform(rng, -4, 4), uniform(rng, -4, 4), uniform(rng, -2, 2)));
+      const double cap = q % 2 == 0 ? 1.5 : 6.0;
+      double want = cap;
+      bool want_found = false, want_unknown = false;
+      for (const auto& [centre, unknown] : blocked) {
+        const Vec3 h = Vec3::Constant(0.5 * c.resolution);
+        const double d = (p.cwiseMax(centre - h).cwiseMin(centre + h) - p).norm();
+        if (d <= cap && (!want_found || d < want)) want = d, want_found = true, want_unknown = unknown;
+      }
+      const OccupiedPoint got = map.nearest_occupied(p, cap);
+      ASSERT_EQ(got.found, want_found) << "query " << q << " at scan " << s;
+      ASSERT_NEAR(got.distance, want, 1e-12) << "query " << q << " at scan " << s;
+      ++checked;
+      if (want_found) (want_unknown ? at_unknown : at_occupied) += 1;
+    }
+  }
+  std::printf("%d queries: %d nearest at an unknown cell, %d at an occupied one\n", checked, at_unknown, at_occupied);
+  EXPECT_GT(at_unknown, 20);
+  EXPECT_GT(at_occupied, 5);
+}
+
 TEST(ScanMap, ARayBeyondRangeCarvesFreeSpaceOnlyAndAnEndpointWinsOverFree) {
   ScanMapConfig c;
   c.resolution = 0.5;
