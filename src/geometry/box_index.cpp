@@ -337,12 +337,13 @@ void BoxIndex::cones(const FanRays& fan, const Level<T>& level, int begin, int n
   alignas(16) float cx[4], cy[4], cz[4], cos_limit[4], entry[4];
   alignas(16) std::int32_t state[4];  // 0: a ray test, 1: the ball holds the origin (every ray), 2: empty box
   // Sparse rays side by side (padded to four with rays that meet nothing), tested without gaps; many as they are.
+  // Eight lanes test every ray instead: packing the few cost more than the lanes it spared (BM_WorldScan/2/10).
   alignas(16) float packed_x[kFanRays], packed_y[kFanRays], packed_z[kFanRays], packed_bound[kFanRays];
   std::int8_t ray[kFanRays];
   const float *x = fan.x, *y = fan.y, *z = fan.z, *bound = fan.bound;
   int m = kFanRays;
-  const bool sparse = std::popcount(among) <= kFanRays / 2;
   const bool wide = cpu_has_avx2();
+  const bool sparse = !wide && std::popcount(among) <= kFanRays / 2;
   if (sparse) {
     m = 0;
     for (std::uint64_t bits = among; bits != 0; bits &= bits - 1, ++m) {
