@@ -161,16 +161,19 @@ __m128 load4(const std::uint16_t* p) {
 #endif
 
 // cones()'s ray test for one ball: bit q set when ray q's direction lies in the ball's cone (dot >= limit) and its
-// bound reaches the ball (bound >= near); m is a multiple of four. Four rays at a time, or eight (AVX2) when
-// `wide`: the same float products and sums in the same order in every lane, so the same bits.
+// bound reaches the ball (bound >= near); m is a multiple of four. Four rays at a time, or, when `wide`, all
+// kFanRays eight at a time (AVX2): the same float products and sums in the same order in every lane, so the same bits.
 #ifdef PEG3D_CONE_LANES
-std::uint64_t rays_in_cone_eight(const float* x, const float* y, const float* z, const float* bound, int m, float cx,
-                                 float cy, float cz, float limit, float near);
+std::uint64_t rays_in_cone_eight(const float* x, const float* y, const float* z, const float* bound, float cx, float cy,
+                                 float cz, float limit, float near);
 #endif
 std::uint64_t rays_in_cone(const float* x, const float* y, const float* z, const float* bound, int m, float cx,
                            float cy, float cz, float limit, float near, bool wide) {
 #ifdef PEG3D_CONE_LANES
-  if (wide) return rays_in_cone_eight(x, y, z, bound, m, cx, cy, cz, limit, near);
+  if (wide) {
+    assert(m == BoxIndex::kFanRays);
+    return rays_in_cone_eight(x, y, z, bound, cx, cy, cz, limit, near);
+  }
 #else
   (void)wide;
 #endif
@@ -194,27 +197,19 @@ std::uint64_t rays_in_cone(const float* x, const float* y, const float* z, const
 }
 
 #ifdef PEG3D_CONE_LANES
-// rays_in_cone(), eight rays at a time.
+// rays_in_cone() for all kFanRays rays, eight at a time.
 __attribute__((target("avx2"))) std::uint64_t rays_in_cone_eight(const float* x, const float* y, const float* z,
-                                                                 const float* bound, int m, float cx, float cy,
-                                                                 float cz, float limit, float near) {
+                                                                 const float* bound, float cx, float cy, float cz,
+                                                                 float limit, float near) {
   const __m256 vx = _mm256_set1_ps(cx), vy = _mm256_set1_ps(cy), vz = _mm256_set1_ps(cz);
   const __m256 vlimit = _mm256_set1_ps(limit), vnear = _mm256_set1_ps(near);
   std::uint64_t packed = 0;
-  int q = 0;
-  for (; q + 8 <= m; q += 8) {
+  static_assert(BoxIndex::kFanRays % 8 == 0);
+  for (int q = 0; q < BoxIndex::kFanRays; q += 8) {
     const __m256 dot = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(x + q), vx), _mm256_mul_ps(_mm256_loadu_ps(y + q), vy)),
                                      _mm256_mul_ps(_mm256_loadu_ps(z + q), vz));
     const __m256 in = _mm256_and_ps(_mm256_cmp_ps(dot, vlimit, _CMP_GE_OQ), _mm256_cmp_ps(_mm256_loadu_ps(bound + q), vnear, _CMP_GE_OQ));
     packed |= static_cast<std::uint64_t>(_mm256_movemask_ps(in)) << q;
-  }
-  if (q < m) {  // the last four
-    const __m128 dot = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(x + q), _mm256_castps256_ps128(vx)),
-                                             _mm_mul_ps(_mm_loadu_ps(y + q), _mm256_castps256_ps128(vy))),
-                                  _mm_mul_ps(_mm_loadu_ps(z + q), _mm256_castps256_ps128(vz)));
-    const __m128 in = _mm_and_ps(_mm_cmpge_ps(dot, _mm256_castps256_ps128(vlimit)),
-                                 _mm_cmpge_ps(_mm_loadu_ps(bound + q), _mm256_castps256_ps128(vnear)));
-    packed |= static_cast<std::uint64_t>(_mm_movemask_ps(in)) << q;
   }
   return packed;
 }

@@ -1,7 +1,5 @@
 #include "sense/ray_keys.hpp"
 
-#include "core/cpu.hpp"
-
 #include <octomap/OcTree.h>
 
 #include <algorithm>
@@ -9,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "core/cpu.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
