@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "core/cpu.hpp"
@@ -87,6 +88,103 @@ std::uint64_t* step_ray(const RayStart& r, std::uint64_t* out) {
 
 #ifdef PEG3D_RAY_LANES
 constexpr std::size_t kLanes = 8;  // two sets of four: their steps' latencies overlap
+
+// What start_ray computes the same for every ray of a scan: the origin's key, and per axis the numerator of its
+// first t, (border - origin) with the border half a cell (as a float) above or below the origin cell's centre.
+struct ScanStart {
+  octomap::OcTreeKey origin_key;
+  bool origin_ok = false;
+  float origin[3] = {0.0f, 0.0f, 0.0f};
+  double above[3] = {0.0, 0.0, 0.0}, below[3] = {0.0, 0.0, 0.0};  // a positive and a negative step's numerator
+  double resolution = 0.0, factor = 0.0;                           // m, and 1 / m (OctoMap's resolution_factor)
+  int max_val = 0;                                                 // OctoMap's tree_max_val
+};
+
+ScanStart start_scan(const octomap::OcTree& tree, const octomap::point3d& origin) {
+  ScanStart s;
+  s.origin_key = octomap::OcTreeKey(0, 0, 0);  // a failed check leaves it part written: then no ray is traced
+  s.origin_ok = tree.coordToKeyChecked(origin, s.origin_key);
+  s.resolution = tree.getResolution();
+  s.factor = 1.0 / s.resolution;  // as OcTreeBaseImpl::setResolution sets resolution_factor
+  s.max_val = int(tree.coordToKey(0.0));  // coordToKey(0) = floor(0) + tree_max_val
+  const float half = float(1 * s.resolution * 0.5);  // computeRayKeys's float(step * resolution * 0.5), step 1
+  for (unsigned i = 0; i < 3; ++i) {
+    s.origin[i] = origin(i);
+    double up = tree.keyToCoord(s.origin_key[i]), down = up;
+    up += half;
+    down += -half;
+    s.above[i] = up - double(origin(i));
+    s.below[i] = down - double(origin(i));
+  }
+  return s;
+}
+
+// start_ray for four rays in the lanes of AVX2 registers: the same float and double operations in each lane.
+__attribute__((target("avx2"))) void start_four(const ScanStart& s, const octomap::point3d* ends, RayStart* out) {
+  alignas(16) float e[3][4];
+  for (std::size_t k = 0; k < 4; ++k) {
+    for (unsigned i = 0; i < 3; ++i) e[i][k] = ends[k](i);
+  }
+  // The ends' keys: (int) floor(resolution_factor * coordinate) + tree_max_val, checked within [0, 2 tree_max_val).
+  __m128i key[3];
+  __m128i ok = _mm_set1_epi32(s.origin_ok ? -1 : 0);
+  for (unsigned i = 0; i < 3; ++i) {
+    const __m256d c = _mm256_cvtps_pd(_mm_load_ps(e[i]));
+    key[i] = _mm_add_epi32(_mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_mul_pd(_mm256_set1_pd(s.factor), c))),
+                           _mm_set1_epi32(s.max_val));
+    ok = _mm_and_si128(ok, _mm_andnot_si128(_mm_cmplt_epi32(key[i], _mm_setzero_si128()),
+                                            _mm_cmplt_epi32(key[i], _mm_set1_epi32(2 * s.max_val))));
+  }
+  __m128i same = _mm_set1_epi32(-1);
+  for (unsigned i = 0; i < 3; ++i) same = _mm_and_si128(same, _mm_cmpeq_epi32(key[i], _mm_set1_epi32(s.origin_key[i])));
+  // The direction in floats, its length (norm_sq in float, its root in double, kept as a float) and the unit
+  // direction (each component divided by the float length).
+  __m128 d[3];
+  for (unsigned i = 0; i < 3; ++i) d[i] = _mm_sub_ps(_mm_load_ps(e[i]), _mm_set1_ps(s.origin[i]));
+  const __m128 squares = _mm_add_ps(_mm_add_ps(_mm_mul_ps(d[0], d[0]), _mm_mul_ps(d[1], d[1])), _mm_mul_ps(d[2], d[2]));
+  const __m128 length = _mm256_cvtpd_ps(_mm256_sqrt_pd(_mm256_cvtps_pd(squares)));
+  alignas(32) double t[3][4], delta[3][4], length_d[4], most[4];
+  alignas(32) std::int64_t step[3][4];
+  const __m256d huge = _mm256_set1_pd(std::numeric_limits<double>::max()), zero = _mm256_setzero_pd();
+  for (unsigned i = 0; i < 3; ++i) {
+    const __m256d u = _mm256_cvtps_pd(_mm_div_ps(d[i], length));
+    const __m256d up = _mm256_cmp_pd(u, zero, _CMP_GT_OQ), down = _mm256_cmp_pd(u, zero, _CMP_LT_OQ);
+    const __m256d moves = _mm256_or_pd(up, down);
+    const __m256d from = _mm256_blendv_pd(_mm256_set1_pd(s.below[i]), _mm256_set1_pd(s.above[i]), up);
+    const __m256d magnitude = _mm256_andnot_pd(_mm256_set1_pd(-0.0), u);
+    _mm256_store_pd(t[i], _mm256_blendv_pd(huge, _mm256_div_pd(from, u), moves));
+    _mm256_store_pd(delta[i], _mm256_blendv_pd(huge, _mm256_div_pd(_mm256_set1_pd(s.resolution), magnitude), moves));
+    const __m256i one = _mm256_set1_epi64x(std::int64_t{1} << (21 * i));
+    const __m256i minus = _mm256_set1_epi64x(std::int64_t(~std::uint64_t{0} << (21 * i)));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(step[i]),
+                       _mm256_or_si256(_mm256_and_si256(_mm256_castpd_si256(up), one),
+                                       _mm256_and_si256(_mm256_castpd_si256(down), minus)));
+  }
+  const __m256d length_lanes = _mm256_cvtps_pd(length);
+  _mm256_store_pd(length_d, length_lanes);
+  // ray_keys_most: sqrt(3) length / resolution, truncated, + 8.
+  _mm256_store_pd(most, _mm256_div_pd(_mm256_mul_pd(_mm256_set1_pd(std::numbers::sqrt3), length_lanes),
+                                      _mm256_set1_pd(s.resolution)));
+  alignas(16) std::int32_t traced[4], kx[4], ky[4], kz[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(traced), _mm_andnot_si128(same, ok));
+  _mm_store_si128(reinterpret_cast<__m128i*>(kx), key[0]);
+  _mm_store_si128(reinterpret_cast<__m128i*>(ky), key[1]);
+  _mm_store_si128(reinterpret_cast<__m128i*>(kz), key[2]);
+  const std::uint64_t first = pack(s.origin_key);
+  for (std::size_t k = 0; k < 4; ++k) {
+    RayStart& r = out[k];
+    if (traced[k] == 0) {
+      r = RayStart{};
+      continue;
+    }
+    r.traced = true;
+    r.first = first;
+    r.last = pack(octomap::OcTreeKey(octomap::key_type(kx[k]), octomap::key_type(ky[k]), octomap::key_type(kz[k])));
+    for (unsigned i = 0; i < 3; ++i) r.t[i] = t[i][k], r.delta[i] = delta[i][k], r.step[i] = std::uint64_t(step[i][k]);
+    r.length = length_d[k];
+    r.most = std::size_t(most[k]) + 8;
+  }
+}
 
 // Four rays' traversals in the lanes of AVX2 registers.
 struct Four {
@@ -187,14 +285,15 @@ std::size_t trace_rays(const octomap::OcTree& tree, const octomap::point3d& orig
   const bool vector = lanes == RayLanes::kVector || (lanes == RayLanes::kBest && vector_lanes_available());
 #ifdef PEG3D_RAY_LANES
   if (vector) {
+    const ScanStart scan = start_scan(tree, origin);
     for (std::size_t g = 0; g < ends.size(); g += kLanes) {
       RayStart r[kLanes];
       const std::size_t n = std::min(kLanes, ends.size() - g);
+      std::size_t k = 0;
+      for (; k + 4 <= n; k += 4) start_four(scan, ends.data() + g + k, r + k);
+      for (; k < n; ++k) r[k] = start_ray(tree, origin, ends[g + k]);
       std::size_t rows = 1;
-      for (std::size_t k = 0; k < n; ++k) {
-        r[k] = start_ray(tree, origin, ends[g + k]);
-        rows = std::max(rows, r[k].most + 1);
-      }
+      for (k = 0; k < n; ++k) rows = std::max(rows, r[k].most + 1);
       std::uint32_t count[kLanes];
       step_eight(r, room(rows * kLanes), rows, count);
       std::size_t written = 1;
