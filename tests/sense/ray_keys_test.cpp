@@ -9,6 +9,7 @@
 #include <octomap/OcTree.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -72,6 +73,34 @@ void expect_octomaps_keys(RayLanes lanes) {
 }
 
 TEST(RayKeys, RaysOneAtATimeMeetOctomapsKeys) { expect_octomaps_keys(RayLanes::kScalar); }
+
+// Where computeRayKeys gives nothing (an origin beyond the keys' range, an end that is not a number or infinite),
+// neither way of tracing gives a key, in every lane of a group.
+TEST(RayKeys, RaysOctomapCannotTraceGiveNoKeys) {
+  const octomap::OcTree tree(0.25);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const std::vector<octomap::point3d> odd{octomap::point3d(nan, 1, 1), octomap::point3d(1, inf, 1), octomap::point3d(1, 1, -inf),
+                                          octomap::point3d(9000, 0, 0), octomap::point3d(2, 1, 0), octomap::point3d(0, 3, 1),
+                                          octomap::point3d(nan, nan, nan), octomap::point3d(-3, -2, 1)};
+  for (const octomap::point3d& origin : {octomap::point3d(0.1f, 0.2f, 0.3f), octomap::point3d(9000, 0, 0), octomap::point3d(0, -1e6f, 0)}) {
+    for (const RayLanes lanes : {RayLanes::kScalar, RayLanes::kBest}) {
+      std::vector<std::uint64_t> keys;
+      std::vector<RayKeySpan> spans;
+      trace_rays(tree, origin, odd, keys, spans, lanes);
+      octomap::KeyRay expected;
+      for (std::size_t k = 0; k < odd.size(); ++k) {
+        const bool traced = tree.computeRayKeys(origin, odd[k], expected);
+        EXPECT_EQ(spans[k].count, traced ? expected.size() : 0) << "ray " << k << " from " << origin;
+        if (std::isfinite(odd[k].x() + odd[k].y() + odd[k].z()) && std::fabs(odd[k].x()) < 100 && std::fabs(origin.y()) < 100 &&
+            origin.x() < 100) {
+          EXPECT_TRUE(traced) << "ray " << k;  // the ordinary rays among them are traced
+        } else {
+          EXPECT_EQ(spans[k].count, 0u) << "ray " << k << " from " << origin;
+        }
+      }
+    }
+  }
+}
 
 // Where the processor has no AVX2, asking for vector lanes is refused instead of running instructions it lacks.
 TEST(RayKeys, RaysInVectorLanesMeetOctomapsKeys) {
