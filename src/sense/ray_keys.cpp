@@ -35,62 +35,9 @@ std::uint64_t pack(const octomap::OcTreeKey& k) {
   return (std::uint64_t(k[0]) + kKeyBias) | (std::uint64_t(k[1]) + kKeyBias) << 21 | (std::uint64_t(k[2]) + kKeyBias) << 42;
 }
 
-// OcTreeBaseImpl::computeRayKeys's set-up, in its types and operations.
-RayStart start_ray(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::point3d& end) {
-  RayStart r;
-  octomap::OcTreeKey key_origin, key_end;
-  if (!tree.coordToKeyChecked(origin, key_origin) || !tree.coordToKeyChecked(end, key_end)) return r;
-  if (key_origin == key_end) return r;
-  r.traced = true;
-  r.first = pack(key_origin);
-  r.last = pack(key_end);
-  octomap::point3d direction = end - origin;
-  const float length = float(direction.norm());
-  direction /= length;
-  r.length = length;
-  const double resolution = tree.getResolution();
-  for (unsigned i = 0; i < 3; ++i) {
-    const int step = direction(i) > 0.0 ? 1 : direction(i) < 0.0 ? -1 : 0;
-    r.step[i] = std::uint64_t(std::int64_t(step)) << (21 * i);
-    if (step != 0) {
-      double border = tree.keyToCoord(key_origin[i]);
-      border += float(step * resolution * 0.5);
-      r.t[i] = (border - origin(i)) / direction(i);
-      r.delta[i] = resolution / std::fabs(direction(i));
-    } else {
-      r.t[i] = r.delta[i] = std::numeric_limits<double>::max();
-    }
-  }
-  r.most = ray_keys_most(length, resolution);
-  return r;
-}
-
-// computeRayKeys's incremental phase for one ray: the axis whose border comes first (on a tie the higher one),
-// until the end's cell or a border beyond the length. Returns the end of what it wrote.
-std::uint64_t* step_ray(const RayStart& r, std::uint64_t* out) {
-  if (!r.traced) return out;
-  double tx = r.t[0], ty = r.t[1], tz = r.t[2];
-  std::uint64_t cell = r.first;
-  *out++ = cell;
-  for (;;) {
-    if (tx < ty ? tx < tz : false) {
-      cell += r.step[0], tx += r.delta[0];
-    } else if (!(tx < ty) && ty < tz) {
-      cell += r.step[1], ty += r.delta[1];
-    } else {
-      cell += r.step[2], tz += r.delta[2];
-    }
-    if (cell == r.last) return out;
-    if (std::min(std::min(tx, ty), tz) > r.length) return out;
-    *out++ = cell;
-  }
-}
-
-#ifdef PEG3D_RAY_LANES
-constexpr std::size_t kLanes = 8;  // two sets of four: their steps' latencies overlap
-
-// What start_ray computes the same for every ray of a scan: the origin's key, and per axis the numerator of its
-// first t, (border - origin) with the border half a cell (as a float) above or below the origin cell's centre.
+// What computeRayKeys's set-up computes the same for every ray of a scan: the origin's key, and per axis the
+// numerator of a ray's first t, (border - origin) with the border half a cell (as a float) above or below the origin
+// cell's centre.
 struct ScanStart {
   octomap::OcTreeKey origin_key;
   bool origin_ok = false;
@@ -118,6 +65,57 @@ ScanStart start_scan(const octomap::OcTree& tree, const octomap::point3d& origin
   }
   return s;
 }
+
+// OcTreeBaseImpl::computeRayKeys's set-up for the ray from the scan's origin to `end`, in its types and operations
+// (what is the same for every ray taken from `s`).
+RayStart start_ray(const ScanStart& s, const octomap::OcTree& tree, const octomap::point3d& end) {
+  RayStart r;
+  octomap::OcTreeKey key_end;
+  if (!s.origin_ok || !tree.coordToKeyChecked(end, key_end) || s.origin_key == key_end) return r;
+  r.traced = true;
+  r.first = pack(s.origin_key);
+  r.last = pack(key_end);
+  octomap::point3d direction = end - octomap::point3d(s.origin[0], s.origin[1], s.origin[2]);
+  const float length = float(direction.norm());
+  direction /= length;
+  r.length = length;
+  for (unsigned i = 0; i < 3; ++i) {
+    const int step = direction(i) > 0.0 ? 1 : direction(i) < 0.0 ? -1 : 0;
+    r.step[i] = std::uint64_t(std::int64_t(step)) << (21 * i);
+    if (step != 0) {
+      r.t[i] = (step > 0 ? s.above[i] : s.below[i]) / direction(i);
+      r.delta[i] = s.resolution / std::fabs(direction(i));
+    } else {
+      r.t[i] = r.delta[i] = std::numeric_limits<double>::max();
+    }
+  }
+  r.most = ray_keys_most(length, s.resolution);
+  return r;
+}
+
+// computeRayKeys's incremental phase for one ray: the axis whose border comes first (on a tie the higher one),
+// until the end's cell or a border beyond the length. Returns the end of what it wrote.
+std::uint64_t* step_ray(const RayStart& r, std::uint64_t* out) {
+  if (!r.traced) return out;
+  double tx = r.t[0], ty = r.t[1], tz = r.t[2];
+  std::uint64_t cell = r.first;
+  *out++ = cell;
+  for (;;) {
+    if (tx < ty ? tx < tz : false) {
+      cell += r.step[0], tx += r.delta[0];
+    } else if (!(tx < ty) && ty < tz) {
+      cell += r.step[1], ty += r.delta[1];
+    } else {
+      cell += r.step[2], tz += r.delta[2];
+    }
+    if (cell == r.last) return out;
+    if (std::min(std::min(tx, ty), tz) > r.length) return out;
+    *out++ = cell;
+  }
+}
+
+#ifdef PEG3D_RAY_LANES
+constexpr std::size_t kLanes = 8;  // two sets of four: their steps' latencies overlap
 
 // start_ray for four rays in the lanes of AVX2 registers: the same float and double operations in each lane.
 __attribute__((target("avx2"))) void start_four(const ScanStart& s, const octomap::point3d* ends, RayStart* out) {
@@ -283,15 +281,15 @@ std::size_t trace_rays(const octomap::OcTree& tree, const octomap::point3d& orig
     throw std::invalid_argument("trace_rays: vector lanes asked for, and this processor has no AVX2");
   }
   const bool vector = lanes == RayLanes::kVector || (lanes == RayLanes::kBest && vector_lanes_available());
+  const ScanStart scan = start_scan(tree, origin);
 #ifdef PEG3D_RAY_LANES
   if (vector) {
-    const ScanStart scan = start_scan(tree, origin);
     for (std::size_t g = 0; g < ends.size(); g += kLanes) {
       RayStart r[kLanes];
       const std::size_t n = std::min(kLanes, ends.size() - g);
       std::size_t k = 0;
       for (; k + 4 <= n; k += 4) start_four(scan, ends.data() + g + k, r + k);
-      for (; k < n; ++k) r[k] = start_ray(tree, origin, ends[g + k]);
+      for (; k < n; ++k) r[k] = start_ray(scan, tree, ends[g + k]);
       std::size_t rows = 1;
       for (k = 0; k < n; ++k) rows = std::max(rows, r[k].most + 1);
       std::uint32_t count[kLanes];
@@ -307,7 +305,7 @@ std::size_t trace_rays(const octomap::OcTree& tree, const octomap::point3d& orig
   }
 #endif
   for (std::size_t i = 0; i < ends.size(); ++i) {
-    const RayStart r = start_ray(tree, origin, ends[i]);
+    const RayStart r = start_ray(scan, tree, ends[i]);
     std::uint64_t* at = room(r.most);
     const auto count = std::size_t(step_ray(r, at) - at);
     assert(count <= r.most);

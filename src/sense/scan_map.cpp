@@ -45,7 +45,6 @@ std::uint64_t blocked_cells(const float* cell, bool unknown_blocks) {
   return mask;
 }
 
-
 }  // namespace
 
 ScanMap::ScanMap(const ScanMapConfig& config, const Vec3& lo, const Vec3& hi)
