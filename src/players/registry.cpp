@@ -34,7 +34,12 @@ constexpr PlayerInfo kPlayers[] = {
     {"voronoi-route", kPursuers, 0, kNeedsSight,
      "the partial game: voronoi, going round the solids by a grid of open cells where its straight way is blocked",
      [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
-       return std::make_unique<VoronoiPursuer>(c.pn_gain, true);
+       return std::make_unique<VoronoiPursuer>(c.pn_gain, VoronoiWay::kRoute);
+     }},
+    {"voronoi-geodesic", kPursuers, 0, kNeedsSight,
+     "the partial game: voronoi-route with the cells by shortest ways round the solids (a geodesic partition)",
+     [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
+       return std::make_unique<VoronoiPursuer>(c.pn_gain, VoronoiWay::kGeodesic);
      }},
     {"apollonius", kPursuers, kPursuers, kNeedsNothing, "aims at the Apollonius interception point", plain<ApolloniusInterceptor>},
     {"flee", kEvaders, kEvaders, kNeedsNothing, "flees along the line of sight, repelled by walls and obstacles",

@@ -1,6 +1,7 @@
 #include "players/roadmap.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -19,15 +20,10 @@ bool passable(const game::SightProbe& probe, const Vec3& a, const Vec3& b, doubl
 
 template <class F>
 void Roadmap::neighbours(int cell, F&& visit) const {
-  const int ci = cell % n_[0], cj = (cell / n_[0]) % n_[1], ck = cell / (n_[0] * n_[1]);
-  for (int dk = -1; dk <= 1; ++dk) {
-    for (int dj = -1; dj <= 1; ++dj) {
-      for (int di = -1; di <= 1; ++di) {
-        const int i = ci + di, j = cj + dj, k = ck + dk;
-        if ((di | dj | dk) == 0 || i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
-        visit(i + n_[0] * (j + n_[1] * k), step_[(dk + 1) * 9 + (dj + 1) * 3 + (di + 1)]);
-      }
-    }
+  // The bits of the offsets inside the grid, in the order (dk, dj, di) from (-1, -1, -1) to (1, 1, 1).
+  for (std::uint32_t in = inside_[std::size_t(cell)]; in != 0; in &= in - 1) {
+    const int o = std::countr_zero(in);
+    visit(cell + offset_[o], step_[o]);
   }
 }
 
@@ -49,6 +45,19 @@ void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
     }
   }
   const int n = n_[0] * n_[1] * n_[2];
+  inside_.resize(std::size_t(n));
+  for (int c = 0; c < n; ++c) {
+    const int ci = c % n_[0], cj = (c / n_[0]) % n_[1], ck = c / (n_[0] * n_[1]);
+    std::uint32_t in = 0;
+    for (int o = 0; o < 27; ++o) {
+      const int di = o % 3 - 1, dj = (o / 3) % 3 - 1, dk = o / 9 - 1;
+      const int i = ci + di, j = cj + dj, k = ck + dk;
+      if (o == 13 || i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
+      in |= 1u << o;
+    }
+    inside_[std::size_t(c)] = in;
+  }
+  for (int o = 0; o < 27; ++o) offset_[o] = (o % 3 - 1) + n_[0] * ((o / 3) % 3 - 1 + n_[1] * (o / 9 - 1));
   centre_.resize(std::size_t(n));
   for (int c = 0; c < n; ++c) {
     const int i = c % n_[0], j = (c / n_[0]) % n_[1], k = c / (n_[0] * n_[1]);
@@ -75,6 +84,7 @@ void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
   h_.resize(std::size_t(n));
   parent_.resize(std::size_t(n));
   stamp_.assign(std::size_t(n), 0);
+  owner_.assign(std::size_t(n), -1);
   search_ = 0;
   start_ = goal_ = -1;
   way_.clear();
@@ -173,6 +183,108 @@ std::optional<Vec3> Roadmap::waypoint(const game::SightProbe& probe, const Vec3&
   }
   // Not even the next cell in sight (a corner between): the centre of its own cell first.
   return probe.clear(from, centre(start)) ? centre(start) : point(last);
+}
+
+namespace {
+
+// A team's pursuers ask for the same partition one after the other, each of its own roadmap of the same solids: the
+// last answer on this thread is kept, and given again when the grid and the sources are the same. The answer is a
+// function of those alone, so keeping it changes nothing but the time.
+struct LastPartition {
+  Box arena;
+  std::vector<int> region;
+  std::vector<Vec3> sources;
+  std::vector<int> owner;
+};
+thread_local LastPartition last_partition;
+
+}  // namespace
+
+void Roadmap::partition(std::span<const Vec3> sources) {
+  LastPartition& last = last_partition;
+  if (last.arena.lo == arena_.lo && last.arena.hi == arena_.hi && last.region == region_ &&
+      std::equal(sources.begin(), sources.end(), last.sources.begin(), last.sources.end())) {
+    owner_ = last.owner;
+    return;
+  }
+  // Dijkstra from every source at once; g_ holds the distance, owner_ the source, and a cell's stamp says it was
+  // reached in this search.
+  std::fill(owner_.begin(), owner_.end(), -1);
+  if (++search_ == 0) {
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    search_ = 1;
+  }
+  heap_.clear();
+  const auto later = std::greater<std::pair<double, int>>();
+  // A source must be strictly shorter to take a cell another reached first.
+  auto reach = [&](int cell, double g, int source) {
+    if (stamp_[std::size_t(cell)] == search_ && g >= g_[std::size_t(cell)]) return;
+    stamp_[std::size_t(cell)] = search_;
+    g_[std::size_t(cell)] = g;
+    owner_[std::size_t(cell)] = source;
+    heap_.push_back({g, cell});
+    std::push_heap(heap_.begin(), heap_.end(), later);
+  };
+  for (std::size_t s = 0; s < sources.size(); ++s) {
+    const int cell = cell_of(sources[s]);
+    reach(cell, (sources[s] - centre(cell)).norm(), int(s));
+  }
+  // Cells leave the heap by distance. A cell of the first source's at g was reached from one taken at g - step, and
+  // a neighbour of one at g is decided by g + step: once the heap has passed the farthest taken by the longest
+  // step, no cell of the first source's is left and every neighbour of one is decided.
+  const double longest = step_[26];
+  double first_far = 0.0;  // m, the farthest cell of the first source's taken so far
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const auto [g, cell] = heap_.back();
+    heap_.pop_back();
+    if (g > g_[std::size_t(cell)]) continue;  // a stale entry
+    const int source = owner_[std::size_t(cell)];
+    if (source == 0) {
+      first_far = g;
+    } else if (g > first_far + longest) {
+      break;
+    }
+    neighbours(cell, [&](int next, double step) {
+      if (region_[std::size_t(next)] >= 0) reach(next, g + step, source);
+    });
+  }
+  last.arena = arena_;
+  last.region = region_;
+  last.sources.assign(sources.begin(), sources.end());
+  last.owner = owner_;
+}
+
+std::optional<Vec3> Roadmap::border_point(int source) const {
+  const int a = 0, b = source;
+  const int n = cells();
+  const int stride[3] = {1, n_[0], n_[0] * n_[1]};
+  Vec3 sum = Vec3::Zero();
+  int count = 0;
+  // Each face once: from a cell of a's to its face neighbours of b's.
+  auto each = [&](auto&& visit) {
+    for (int c = 0; c < n; ++c) {
+      if (owner_[std::size_t(c)] != a) continue;
+      const int ijk[3] = {c % n_[0], (c / n_[0]) % n_[1], c / (n_[0] * n_[1])};
+      for (int k = 0; k < 3; ++k) {
+        for (int d = -1; d <= 1; d += 2) {
+          const int i = ijk[k] + d;
+          if (i < 0 || i >= n_[k]) continue;
+          const int next = c + d * stride[k];
+          if (owner_[std::size_t(next)] == b) visit(0.5 * (centre(c) + centre(next)));
+        }
+      }
+    }
+  };
+  each([&](const Vec3& mid) { sum += mid, ++count; });
+  if (count == 0) return std::nullopt;
+  const Vec3 mean = sum / double(count);
+  Vec3 best = mean;
+  double nearest = std::numeric_limits<double>::infinity();
+  each([&](const Vec3& mid) {
+    if (const double d = (mid - mean).squaredNorm(); d < nearest) nearest = d, best = mid;
+  });
+  return best;
 }
 
 }  // namespace peg3d::players

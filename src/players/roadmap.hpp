@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "game/policy.hpp"
@@ -43,6 +44,20 @@ class Roadmap {
   /// (behind solids all round), or in a closed cell with no such neighbour, or without a start region.
   std::optional<Vec3> waypoint(const game::SightProbe& probe, const Vec3& from, const Vec3& to, double margin);
 
+  /// Shares the open cells out among `sources` (a geodesic Voronoi partition): a cell goes to the source with the
+  /// shortest way to it through open cells (26 neighbours at the distance of their centres, starting from the
+  /// distance of the source to its own cell's centre, that cell open or not); a tie goes to the source that reached
+  /// the cell first, the same every time. Cells no way reaches, and closed ones but the sources' own, are nobody's
+  /// (-1). The search stops once the first source's cells and their neighbours are all decided: farther cells may
+  /// be left nobody's. Reuses the search's scratch of waypoint().
+  void partition(std::span<const Vec3> sources);
+  /// The source owning `cell` in the last partition(), -1 for nobody (or undecided, far from the first source).
+  int owner(int cell) const { return owner_[std::size_t(cell)]; }
+  /// The point of the border between the first source's cells of the last partition() and those of `source`
+  /// nearest to the border's centroid: the border is the set of midpoints between two cells sharing a face, one of
+  /// each. Nothing when their cells share no face.
+  std::optional<Vec3> border_point(int source) const;
+
   int cells() const { return int(region_.size()); }
   Vec3 centre(int cell) const { return centre_[std::size_t(cell)]; }
   int cell_of(const Vec3& p) const;
@@ -59,6 +74,8 @@ class Roadmap {
   int n_[3] = {0, 0, 0};
   Vec3 size_ = Vec3::Zero();     // m, a cell's extent along each axis
   double step_[27] = {};         // m between the centres of neighbours, by offset (di, dj, dk) + 1 in base 3
+  int offset_[27] = {};          // index from a cell to its neighbour, by the same offset
+  std::vector<std::uint32_t> inside_;  // per cell: bit o set where the neighbour at offset o is inside the grid
   std::vector<Vec3> centre_;     // per cell
   std::vector<int> region_;      // per cell: its region, -1 closed
   // The last way found (from start_ to goal_, way_.back() the start), kept while both stay in their cells.
@@ -71,6 +88,7 @@ class Roadmap {
   std::uint32_t search_ = 0;
   std::vector<std::pair<double, int>> heap_;
   std::vector<int> stack_;
+  std::vector<int> owner_;       // per cell: its source in the last partition(), -1 nobody
 };
 
 }  // namespace peg3d::players

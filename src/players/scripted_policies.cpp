@@ -77,7 +77,30 @@ Steering ApolloniusInterceptor::act(const game::AgentView& view) {
 
 void VoronoiPursuer::begin_episode(const game::AgentView& view, bool learning) {
   (void)learning;
-  if (route_ && view.probe != nullptr) roadmap_.build(view.arena, *view.probe);  // the solids may have changed
+  if (way_ != VoronoiWay::kStraight && view.probe != nullptr) roadmap_.build(view.arena, *view.probe);  // the solids may have moved
+}
+
+std::optional<Vec3> VoronoiPursuer::face_goal(const game::AgentView& view, const Vec3& e) {
+  const Vec3& p = view.self.position;
+  if (way_ == VoronoiWay::kGeodesic && view.probe != nullptr && roadmap_.cells() > 0) {
+    sources_.assign(1, e);
+    for (const KinematicState& q : view.team) sources_.push_back(q.position);
+    roadmap_.partition(sources_);
+    return roadmap_.border_point(view.rank + 1);
+  }
+  // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:
+  // x . (q - e) <= (|q|^2 - |e|^2) / 2.
+  cuts_.clear();
+  for (std::size_t k = 0; k < view.team.size(); ++k) {
+    const Vec3& q = view.team[k].position;
+    const double apart = (q - e).norm();
+    if (int(k) == view.rank || apart == 0.0) continue;
+    cuts_.push_back({(q - e) / apart, 0.5 * (q.squaredNorm() - e.squaredNorm()) / apart});
+  }
+  const Vec3 normal = (p - e).normalized();
+  plane_section(0.5 * (p + e), normal, view.arena, cuts_, face_, scratch_);
+  if (face_.empty()) return std::nullopt;
+  return polygon_centroid(face_, normal);
 }
 
 Steering VoronoiPursuer::act(const game::AgentView& view) {
@@ -88,21 +111,12 @@ Steering VoronoiPursuer::act(const game::AgentView& view) {
   bool chase = view.team.size() < 2 || (e - p).norm() < kVoronoiChase || view.other_age > kVoronoiSightAge;
   Vec3 goal = view.other.position;
   if (!chase) {
-    // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:
-    // x . (q - e) <= (|q|^2 - |e|^2) / 2.
-    cuts_.clear();
-    for (std::size_t k = 0; k < view.team.size(); ++k) {
-      const Vec3& q = view.team[k].position;
-      const double apart = (q - e).norm();
-      if (int(k) == view.rank || apart == 0.0) continue;
-      cuts_.push_back({(q - e) / apart, 0.5 * (q.squaredNorm() - e.squaredNorm()) / apart});
-    }
-    const Vec3 normal = (p - e).normalized();
-    plane_section(0.5 * (p + e), normal, view.arena, cuts_, face_, scratch_);
-    chase = face_.empty();
-    if (!chase) goal = polygon_centroid(face_, normal);
+    const std::optional<Vec3> face = face_goal(view, e);
+    chase = !face;
+    if (face) goal = *face;
   }
-  if (route_ && view.probe != nullptr && roadmap_.cells() > 0 && !passable(*view.probe, p, goal, kPassage)) {
+  if (way_ != VoronoiWay::kStraight && view.probe != nullptr && roadmap_.cells() > 0 &&
+      !passable(*view.probe, p, goal, kPassage)) {
     if (const auto way = roadmap_.waypoint(*view.probe, p, goal, kPassage)) return steer_toward(view, *way - p);
   }
   return chase ? chase_.act(view) : steer_toward(view, goal - p);

@@ -2,6 +2,7 @@
 // Classic guidance laws and scripted evaders, as baselines for the learned agents. Each computes a desired
 // direction and requests the heading change towards it (the game clamps it to the steering bound).
 
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -49,29 +50,43 @@ inline constexpr double kVoronoiSightAge = 1.0;
 /// (chosen among 0, 0.5, 1, 1.5 and 3 s in OPEN's scenarios, docs/learning.md).
 inline constexpr double kVoronoiLead = 1.0;
 
+/// How a VoronoiPursuer finds the evader's cell and its way to its goal.
+enum class VoronoiWay {
+  kStraight,  ///< the Euclidean cell, flown to straight (the obstacle guard slides it along the solids)
+  kRoute,     ///< the Euclidean cell, gone round the solids by the roadmap where the straight way is not passable
+  kGeodesic,  ///< the cell by shortest ways through the roadmap's open cells, gone round the solids as kRoute
+};
+
 /// Voronoi pursuit for a team (Zhou, Zhang, Tomlin and Hoffmann, "Cooperative pursuit with Voronoi partitions",
 /// Automatica 2016): the evader's Voronoi cell among the team is the region it reaches before any pursuer of equal
 /// speed, and a pursuer whose cell borders it heads for the centroid of their shared face, which shrinks that
 /// cell fastest. The evader is taken where it will be `kVoronoiLead` later. A pursuer with no such face, within
 /// `kVoronoiChase` of that point, or of a team that has not seen the evader for `kVoronoiSightAge`, pursues by
-/// proportional navigation. Obstacles are not in the cell. The face is the bisector plane of the two clipped by the
-/// arena and by the other pursuers' bisectors (exactly, a convex polygon: geometry/plane_section.hpp). Told to
-/// `route`, and with a probe (limited sight), a pursuer whose straight way to its goal (the face's centroid, or the
-/// evader it chases) is not passable (players/roadmap.hpp, kPassage) heads along the shortest way of its Roadmap
-/// there instead, when there is one; else it flies straight and the obstacle guard slides it along the solids.
+/// proportional navigation.
+/// - kStraight: obstacles are not in the cell. The face is the bisector plane of the two clipped by the arena and by
+///   the other pursuers' bisectors (exactly, a convex polygon: geometry/plane_section.hpp).
+/// - kRoute, with a probe (limited sight): as kStraight, but a pursuer whose straight way to its goal (the face's
+///   centroid, or the evader it chases) is not passable (players/roadmap.hpp, kPassage) heads along the shortest way
+///   of its Roadmap there instead, when there is one; else it flies straight.
+/// - kGeodesic, with a probe: the cells are the Roadmap's geodesic partition (Roadmap::partition: distances along
+///   shortest ways round the solids, cells 1 m wide), and the goal is the border point nearest the centroid of the
+///   border it shares with the evader's cell (Roadmap::border_point); gone to as kRoute. Without a probe, kStraight.
 /// Its scratch (the cuts, the face, the roadmap's search) grows in the first calls and is reused after that.
 class VoronoiPursuer final : public game::Policy {
  public:
-  explicit VoronoiPursuer(double gain, bool route = false) : chase_(gain), route_(route) {}
+  explicit VoronoiPursuer(double gain, VoronoiWay way = VoronoiWay::kStraight) : chase_(gain), way_(way) {}
   void begin_episode(const game::AgentView& view, bool learning) override;
   Steering act(const game::AgentView& view) override;
 
  private:
+  // The centroid of the face this pursuer shares with the evader at e: Euclidean, or geodesic on the roadmap.
+  std::optional<Vec3> face_goal(const game::AgentView& view, const Vec3& e);
   ProportionalNavigation chase_;
-  bool route_;
-  Roadmap roadmap_;                     // with route_: the way around solids when the straight one is not passable
+  VoronoiWay way_;
+  Roadmap roadmap_;                     // kRoute, kGeodesic: the grid of open cells
   std::vector<HalfSpace> cuts_;         // scratch: the other pursuers' bisectors
   std::vector<Vec3> face_, scratch_;    // scratch: the face's corners
+  std::vector<Vec3> sources_;           // scratch: the evader, then the team, for the geodesic partition
 };
 
 /// Flee along the line of sight, away from the pursuer, pushed off the arena boundary and the nearest

@@ -1,6 +1,9 @@
 #include "players/roadmap.hpp"
 
+#include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -110,6 +113,114 @@ TEST(Roadmap, InTheOpenTheWaypointIsTheGoalWhenItIsWithinTheLookAhead) {
     ASSERT_TRUE(way.has_value());
     EXPECT_EQ(*way, b);
   }
+}
+
+// Each open cell's distance from `source` along ways through open cells of kArena's 1 m grid (26 neighbours), found
+// by relaxing every cell until nothing changes: the reference the partition is checked against.
+std::vector<double> way_lengths(const Roadmap& map, const Vec3& source) {
+  const int n = map.cells();
+  std::vector<double> d(std::size_t(n), std::numeric_limits<double>::infinity());
+  const int start = map.cell_of(source);
+  d[std::size_t(start)] = (source - map.centre(start)).norm();
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int c = 0; c < n; ++c) {
+      if (c != start && map.region(c) < 0) continue;
+      for (int o = 0; o < 27; ++o) {
+        const int i = c % 20 + o % 3 - 1, j = (c / 20) % 20 + (o / 3) % 3 - 1, k = c / 400 + o / 9 - 1;
+        if (o == 13 || i < 0 || j < 0 || k < 0 || i >= 20 || j >= 20 || k >= 8) continue;
+        const int next = i + 20 * (j + 20 * k);
+        const double via = d[std::size_t(c)] + (map.centre(next) - map.centre(c)).norm();
+        if (map.region(next) >= 0 && via < d[std::size_t(next)] - 1e-12) d[std::size_t(next)] = via, changed = true;
+      }
+    }
+  }
+  return d;
+}
+
+TEST(Roadmap, ThePartitionGivesEachCellNearTheFirstSourceToTheSourceWithTheShortestWay) {
+  // Random sources round a wall with a hole at a random place: every cell of the first source's, and every cell
+  // sharing a face with one, belongs to the source whose way to it is the shortest (the reference above), but where
+  // two ways tie.
+  std::mt19937_64 rng(55);
+  std::uniform_real_distribution<double> x(0.2, 19.8), z(0.2, 7.8), hole(3.0, 17.0), near(-3.0, 3.0);
+  int checked = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    const BoxesProbe probe = wall_with_hole(hole(rng), 2.0);
+    Roadmap map;
+    map.build(kArena, probe);
+    // Half the trials with the others round the first within 1-4 m, so that its cells are few and the search stops
+    // early.
+    std::vector<Vec3> sources = {{x(rng), x(rng), z(rng)}};
+    for (int s = 1; s < 5; ++s) {
+      const Vec3 off = trial % 2 == 0 ? Vec3(x(rng), x(rng), z(rng)) - sources[0] : Vec3(near(rng), near(rng), near(rng));
+      sources.push_back(kArena.clamp(sources[0] + off));
+    }
+    map.partition(sources);
+    std::vector<std::vector<double>> d;
+    for (const Vec3& s : sources) d.push_back(way_lengths(map, s));
+    for (int c = 0; c < map.cells(); ++c) {
+      bool near_first = map.owner(c) == 0;
+      for (int step : {1, -1, 20, -20, 400, -400}) {
+        const int next = c + step;
+        const bool same_row = std::abs(step) != 1 || next / 20 == c / 20;
+        const bool same_layer = std::abs(step) != 20 || next / 400 == c / 400;
+        if (next >= 0 && next < map.cells() && same_row && same_layer && map.owner(next) == 0) near_first = true;
+      }
+      if (!near_first || map.region(c) < 0) continue;
+      double best = std::numeric_limits<double>::infinity(), second = best;
+      int owner = -1;
+      for (std::size_t s = 0; s < sources.size(); ++s) {
+        const double ds = d[s][std::size_t(c)];
+        if (ds < best) second = best, best = ds, owner = int(s);
+        else second = std::min(second, ds);
+      }
+      if (second - best < 1e-9) continue;  // a tie: either may have it
+      EXPECT_EQ(map.owner(c), owner) << "trial " << trial << " cell " << map.centre(c).transpose();
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(Roadmap, AcrossAWallTheBorderIsWhereTheWayRoundMeetsNotTheStraightBisector) {
+  // The evader west of a wall whose only hole is at y = 17; one pursuer just east of it, 3 m away straight through
+  // the wall, another west 8 m away. Straight, the east pursuer would share a face with the evader on the wall;
+  // by the ways round, the west pursuer does, and the east one only at the hole, if at all.
+  const BoxesProbe probe = wall_with_hole(17.0, 2.0);
+  Roadmap map;
+  map.build(kArena, probe);
+  const std::vector<Vec3> sources = {{8.5, 5, 4}, {11.5, 5, 4}, {1.5, 9, 4}};
+  map.partition(sources);
+  const auto west = map.border_point(2);
+  ASSERT_TRUE(west.has_value());
+  EXPECT_LT(west->x(), 9.5);
+  if (const auto east = map.border_point(1)) {
+    EXPECT_GT(east->y(), 14.0) << east->transpose();
+  }
+  EXPECT_EQ(map.owner(map.cell_of({10.0, 5.0, 4.0})), -1);  // the wall is nobody's
+  EXPECT_EQ(map.owner(map.cell_of({7.5, 5.0, 4.0})), 0);
+}
+
+TEST(Roadmap, APartitionIsTheSameWhateverWasAskedBeforeOnOtherSolids) {
+  // The team's pursuers share the last answer; one asked on other solids must not be given it.
+  const BoxesProbe low = wall_with_hole(4.0, 2.0), high = wall_with_hole(16.0, 2.0);
+  const std::vector<Vec3> sources = {{8.0, 10, 4}, {12.0, 10, 4}, {3.0, 3, 3}};
+  Roadmap a, b, fresh;
+  a.build(kArena, low);
+  b.build(kArena, high);
+  fresh.build(kArena, high);
+  fresh.partition(sources);
+  std::vector<int> first(std::size_t(fresh.cells()));
+  for (int c = 0; c < fresh.cells(); ++c) first[std::size_t(c)] = fresh.owner(c);
+  a.partition(sources);
+  b.partition(sources);
+  int differ = 0;
+  for (int c = 0; c < b.cells(); ++c) {
+    EXPECT_EQ(b.owner(c), first[std::size_t(c)]);
+    differ += a.owner(c) != b.owner(c);
+  }
+  EXPECT_GT(differ, 10);  // the two walls do share the cells out differently
 }
 
 TEST(Roadmap, ALargeArenaGetsWiderCellsWithinTheCap) {

@@ -174,7 +174,7 @@ TEST(ScriptedPolicies, VoronoiRouteGoesRoundAWallThatBlocksItsWayToTheFace) {
     v.probe = &probe;
     const bool clear_way = passable(probe, p, centroid, kPassage);
     if (on_the_way && !clear_way) continue;  // the opening's edges graze the margin: not this case
-    VoronoiPursuer plain(3.0), routed(3.0, true);
+    VoronoiPursuer plain(3.0), routed(3.0, VoronoiWay::kRoute);
     plain.begin_episode(v, false);
     routed.begin_episode(v, false);
     EXPECT_LT((after(v, plain.act(v)) - (centroid - p).normalized()).norm(), 1e-9);
@@ -195,18 +195,50 @@ TEST(ScriptedPolicies, VoronoiRouteGoesRoundAWallThatBlocksItsWayToTheFace) {
   EXPECT_GE(straight, 5);
 }
 
+TEST(ScriptedPolicies, VoronoiGeodesicGoesForTheOpeningWhenTheEvadersCellIsOnlyReachedThroughIt) {
+  // A team of four, the pursuer east of a wall and the evader west of it, the wall's only opening placed at random:
+  // straight, the pursuer's face of the evader's cell lies behind the wall; by the ways round, the pursuer's border
+  // with that cell (or the evader it chases) is reached only through the opening, so it heads for the opening.
+  std::mt19937_64 rng(58);
+  std::uniform_real_distribution<double> y(1.0, 19.0), z(1.0, 7.0), east(14.0, 19.0), west(1.0, 6.0), hole(3.0, 17.0);
+  const Box arena{{0, 0, 0}, {20, 20, 8}};
+  double least = 1.0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const double h = hole(rng);
+    const peg3d::testing::BoxesProbe probe = peg3d::testing::wall_with_hole(h, 2.0);
+    const Vec3 p(east(rng), y(rng), z(rng)), e(west(rng), y(rng), z(rng));
+    std::vector<KinematicState> team = {{{west(rng), y(rng), z(rng)}, {}}, {p, {0.3, 1.2}}, {{west(rng), y(rng), z(rng)}, {}},
+                                        {{east(rng), y(rng), z(rng)}, {}}};
+    AgentView v = view_of(team[1], {e, {0.5, 1.4}}, 1.0, 1.3);
+    v.arena = arena;
+    v.team = team;
+    v.rank = 1;
+    v.probe = &probe;
+    VoronoiPursuer geodesic(3.0, VoronoiWay::kGeodesic);
+    geodesic.begin_episode(v, false);
+    const Vec3 opening(10.0, h, p.z());
+    const double towards = after(v, geodesic.act(v)).dot((opening - p).normalized());
+    least = std::min(least, towards);
+    EXPECT_GT(towards, 0.7) << "opening at y = " << h << ", pursuer " << p.transpose() << ", evader " << e.transpose();
+  }
+  EXPECT_LT(least, 0.99);  // not every way is straight at the opening's centre: the test asks the direction, not a point
+}
+
 TEST(ScriptedPolicies, VoronoiRouteWithoutAProbePlaysAsVoronoi) {
   std::mt19937_64 rng(57);
   std::uniform_real_distribution<double> x(1.0, 34.0), z(1.0, 19.0);
-  VoronoiPursuer plain(3.0), routed(3.0, true);
+  VoronoiPursuer plain(3.0), routed(3.0, VoronoiWay::kRoute), geodesic(3.0, VoronoiWay::kGeodesic);
   for (int trial = 0; trial < 100; ++trial) {
     std::vector<KinematicState> team;
     AgentView v = voronoi_view({x(rng), x(rng), z(rng)}, {x(rng), x(rng), z(rng)}, team);
     plain.begin_episode(v, false);
     routed.begin_episode(v, false);
-    const Steering a = plain.act(v), b = routed.act(v);
+    geodesic.begin_episode(v, false);
+    const Steering a = plain.act(v), b = routed.act(v), c = geodesic.act(v);
     EXPECT_EQ(a.d_alpha, b.d_alpha);
     EXPECT_EQ(a.d_theta, b.d_theta);
+    EXPECT_EQ(a.d_alpha, c.d_alpha);
+    EXPECT_EQ(a.d_theta, c.d_theta);
   }
 }
 
