@@ -86,7 +86,9 @@ std::optional<Vec3> VoronoiPursuer::face_goal(const game::AgentView& view, const
     sources_.assign(1, e);
     for (const KinematicState& q : view.team) sources_.push_back(q.position);
     roadmap_.partition(sources_);
-    return roadmap_.border_point(view.rank + 1);
+    std::optional<Vec3> goal = roadmap_.border_point(view.rank + 1);
+    if (goal) goal->z() = e.z();  // at the evader's height
+    return goal;
   }
   // The face: the bisector plane of e and p, within the arena, where no other pursuer q is nearer than e:
   // x . (q - e) <= (|q|^2 - |e|^2) / 2.
@@ -108,7 +110,9 @@ Steering VoronoiPursuer::act(const game::AgentView& view) {
   const Vec3 e =
       view.arena.clamp(view.other.position + kVoronoiLead * view.other_speed * peg3d::direction(view.other.heading));
   const Vec3& p = view.self.position;
-  bool chase = view.team.size() < 2 || (e - p).norm() < kVoronoiChase || view.other_age > kVoronoiSightAge;
+  const bool geodesic = way_ == VoronoiWay::kGeodesic && view.probe != nullptr;
+  bool chase = view.team.size() < 2 || (e - p).norm() < (geodesic ? kVoronoiGeodesicChase : kVoronoiChase) ||
+               view.other_age > kVoronoiSightAge;
   Vec3 goal = view.other.position;
   if (!chase) {
     const std::optional<Vec3> face = face_goal(view, e);

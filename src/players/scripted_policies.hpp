@@ -46,6 +46,11 @@ inline constexpr double kVoronoiChase = 4.0;
 /// cell of a guessed position is a guess.
 inline constexpr double kVoronoiSightAge = 1.0;
 
+/// m: within this distance of the evader a geodesic VoronoiPursuer chases it (chosen among 2, 3 and 4 m in OPEN's
+/// scenarios, docs/learning.md): its border point follows the evader's height, so it may close in further before
+/// giving the cell up for the chase.
+inline constexpr double kVoronoiGeodesicChase = 2.0;
+
 /// s: a VoronoiPursuer partitions about the evader where it will be this much later at its speed and heading
 /// (chosen among 0, 0.5, 1, 1.5 and 3 s in OPEN's scenarios, docs/learning.md).
 inline constexpr double kVoronoiLead = 1.0;
@@ -70,7 +75,9 @@ enum class VoronoiWay {
 ///   of its Roadmap there instead, when there is one; else it flies straight.
 /// - kGeodesic, with a probe: the cells are the Roadmap's geodesic partition (Roadmap::partition: distances along
 ///   shortest ways round the solids, cells 1 m wide), and the goal is the border point nearest the centroid of the
-///   border it shares with the evader's cell (Roadmap::border_point); gone to as kRoute. Without a probe, kStraight.
+///   border it shares with the evader's cell (Roadmap::border_point), raised or lowered to the evader's height: a
+///   faster evader slips over or under a pursuer that waits at mid-height. It chases within kVoronoiGeodesicChase
+///   instead of kVoronoiChase. Gone to as kRoute. Without a probe, kStraight.
 /// Its scratch (the cuts, the face, the roadmap's search) grows in the first calls and is reused after that.
 class VoronoiPursuer final : public game::Policy {
  public:
