@@ -37,31 +37,28 @@ void Roadmap::build(const Box& arena, const game::SightProbe& probe) {
     n_[k] = count(k);
     size_[k] = extent[k] / n_[k];
   }
-  for (int dk = -1; dk <= 1; ++dk) {
-    for (int dj = -1; dj <= 1; ++dj) {
-      for (int di = -1; di <= 1; ++di) {
-        step_[(dk + 1) * 9 + (dj + 1) * 3 + (di + 1)] = Vec3(di * size_.x(), dj * size_.y(), dk * size_.z()).norm();
-      }
-    }
+  // Per offset o = (dk + 1) * 9 + (dj + 1) * 3 + (di + 1) to a neighbour: the distance between the centres and the
+  // step of the index.
+  for (int o = 0; o < 27; ++o) {
+    const int di = o % 3 - 1, dj = (o / 3) % 3 - 1, dk = o / 9 - 1;
+    step_[o] = Vec3(di * size_.x(), dj * size_.y(), dk * size_.z()).norm();
+    offset_[o] = di + n_[0] * (dj + n_[1] * dk);
   }
   const int n = n_[0] * n_[1] * n_[2];
+  centre_.resize(std::size_t(n));
   inside_.resize(std::size_t(n));
   for (int c = 0; c < n; ++c) {
-    const int ci = c % n_[0], cj = (c / n_[0]) % n_[1], ck = c / (n_[0] * n_[1]);
+    const int ijk[3] = {c % n_[0], (c / n_[0]) % n_[1], c / (n_[0] * n_[1])};
+    centre_[std::size_t(c)] =
+        arena_.lo + Vec3((ijk[0] + 0.5) * size_.x(), (ijk[1] + 0.5) * size_.y(), (ijk[2] + 0.5) * size_.z());
     std::uint32_t in = 0;
     for (int o = 0; o < 27; ++o) {
-      const int di = o % 3 - 1, dj = (o / 3) % 3 - 1, dk = o / 9 - 1;
-      const int i = ci + di, j = cj + dj, k = ck + dk;
-      if (o == 13 || i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
-      in |= 1u << o;
+      const int d[3] = {o % 3 - 1, (o / 3) % 3 - 1, o / 9 - 1};
+      bool inside = o != 13;
+      for (int k = 0; k < 3; ++k) inside = inside && ijk[k] + d[k] >= 0 && ijk[k] + d[k] < n_[k];
+      in |= std::uint32_t(inside) << o;
     }
     inside_[std::size_t(c)] = in;
-  }
-  for (int o = 0; o < 27; ++o) offset_[o] = (o % 3 - 1) + n_[0] * ((o / 3) % 3 - 1 + n_[1] * (o / 9 - 1));
-  centre_.resize(std::size_t(n));
-  for (int c = 0; c < n; ++c) {
-    const int i = c % n_[0], j = (c / n_[0]) % n_[1], k = c / (n_[0] * n_[1]);
-    centre_[std::size_t(c)] = arena_.lo + Vec3((i + 0.5) * size_.x(), (j + 0.5) * size_.y(), (k + 0.5) * size_.z());
   }
   region_.resize(std::size_t(n));
   constexpr int kUnlabelled = -2;
@@ -256,22 +253,18 @@ void Roadmap::partition(std::span<const Vec3> sources) {
 }
 
 std::optional<Vec3> Roadmap::border_point(int source) const {
-  const int a = 0, b = source;
-  const int n = cells();
-  const int stride[3] = {1, n_[0], n_[0] * n_[1]};
+  // The offsets o (as in build()) to the six face neighbours: -x, +x, -y, +y, -z, +z.
+  constexpr int kFaces[6] = {12, 14, 10, 16, 4, 22};
   Vec3 sum = Vec3::Zero();
   int count = 0;
-  // Each face once: from a cell of a's to its face neighbours of b's.
+  // Each face once: from a cell of the first source's to its face neighbours of `source`'s.
   auto each = [&](auto&& visit) {
-    for (int c = 0; c < n; ++c) {
-      if (owner_[std::size_t(c)] != a) continue;
-      const int ijk[3] = {c % n_[0], (c / n_[0]) % n_[1], c / (n_[0] * n_[1])};
-      for (int k = 0; k < 3; ++k) {
-        for (int d = -1; d <= 1; d += 2) {
-          const int i = ijk[k] + d;
-          if (i < 0 || i >= n_[k]) continue;
-          const int next = c + d * stride[k];
-          if (owner_[std::size_t(next)] == b) visit(0.5 * (centre(c) + centre(next)));
+    for (int c = 0; c < cells(); ++c) {
+      if (owner_[std::size_t(c)] != 0) continue;
+      for (const int o : kFaces) {
+        const int next = c + offset_[o];
+        if ((inside_[std::size_t(c)] >> o & 1u) != 0 && owner_[std::size_t(next)] == source) {
+          visit(0.5 * (centre(c) + centre(next)));
         }
       }
     }

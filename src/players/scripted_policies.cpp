@@ -82,7 +82,7 @@ void VoronoiPursuer::begin_episode(const game::AgentView& view, bool learning) {
 
 std::optional<Vec3> VoronoiPursuer::face_goal(const game::AgentView& view, const Vec3& e) {
   const Vec3& p = view.self.position;
-  if (way_ == VoronoiWay::kGeodesic && view.probe != nullptr && roadmap_.cells() > 0) {
+  if (geodesic(view)) {
     sources_.assign(1, e);
     for (const KinematicState& q : view.team) sources_.push_back(q.position);
     roadmap_.partition(sources_);
@@ -110,8 +110,7 @@ Steering VoronoiPursuer::act(const game::AgentView& view) {
   const Vec3 e =
       view.arena.clamp(view.other.position + kVoronoiLead * view.other_speed * peg3d::direction(view.other.heading));
   const Vec3& p = view.self.position;
-  const bool geodesic = way_ == VoronoiWay::kGeodesic && view.probe != nullptr;
-  bool chase = view.team.size() < 2 || (e - p).norm() < (geodesic ? kVoronoiGeodesicChase : kVoronoiChase) ||
+  bool chase = view.team.size() < 2 || (e - p).norm() < (geodesic(view) ? kVoronoiGeodesicChase : kVoronoiChase) ||
                view.other_age > kVoronoiSightAge;
   Vec3 goal = view.other.position;
   if (!chase) {

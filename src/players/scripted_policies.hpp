@@ -86,6 +86,10 @@ class VoronoiPursuer final : public game::Policy {
   Steering act(const game::AgentView& view) override;
 
  private:
+  // Whether this view plays kGeodesic: with a probe and the roadmap built from it.
+  bool geodesic(const game::AgentView& view) const {
+    return way_ == VoronoiWay::kGeodesic && view.probe != nullptr && roadmap_.cells() > 0;
+  }
   // The centroid of the face this pursuer shares with the evader at e: Euclidean, or geodesic on the roadmap.
   std::optional<Vec3> face_goal(const game::AgentView& view, const Vec3& e);
   ProportionalNavigation chase_;
