@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -185,27 +186,31 @@ std::optional<Vec3> Roadmap::waypoint(const game::SightProbe& probe, const Vec3&
 namespace {
 
 // A team's pursuers ask for the same partition one after the other, each of its own roadmap of the same solids: the
-// last answer on this thread is kept, and given again when the grid and the sources are the same. The answer is a
-// function of those alone, so keeping it changes nothing but the time.
+// last answer on this thread is kept (one for equal speeds, one for other speeds: a pursuer may ask for both in
+// turn), and given again when the grid, the sources and the speed are the same. The answer is a function of those
+// alone, so keeping it changes nothing but the time.
 struct LastPartition {
   Box arena;
   std::vector<int> region;
   std::vector<Vec3> sources;
+  double first_speed = 1.0;
   std::vector<int> owner;
 };
-thread_local LastPartition last_partition;
+thread_local LastPartition last_partition[2];
 
 }  // namespace
 
-void Roadmap::partition(std::span<const Vec3> sources) {
-  LastPartition& last = last_partition;
+void Roadmap::partition(std::span<const Vec3> sources, double first_speed) {
+  assert(first_speed > 0.0);
+  LastPartition& last = last_partition[first_speed == 1.0 ? 0 : 1];
   if (last.arena.lo == arena_.lo && last.arena.hi == arena_.hi && last.region == region_ &&
+      last.first_speed == first_speed &&
       std::equal(sources.begin(), sources.end(), last.sources.begin(), last.sources.end())) {
     owner_ = last.owner;
     return;
   }
-  // Dijkstra from every source at once; g_ holds the distance, owner_ the source, and a cell's stamp says it was
-  // reached in this search.
+  // Dijkstra from every source at once; g_ holds the time (the others' metres: the first source's metres over
+  // first_speed), owner_ the source, and a cell's stamp says it was reached in this search.
   std::fill(owner_.begin(), owner_.end(), -1);
   if (++search_ == 0) {
     std::fill(stamp_.begin(), stamp_.end(), 0u);
@@ -222,14 +227,15 @@ void Roadmap::partition(std::span<const Vec3> sources) {
     heap_.push_back({g, cell});
     std::push_heap(heap_.begin(), heap_.end(), later);
   };
+  const double first_pace = 1.0 / first_speed;
   for (std::size_t s = 0; s < sources.size(); ++s) {
     const int cell = cell_of(sources[s]);
-    reach(cell, (sources[s] - centre(cell)).norm(), int(s));
+    reach(cell, (sources[s] - centre(cell)).norm() * (s == 0 ? first_pace : 1.0), int(s));
   }
-  // Cells leave the heap by distance. A cell of the first source's at g was reached from one taken at g - step, and
-  // a neighbour of one at g is decided by g + step: once the heap has passed the farthest taken by the longest
-  // step, no cell of the first source's is left and every neighbour of one is decided.
-  const double longest = step_[26];
+  // Cells leave the heap by time. A cell of the first source's at g was reached from one taken at g - step x pace,
+  // and a neighbour of one at g is decided by g + step x pace: once the heap has passed the farthest taken by the
+  // longest step, no cell of the first source's is left and every neighbour of one is decided.
+  const double longest = step_[26] * first_pace;
   double first_far = 0.0;  // m, the farthest cell of the first source's taken so far
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
@@ -242,11 +248,13 @@ void Roadmap::partition(std::span<const Vec3> sources) {
     } else if (g > first_far + longest) {
       break;
     }
+    const double pace = source == 0 ? first_pace : 1.0;
     neighbours(cell, [&](int next, double step) {
-      if (region_[std::size_t(next)] >= 0) reach(next, g + step, source);
+      if (region_[std::size_t(next)] >= 0) reach(next, g + step * pace, source);
     });
   }
   last.arena = arena_;
+  last.first_speed = first_speed;
   last.region = region_;
   last.sources.assign(sources.begin(), sources.end());
   last.owner = owner_;

@@ -44,13 +44,15 @@ class Roadmap {
   /// (behind solids all round), or in a closed cell with no such neighbour, or without a start region.
   std::optional<Vec3> waypoint(const game::SightProbe& probe, const Vec3& from, const Vec3& to, double margin);
 
-  /// Shares the open cells out among `sources` (a geodesic Voronoi partition): a cell goes to the source with the
-  /// shortest way to it through open cells (26 neighbours at the distance of their centres, starting from the
-  /// distance of the source to its own cell's centre, that cell open or not); a tie goes to the source that reached
-  /// the cell first, the same every time. Cells no way reaches, and closed ones but the sources' own, are nobody's
-  /// (-1). The search stops once the first source's cells and their neighbours are all decided: farther cells may
-  /// be left nobody's. Reuses the search's scratch of waypoint().
-  void partition(std::span<const Vec3> sources);
+  /// Shares the open cells out among `sources` (a geodesic Voronoi partition; with `first_speed` != 1, a geodesic
+  /// Apollonius one): a cell goes to the source that reaches it first along ways through open cells (26 neighbours
+  /// at the distance of their centres, starting from the distance of the source to its own cell's centre, that
+  /// cell open or not), the first source moving `first_speed` (> 0) times as fast as the others, each source's
+  /// ways passing only through cells it reaches first. A tie goes to the source that reached the cell first, the
+  /// same every time. Cells no way reaches, and closed ones but the sources' own, are nobody's (-1). The search
+  /// stops once the first source's cells and their neighbours are all decided: farther cells may be left nobody's.
+  /// Reuses the search's scratch of waypoint().
+  void partition(std::span<const Vec3> sources, double first_speed = 1.0);
   /// The source owning `cell` in the last partition(), -1 for nobody (or undecided, far from the first source).
   int owner(int cell) const { return owner_[std::size_t(cell)]; }
   /// The point of the border between the first source's cells of the last partition() and those of `source`

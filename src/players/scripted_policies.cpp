@@ -87,6 +87,12 @@ std::optional<Vec3> VoronoiPursuer::face_goal(const game::AgentView& view, const
     for (const KinematicState& q : view.team) sources_.push_back(q.position);
     roadmap_.partition(sources_);
     std::optional<Vec3> goal = roadmap_.border_point(view.rank + 1);
+    if (!goal && view.self_speed > 0.0 && view.other_speed > view.self_speed) {
+      // No face with its Voronoi cell: the border of what the faster evader reaches first (its Apollonius cell)
+      // instead, where it would slip past, rather than trailing the team along the shortest way to it.
+      roadmap_.partition(sources_, view.other_speed / view.self_speed);
+      goal = roadmap_.border_point(view.rank + 1);
+    }
     if (goal) goal->z() = e.z();  // at the evader's height
     return goal;
   }

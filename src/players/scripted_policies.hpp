@@ -76,7 +76,10 @@ enum class VoronoiWay {
 /// - kGeodesic, with a probe: the cells are the Roadmap's geodesic partition (Roadmap::partition: distances along
 ///   shortest ways round the solids, cells 1 m wide), and the goal is the border point nearest the centroid of the
 ///   border it shares with the evader's cell (Roadmap::border_point), raised or lowered to the evader's height: a
-///   faster evader slips over or under a pursuer that waits at mid-height. It chases within kVoronoiGeodesicChase
+///   faster evader slips over or under a pursuer that waits at mid-height. A pursuer whose cell shares no face with
+///   the evader's, against an evader faster than itself, takes the border with the evader's geodesic Apollonius
+///   cell instead (the cells the evader reaches first at its speed, Roadmap::partition with first_speed): around a
+///   solid it cuts the other way round off, where it would trail the team. It chases within kVoronoiGeodesicChase
 ///   instead of kVoronoiChase. Gone to as kRoute. Without a probe, kStraight.
 /// Its scratch (the cuts, the face, the roadmap's search) grows in the first calls and is reused after that.
 class VoronoiPursuer final : public game::Policy {

@@ -116,21 +116,25 @@ TEST(Roadmap, InTheOpenTheWaypointIsTheGoalWhenItIsWithinTheLookAhead) {
 }
 
 // Each open cell's distance from `source` along ways through open cells of kArena's 1 m grid (26 neighbours), found
-// by relaxing every cell until nothing changes: the reference the partition is checked against.
-std::vector<double> way_lengths(const Roadmap& map, const Vec3& source) {
+// by relaxing every cell until nothing changes: the reference the partition is checked against. With `rival`, the
+// time at `pace` (s/m) along ways through cells reached before the rival's time there (the rival's time of a cell
+// given per cell).
+std::vector<double> way_lengths(const Roadmap& map, const Vec3& source, double pace = 1.0,
+                                const std::vector<double>* rival = nullptr) {
   const int n = map.cells();
   std::vector<double> d(std::size_t(n), std::numeric_limits<double>::infinity());
   const int start = map.cell_of(source);
-  d[std::size_t(start)] = (source - map.centre(start)).norm();
+  d[std::size_t(start)] = (source - map.centre(start)).norm() * pace;
   for (bool changed = true; changed;) {
     changed = false;
     for (int c = 0; c < n; ++c) {
       if (c != start && map.region(c) < 0) continue;
+      if (rival != nullptr && !(d[std::size_t(c)] < (*rival)[std::size_t(c)])) continue;
       for (int o = 0; o < 27; ++o) {
         const int i = c % 20 + o % 3 - 1, j = (c / 20) % 20 + (o / 3) % 3 - 1, k = c / 400 + o / 9 - 1;
         if (o == 13 || i < 0 || j < 0 || k < 0 || i >= 20 || j >= 20 || k >= 8) continue;
         const int next = i + 20 * (j + 20 * k);
-        const double via = d[std::size_t(c)] + (map.centre(next) - map.centre(c)).norm();
+        const double via = d[std::size_t(c)] + (map.centre(next) - map.centre(c)).norm() * pace;
         if (map.region(next) >= 0 && via < d[std::size_t(next)] - 1e-12) d[std::size_t(next)] = via, changed = true;
       }
     }
@@ -138,24 +142,30 @@ std::vector<double> way_lengths(const Roadmap& map, const Vec3& source) {
   return d;
 }
 
+// Five sources in kArena: the first anywhere, the others anywhere or, when `near`, within `spread` (m) of it along each
+// axis, so that its cells are few and the partition's search stops early.
+std::vector<Vec3> random_sources(std::mt19937_64& rng, bool near, double spread) {
+  std::uniform_real_distribution<double> x(0.2, 19.8), z(0.2, 7.8), off(-spread, spread);
+  std::vector<Vec3> sources = {{x(rng), x(rng), z(rng)}};
+  for (int s = 1; s < 5; ++s) {
+    const Vec3 d = near ? Vec3(off(rng), off(rng), off(rng)) : Vec3(x(rng), x(rng), z(rng)) - sources[0];
+    sources.push_back(kArena.clamp(sources[0] + d));
+  }
+  return sources;
+}
+
 TEST(Roadmap, ThePartitionGivesEachCellNearTheFirstSourceToTheSourceWithTheShortestWay) {
   // Random sources round a wall with a hole at a random place: every cell of the first source's, and every cell
   // sharing a face with one, belongs to the source whose way to it is the shortest (the reference above), but where
   // two ways tie.
   std::mt19937_64 rng(55);
-  std::uniform_real_distribution<double> x(0.2, 19.8), z(0.2, 7.8), hole(3.0, 17.0), near(-3.0, 3.0);
+  std::uniform_real_distribution<double> hole(3.0, 17.0);
   int checked = 0;
   for (int trial = 0; trial < 24; ++trial) {
     const BoxesProbe probe = wall_with_hole(hole(rng), 2.0);
     Roadmap map;
     map.build(kArena, probe);
-    // Half the trials with the others round the first within 1-4 m, so that its cells are few and the search stops
-    // early.
-    std::vector<Vec3> sources = {{x(rng), x(rng), z(rng)}};
-    for (int s = 1; s < 5; ++s) {
-      const Vec3 off = trial % 2 == 0 ? Vec3(x(rng), x(rng), z(rng)) - sources[0] : Vec3(near(rng), near(rng), near(rng));
-      sources.push_back(kArena.clamp(sources[0] + off));
-    }
+    const std::vector<Vec3> sources = random_sources(rng, trial % 2 == 1, 3.0);
     map.partition(sources);
     std::vector<std::vector<double>> d;
     for (const Vec3& s : sources) d.push_back(way_lengths(map, s));
@@ -181,6 +191,48 @@ TEST(Roadmap, ThePartitionGivesEachCellNearTheFirstSourceToTheSourceWithTheShort
     }
   }
   EXPECT_GT(checked, 1000);
+}
+
+TEST(Roadmap, AFasterFirstSourceTakesTheCellsItReachesFirstThroughItsOwn) {
+  // As above with the first source 1.3 and 2 times as fast as the others: its cells are those it reaches before all
+  // of them (their shortest ways) along ways through its own cells (the reference with a rival), but where the two
+  // times tie. Slower ways through its cells could not have taken any of them from it, so the others' ways need no
+  // such limit.
+  std::mt19937_64 rng(60);
+  std::uniform_real_distribution<double> hole(3.0, 17.0);
+  int checked = 0, taken = 0, beyond = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    const double speed = trial % 3 == 2 ? 2.0 : 1.3;
+    const BoxesProbe probe = wall_with_hole(hole(rng), 2.0);
+    Roadmap map;
+    map.build(kArena, probe);
+    const std::vector<Vec3> sources = random_sources(rng, trial % 2 == 1, 4.0);
+    std::vector<double> others(std::size_t(map.cells()), std::numeric_limits<double>::infinity());
+    for (std::size_t s = 1; s < sources.size(); ++s) {
+      const std::vector<double> d = way_lengths(map, sources[s]);
+      for (std::size_t c = 0; c < d.size(); ++c) others[c] = std::min(others[c], d[c]);
+    }
+    const std::vector<double> first = way_lengths(map, sources[0], 1.0 / speed, &others);
+    map.partition(sources);
+    std::vector<int> equal(std::size_t(map.cells()));
+    for (int c = 0; c < map.cells(); ++c) equal[std::size_t(c)] = map.owner(c);
+    Roadmap faster;  // the same solids and sources asked at another speed first: its answer is not this one's
+    faster.build(kArena, probe);
+    faster.partition(sources, 3.0);
+    map.partition(sources, speed);
+    for (int c = 0; c < map.cells(); ++c) {
+      if (map.region(c) < 0 && c != map.cell_of(sources[0])) continue;
+      const double t = first[std::size_t(c)], rival = others[std::size_t(c)];
+      if (std::isfinite(t) && std::abs(t - rival) < 1e-9) continue;  // a tie: either may have it
+      EXPECT_EQ(map.owner(c) == 0, t < rival) << "trial " << trial << " cell " << map.centre(c).transpose();
+      ++checked;
+      taken += map.owner(c) == 0;
+      beyond += map.owner(c) == 0 && equal[std::size_t(c)] != 0;
+    }
+  }
+  EXPECT_GT(checked, 10000);
+  EXPECT_GT(taken, 1000);
+  EXPECT_GT(beyond, 500);  // cells it has at its speed and not at the others'
 }
 
 TEST(Roadmap, AcrossAWallTheBorderIsWhereTheWayRoundMeetsNotTheStraightBisector) {

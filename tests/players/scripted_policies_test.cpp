@@ -210,7 +210,9 @@ TEST(ScriptedPolicies, VoronoiGeodesicGoesForTheOpeningWhenTheEvadersCellIsOnlyR
     const Vec3 p(east(rng), y(rng), z(rng)), e(west(rng), y(rng), z(rng));
     std::vector<KinematicState> team = {{{west(rng), y(rng), z(rng)}, {}}, {p, {0.3, 1.2}}, {{west(rng), y(rng), z(rng)}, {}},
                                         {{east(rng), y(rng), z(rng)}, {}}};
-    AgentView v = view_of(team[1], {e, {0.5, 1.4}}, 1.0, 1.3);
+    // Equal speeds: against a faster evader, a pursuer with no face takes its Apollonius cell's border instead,
+    // which can lie on the pursuer's side of the wall (the next test).
+    AgentView v = view_of(team[1], {e, {0.5, 1.4}}, 1.0, 1.0);
     v.arena = arena;
     v.team = team;
     v.rank = 1;
@@ -224,6 +226,69 @@ TEST(ScriptedPolicies, VoronoiGeodesicGoesForTheOpeningWhenTheEvadersCellIsOnlyR
     EXPECT_GT(towards, 0.7) << "opening at y = " << h << ", pursuer " << p.transpose() << ", evader " << e.transpose();
   }
   EXPECT_LT(least, 0.99);  // not every way is straight at the opening's centre: the test asks the direction, not a point
+}
+
+TEST(ScriptedPolicies, VoronoiGeodesicCutsAFasterEvaderOffAheadWhereItWouldChaseItsTail) {
+  // open_wall's wall, the evader running north up the east side into the corner past it, two pursuers on its heels
+  // and two farther back (a lap seen in self-play, where the evader went round and round the wall with the team
+  // behind it). The pursuer at the back shares no face with the evader's cell: against an evader as fast as itself
+  // it chases it by proportional navigation; against one 1.3 times as fast it heads for its border with the cells
+  // that evader reaches first, ahead of the evader by the wall's north end, where the evader's way round goes.
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> jitter(-0.5, 0.5), turn(0.0, 0.6);
+  const Box arena{{0, 0, 0}, {20, 20, 8}};
+  peg3d::testing::BoxesProbe probe;
+  probe.solids = {Box{{9.5, 3, -1}, {10.5, 17, 9}}};
+  const Vec3 end(10.0, 17.0, 0.0);  // the wall's north end, in plan
+  auto near = [&](double x, double y, double z) { return Vec3(x + jitter(rng), y + jitter(rng), z + jitter(rng)); };
+  auto plan = [](Vec3 x) { return Vec3(x.x(), x.y(), 0.0); };
+  int cut = 0, none = 0, ahead = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<KinematicState> team = {{near(12.8, 11.2, 5.5), {1.6, 1.57}}, {near(16.6, 14.3, 5.0), {1.2, 1.57}},
+                                        {near(18.6, 12.7, 5.0), {1.5, 1.57}}, {near(14.6, 6.7, 5.0), {1.3, 1.57}}};
+    const KinematicState evader{near(19.0, 16.8, 4.9), {kPi / 2 + turn(rng), kPi / 2}};
+    AgentView v = view_of(team[0], evader, 1.0, 1.0);
+    v.arena = arena;
+    v.team = team;
+    v.rank = 0;
+    v.probe = &probe;
+    Roadmap map;
+    map.build(arena, probe);
+    std::vector<Vec3> sources = {led(v)};
+    for (const KinematicState& q : team) sources.push_back(q.position);
+    map.partition(sources);
+    if (map.border_point(1)) continue;  // it has a face: not this case
+    ++cut;
+    VoronoiPursuer same(3.0, VoronoiWay::kGeodesic), slower(3.0, VoronoiWay::kGeodesic);
+    ProportionalNavigation pn(3.0);
+    same.begin_episode(v, false);
+    const Steering chase = same.act(v), expected = pn.act(v);
+    EXPECT_EQ(chase.d_alpha, expected.d_alpha) << trial;
+    EXPECT_EQ(chase.d_theta, expected.d_theta) << trial;
+    v.other_speed = 1.3;
+    sources[0] = led(v);  // farther ahead
+    map.partition(sources);
+    if (map.border_point(1)) {
+      ++none;  // a face with this evader's cell
+      continue;
+    }
+    map.partition(sources, 1.3);
+    auto border = map.border_point(1);
+    if (!border) {
+      ++none;  // no face with that cell either: the chase
+      continue;
+    }
+    ++ahead;
+    // Ahead: nearer the wall's end than the evader is.
+    EXPECT_LT((plan(*border) - end).norm(), (plan(sources[0]) - end).norm()) << trial << ": " << border->transpose();
+    border->z() = sources[0].z();
+    const Vec3& p = v.self.position;
+    const Vec3 to = passable(probe, p, *border, kPassage) ? *border : *map.waypoint(probe, p, *border, kPassage);
+    slower.begin_episode(v, false);
+    EXPECT_LT((after(v, slower.act(v)) - (to - p).normalized()).norm(), 1e-9) << trial;
+  }
+  EXPECT_GE(cut, 20);
+  EXPECT_GE(ahead, 15);
 }
 
 TEST(ScriptedPolicies, VoronoiGeodesicHeadsForItsBorderPointAtTheEvadersHeight) {
