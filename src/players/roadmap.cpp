@@ -236,7 +236,7 @@ void Roadmap::partition(std::span<const Vec3> sources, double first_speed) {
   // and a neighbour of one at g is decided by g + step x pace: once the heap has passed the farthest taken by the
   // longest step, no cell of the first source's is left and every neighbour of one is decided.
   const double longest = step_[26] * first_pace;
-  double first_far = 0.0;  // m, the farthest cell of the first source's taken so far
+  double first_far = 0.0;  // the latest time (the others' m) of a cell of the first source's taken so far
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     const auto [g, cell] = heap_.back();
