@@ -14,7 +14,8 @@ Each role's population starts from classic players (and any policy files given).
    paper's learner trains one more best response per role, in C++ (`_core.train_facl`): FACL tables whose inputs
    include the sight entries (`facl_set`), against the same mixture; they join the populations too.
 An iteration's files are written before its record (`iteration_K/state.json`), so an interrupted run resumes
-from its last finished iteration (`resume=True`) with the same results as one never stopped. After the last
+from its last finished iteration (`resume=True`) with the same results as one never stopped; resumed with more
+`iterations`, a run (finished or not) is extended to the run that asked for them from the start. After the last
 iteration a fresh best response per role, trained against the final mixtures, measures their exploitability.
 
 Everything is seeded from `seed`; with Ray (`ray_address`) the evaluations and trainings run as Ray tasks and give
@@ -284,13 +285,29 @@ class SelfPlay:
             # A run made before a setting existed was made with its default.
             now, defaults = json.loads(json.dumps(settings.to_json())), json.loads(json.dumps(Settings().to_json()))
             saved = {k: saved.get(k, defaults[k]) for k in now}
+            # More iterations extend the run: iteration k's seeds do not depend on the count, so an extended run is
+            # the run that asked for them from the start. Fewer would drop finished work: refused.
+            extend = saved["iterations"] < now["iterations"]
+            if now["iterations"] < saved["iterations"]:
+                raise ValueError(f"{path}: the run there has {saved['iterations']} iterations; --iterations "
+                                 f"{now['iterations']} would drop some (more extend it)")
+            saved["iterations"] = now["iterations"]
             if saved != now:
                 changed = sorted(k for k in saved if saved[k] != now.get(k))
                 raise ValueError(f"{path}: the run there was made with other settings ({', '.join(changed)})")
+        else:
+            extend = False
         self._check_members()
         self.runner = _Runner(ray_address)  # an unreachable cluster, before anything is written
         os.makedirs(self.out, exist_ok=True)
-        if not os.path.exists(path):
+        if extend:
+            # The shorter run's ending was measured against its own final mixtures: gone before any new work, so
+            # that no file of the old ending outlives an interruption of the new iterations.
+            for name in ("summary.json", "exploitability.json", "final_pursuer.json", "final_evader.json",
+                         "best_response_pursuer.json", "best_response_evader.json"):
+                if os.path.exists(os.path.join(self.out, name)):
+                    os.remove(os.path.join(self.out, name))
+        if extend or not os.path.exists(path):
             _write_json(path, settings.to_json())
 
     def _check_members(self):
@@ -474,7 +491,7 @@ def main(argv=None):
     ap.add_argument("--eval-games", type=int, default=d.eval_games)
     ap.add_argument("--seed", type=int, default=d.seed)
     ap.add_argument("--out", required=True)
-    ap.add_argument("--resume", action="store_true", help="continue the run in --out from its last finished iteration")
+    ap.add_argument("--resume", action="store_true", help="continue the run in --out from its last finished iteration (a larger --iterations extends it)")
     ap.add_argument("--ray", metavar="ADDRESS", help="run evaluations and trainings as tasks of this Ray cluster")
     a = ap.parse_args(argv)
     try:

@@ -53,9 +53,10 @@ def test_a_pairing_is_played_by_both_sides_on_the_cpp_side():
 
 
 def tiny(**kw):
-    return selfplay.Settings(map="maps/paper.yaml", set={"time_limit": 3.0, "initial_heading": "random"}, pursuers=["pure-pursuit", "pn"],
-                             evaders=["flee", "random"], iterations=2, eval_games=4, solver_iterations=500,
-                             budget=Budget(steps=256, num_envs=4, rollout=32), seed=3, **kw)
+    settings = dict(map="maps/paper.yaml", set={"time_limit": 3.0, "initial_heading": "random"}, pursuers=["pure-pursuit", "pn"],
+                    evaders=["flee", "random"], iterations=2, eval_games=4, solver_iterations=500,
+                    budget=Budget(steps=256, num_envs=4, rollout=32), seed=3)
+    return selfplay.Settings(**{**settings, **kw})
 
 
 def run(out, **kw):
@@ -134,6 +135,21 @@ def test_a_run_stopped_after_an_iteration_resumes_as_if_never_stopped(tmp_path):
     other.seed = 4
     with pytest.raises(ValueError, match="seed"):
         selfplay.SelfPlay(other, tmp_path / "stopped", resume=True)
+
+
+def test_a_finished_run_resumed_with_more_iterations_is_the_longer_run(tmp_path):
+    pytest.importorskip("torch")
+    whole = run(tmp_path / "whole")  # two iterations
+    short = selfplay.SelfPlay(tiny(iterations=1), tmp_path / "extended", log=lambda *_: None).run()
+    assert short != whole
+    with pytest.raises(ValueError, match="iterations 1 would drop"):
+        selfplay.SelfPlay(tiny(iterations=1), tmp_path / "whole", resume=True)
+    assert run(tmp_path / "extended", resume=True) == whole
+    for r, _, fs in os.walk(tmp_path / "whole"):
+        for f in fs:
+            name = os.path.relpath(os.path.join(r, f), tmp_path / "whole")
+            if name != "log.jsonl":
+                assert filecmp.cmp(tmp_path / "whole" / name, tmp_path / "extended" / name, shallow=False), name
 
 
 @pytest.mark.parametrize("change, error, message", [
