@@ -277,6 +277,7 @@ class SelfPlay:
         settings.check()
         self.settings, self.out, self.log = settings, str(out), log
         path = os.path.join(self.out, "settings.json")
+        extend = False
         if os.path.exists(path):
             with open(path) as f:
                 saved = json.load(f)
@@ -295,8 +296,6 @@ class SelfPlay:
             if saved != now:
                 changed = sorted(k for k in saved if saved[k] != now.get(k))
                 raise ValueError(f"{path}: the run there was made with other settings ({', '.join(changed)})")
-        else:
-            extend = False
         self._check_members()
         self.runner = _Runner(ray_address)  # an unreachable cluster, before anything is written
         os.makedirs(self.out, exist_ok=True)
@@ -305,8 +304,9 @@ class SelfPlay:
             # that no file of the old ending outlives an interruption of the new iterations.
             for name in ("summary.json", "exploitability.json", "final_pursuer.json", "final_evader.json",
                          "best_response_pursuer.json", "best_response_evader.json"):
-                if os.path.exists(os.path.join(self.out, name)):
-                    os.remove(os.path.join(self.out, name))
+                stale = os.path.join(self.out, name)
+                if os.path.exists(stale):
+                    os.remove(stale)
         if extend or not os.path.exists(path):
             _write_json(path, settings.to_json())
 
