@@ -41,6 +41,11 @@ constexpr PlayerInfo kPlayers[] = {
      [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
        return std::make_unique<VoronoiPursuer>(c.pn_gain, VoronoiWay::kGeodesic);
      }},
+    {"voronoi-intercept", kPursuers, 0, kNeedsSight,
+     "the partial game: voronoi-geodesic, chasing toward where the evader's course meets its own instead of by pn",
+     [](const game::AgentConfig& c, game::Role, std::uint64_t) -> std::unique_ptr<game::Policy> {
+       return std::make_unique<VoronoiPursuer>(c.pn_gain, VoronoiWay::kGeodesic, VoronoiChase::kInterception);
+     }},
     {"apollonius", kPursuers, kPursuers, kNeedsNothing, "aims at the Apollonius interception point", plain<ApolloniusInterceptor>},
     {"flee", kEvaders, kEvaders, kNeedsNothing, "flees along the line of sight, repelled by walls and obstacles",
      plain<FleeLineOfSight>},

@@ -124,6 +124,15 @@ Steering VoronoiPursuer::act(const game::AgentView& view) {
     chase = !face;
     if (face) goal = *face;
   }
+  if (chase && chase_way_ == VoronoiChase::kInterception && view.other_age <= kVoronoiSightAge &&
+      view.other_speed > 0.0 && view.self_speed > 0.0) {
+    // A faster evader's course meets this one's only while it comes toward it: then cut it off there.
+    if (const auto x = interception_point(p, view.other.position, peg3d::direction(view.other.heading),
+                                          view.other_speed / view.self_speed)) {
+      goal = view.arena.clamp(*x);
+      chase = false;
+    }
+  }
   if (way_ != VoronoiWay::kStraight && view.probe != nullptr && roadmap_.cells() > 0 &&
       !passable(*view.probe, p, goal, kPassage)) {
     if (const auto way = roadmap_.waypoint(*view.probe, p, goal, kPassage)) return steer_toward(view, *way - p);

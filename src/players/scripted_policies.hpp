@@ -62,6 +62,14 @@ enum class VoronoiWay {
   kGeodesic,  ///< the cell by shortest ways through the roadmap's open cells, gone round the solids as kRoute
 };
 
+/// How a VoronoiPursuer chases the evader once it chases (near it, without a face, or on an old sighting).
+enum class VoronoiChase {
+  kNavigation,    ///< proportional navigation
+  kInterception,  ///< on a sighting at most kVoronoiSightAge old, toward where the evader's straight course at its
+                  ///< speed meets this pursuer's (geometry/apollonius.hpp's interception_point), held in the arena;
+                  ///< proportional navigation where the courses never meet
+};
+
 /// Voronoi pursuit for a team (Zhou, Zhang, Tomlin and Hoffmann, "Cooperative pursuit with Voronoi partitions",
 /// Automatica 2016): the evader's Voronoi cell among the team is the region it reaches before any pursuer of equal
 /// speed, and a pursuer whose cell borders it heads for the centroid of their shared face, which shrinks that
@@ -81,10 +89,13 @@ enum class VoronoiWay {
 ///   cell instead (the cells the evader reaches first at its speed, Roadmap::partition with first_speed): around a
 ///   solid it cuts the other way round off, where it would trail the team. It chases within kVoronoiGeodesicChase
 ///   instead of kVoronoiChase. Gone to as kRoute. Without a probe, kStraight.
+/// How it chases: `VoronoiChase`.
 /// Its scratch (the cuts, the face, the roadmap's search) grows in the first calls and is reused after that.
 class VoronoiPursuer final : public game::Policy {
  public:
-  explicit VoronoiPursuer(double gain, VoronoiWay way = VoronoiWay::kStraight) : chase_(gain), way_(way) {}
+  explicit VoronoiPursuer(double gain, VoronoiWay way = VoronoiWay::kStraight,
+                          VoronoiChase chase = VoronoiChase::kNavigation)
+      : chase_(gain), way_(way), chase_way_(chase) {}
   void begin_episode(const game::AgentView& view, bool learning) override;
   Steering act(const game::AgentView& view) override;
 
@@ -97,6 +108,7 @@ class VoronoiPursuer final : public game::Policy {
   std::optional<Vec3> face_goal(const game::AgentView& view, const Vec3& e);
   ProportionalNavigation chase_;
   VoronoiWay way_;
+  VoronoiChase chase_way_;
   Roadmap roadmap_;                     // kRoute, kGeodesic: the grid of open cells
   std::vector<HalfSpace> cuts_;         // scratch: the other pursuers' bisectors
   std::vector<Vec3> face_, scratch_;    // scratch: the face's corners

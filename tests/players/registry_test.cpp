@@ -56,6 +56,7 @@ TEST(PlayerRegistry, TheFactoryBuildsTheNamedPlayer) {
   EXPECT_NE(dynamic_cast<VoronoiPursuer*>(built("voronoi", Role::kPursuer).get()), nullptr);
   EXPECT_NE(dynamic_cast<VoronoiPursuer*>(built("voronoi-route", Role::kPursuer).get()), nullptr);
   EXPECT_NE(dynamic_cast<VoronoiPursuer*>(built("voronoi-geodesic", Role::kPursuer).get()), nullptr);
+  EXPECT_NE(dynamic_cast<VoronoiPursuer*>(built("voronoi-intercept", Role::kPursuer).get()), nullptr);
   EXPECT_NE(dynamic_cast<RandomWalk*>(built("random", Role::kPursuer).get()), nullptr);
   EXPECT_NE(dynamic_cast<SearchPursuer*>(built("search", Role::kPursuer).get()), nullptr);
   EXPECT_NE(dynamic_cast<HideEvader*>(built("hide", Role::kEvader).get()), nullptr);
@@ -66,7 +67,7 @@ TEST(PlayerRegistry, TheFactoryBuildsTheNamedPlayer) {
 TEST(PlayerRegistry, BaselinesAreTheDefaultLineUps) {
   EXPECT_EQ(baseline_players(Role::kPursuer), (std::vector<std::string>{"pure-pursuit", "pn", "apollonius"}));
   EXPECT_EQ(baseline_players(Role::kEvader), (std::vector<std::string>{"flee", "flee-apollonius", "random"}));
-  EXPECT_EQ(player_names(Role::kPursuer), "facl, pure-pursuit, pn, voronoi, voronoi-route, voronoi-geodesic, apollonius, random, search");
+  EXPECT_EQ(player_names(Role::kPursuer), "facl, pure-pursuit, pn, voronoi, voronoi-route, voronoi-geodesic, voronoi-intercept, apollonius, random, search");
   EXPECT_EQ(player_names(Role::kEvader, kNeedsSight), "facl, flee, flee-apollonius, random");
 }
 

@@ -1,6 +1,7 @@
 #include "players/scripted_policies.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -146,6 +147,46 @@ TEST(ScriptedPolicies, VoronoiChasesByProportionalNavigationWhenItHasNoFaceIsNea
   v.team = v.team.subspan(1, 1);
   v.rank = 0;
   EXPECT_TRUE(same(v));  // alone
+}
+
+TEST(ScriptedPolicies, VoronoiByInterceptionChasesTowardWhereTheCoursesMeet) {
+  // Where a VoronoiPursuer chases (near the evader ahead, on a fresh sighting), kInterception heads for the
+  // interception point of the evader's straight course when there is one, else navigates as kNavigation does; where
+  // it does not chase (a face, far) the two play the same. Random places, headings and evader speeds (slower, equal
+  // and faster than the pursuer's 1 m/s).
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  VoronoiPursuer navigation(3.0), interception(3.0, VoronoiWay::kStraight, VoronoiChase::kInterception);
+  auto same = [](const Steering& a, const Steering& b) { return a.d_alpha == b.d_alpha && a.d_theta == b.d_theta; };
+  int met = 0, never = 0, far = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const Vec3 e(2.0 + 31.0 * u(rng), 2.0 + 31.0 * u(rng), 2.0 + 16.0 * u(rng));
+    const double r = trial % 3 == 0 ? 20.0 * u(rng) : 0.2 + 0.95 * kVoronoiChase * u(rng);
+    const Vec3 p = Box{{0.5, 0.5, 0.5}, {34.5, 34.5, 19.5}}.clamp(e + r * direction({2.0 * kPi * u(rng), kPi * u(rng)}));
+    std::vector<KinematicState> team;
+    AgentView v = voronoi_view(p, e, team);
+    v.other.heading = {2.0 * kPi * u(rng) - kPi, kPi * u(rng)};
+    v.self.heading = {2.0 * kPi * u(rng) - kPi, kPi * u(rng)};
+    v.other_speed = std::array{0.8, 1.0, 1.3}[trial % 3];
+    if ((led(v) - p).norm() >= kVoronoiChase) {
+      ++far;
+      EXPECT_TRUE(same(interception.act(v), navigation.act(v))) << trial;  // its face, as before
+      continue;
+    }
+    const auto x = interception_point(p, e, direction(v.other.heading), v.other_speed / v.self_speed);
+    if (x) {
+      ++met;
+      EXPECT_LT((after(v, interception.act(v)) - (v.arena.clamp(*x) - p).normalized()).norm(), 1e-9) << trial;
+    } else {
+      ++never;
+      EXPECT_TRUE(same(interception.act(v), navigation.act(v))) << trial;
+    }
+    v.other_age = kVoronoiSightAge + 0.1;  // an old sighting: the chase by navigation
+    EXPECT_TRUE(same(interception.act(v), navigation.act(v))) << trial;
+  }
+  EXPECT_GE(met, 100);
+  EXPECT_GE(never, 30);
+  EXPECT_GE(far, 50);
 }
 
 TEST(ScriptedPolicies, VoronoiRouteGoesRoundAWallThatBlocksItsWayToTheFace) {
