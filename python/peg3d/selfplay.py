@@ -41,6 +41,10 @@ from .mappo import Budget
 from .vector import VectorEnv
 
 ROLES = ("pursuer", "evader")
+# The files of a run's ending (`SelfPlay._finish`), in its folder; an extended run removes them before any new work.
+SUMMARY, EXPLOITABILITY = "summary.json", "exploitability.json"
+FINAL, BEST_RESPONSE = "final_{}.json", "best_response_{}.json"  # .format(role)
+ENDING = (SUMMARY, EXPLOITABILITY) + tuple(f.format(r) for f in (FINAL, BEST_RESPONSE) for r in ROLES)
 TIE_BREAK = 0.01  # payoff = capture rate + TIE_BREAK x (1 - capture time / time limit), averaged over games
 
 
@@ -302,8 +306,7 @@ class SelfPlay:
         if extend:
             # The shorter run's ending was measured against its own final mixtures: gone before any new work, so
             # that no file of the old ending outlives an interruption of the new iterations.
-            for name in ("summary.json", "exploitability.json", "final_pursuer.json", "final_evader.json",
-                         "best_response_pursuer.json", "best_response_evader.json"):
+            for name in ENDING:
                 stale = os.path.join(self.out, name)
                 if os.path.exists(stale):
                     os.remove(stale)
@@ -432,7 +435,7 @@ class SelfPlay:
             curve.append({"iteration": h["iteration"], "exploitability": best_p - best_e,
                           "pursuer_best_response": best_p, "evader_best_response": best_e})
         final = {"pursuer": _mixture(members["pursuer"], x, self.out), "evader": _mixture(members["evader"], y, self.out)}
-        fresh_path = os.path.join(self.out, "exploitability.json")
+        fresh_path = os.path.join(self.out, EXPLOITABILITY)
         if os.path.exists(fresh_path):
             with open(fresh_path) as f:
                 fresh = json.load(f)
@@ -441,7 +444,7 @@ class SelfPlay:
             calls = [(s, r, final[ROLES[1 - ROLES.index(r)]], budget, derive_seed(s.seed, "exploit", r)) for r in ROLES]
             fresh = {}
             for r, net in zip(ROLES, self.runner.map("train", calls)):
-                name = f"best_response_{r}.json"
+                name = BEST_RESPONSE.format(r)
                 net.save(os.path.join(self.out, name), trained_by="peg3d.selfplay (exploitability)",
                          opponents=sorted(final[ROLES[1 - ROLES.index(r)]]))
                 fresh[r] = name
@@ -459,12 +462,12 @@ class SelfPlay:
         # The final mixtures as policy files the C++ side plays (peg-league --pursuer-entrant NAME=FILE, peg-matchup,
         # opponents=): one member drawn per episode, members named relative to the run's folder.
         for r, weights in (("pursuer", x), ("evader", y)):
-            _write_mixture(os.path.join(self.out, f"final_{r}.json"), r, members[r], weights, self.out)
+            _write_mixture(os.path.join(self.out, FINAL.format(r)), r, members[r], weights, self.out)
         summary = {"members": members, "payoff": m.tolist(),
                    "capture_rate": self._matrix(members, payoffs, "capture_rate").tolist(),
                    "pursuer_mixture": x.tolist(), "evader_mixture": y.tolist(), "value": [low, high],
                    "curve": curve, "fresh_best_responses": fresh}
-        _write_json(os.path.join(self.out, "summary.json"), summary)
+        _write_json(os.path.join(self.out, SUMMARY), summary)
         return summary
 
 
@@ -512,7 +515,7 @@ def main(argv=None):
         return 2
     fresh = summary["fresh_best_responses"]
     print(json.dumps({"value": summary["value"], "exploitability": fresh["exploitability"],
-                      "summary": os.path.join(a.out, "summary.json")}))
+                      "summary": os.path.join(a.out, SUMMARY)}))
     return 0
 
 

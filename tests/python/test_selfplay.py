@@ -76,6 +76,8 @@ def test_two_tiny_iterations_write_their_files_and_repeat_from_the_seed(tmp_path
                      "final_evader.json", "final_pursuer.json", "iteration_0/evader.json", "iteration_0/pursuer.json", "iteration_0/state.json",
                      "iteration_1/evader.json", "iteration_1/pursuer.json", "iteration_1/state.json",
                      "log.jsonl", "settings.json", "summary.json"]
+    # What an extension removes is every file the ending wrote: the top-level files but the run's settings and log.
+    assert sorted(selfplay.ENDING) == [f for f in files if "/" not in f and f not in ("log.jsonl", "settings.json")]
     assert a["members"]["pursuer"] == ["pure-pursuit", "pn", "iteration_0/pursuer.json", "iteration_1/pursuer.json"]
     assert np.array(a["payoff"]).shape == (4, 4)
     assert len(a["curve"]) == 3 and all(c["exploitability"] >= -1e-12 for c in a["curve"])
