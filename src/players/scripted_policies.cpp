@@ -126,7 +126,7 @@ Steering VoronoiPursuer::act(const game::AgentView& view) {
   }
   if (chase && chase_way_ == VoronoiChase::kInterception && view.other_age <= kVoronoiSightAge &&
       view.other_speed > 0.0 && view.self_speed > 0.0) {
-    // A faster evader's course meets this one's only while it comes toward it: then cut it off there.
+    // Where the courses meet (always for a slower evader, for a faster one only while it comes this way), cut it off.
     if (const auto x = interception_point(p, view.other.position, peg3d::direction(view.other.heading),
                                           view.other_speed / view.self_speed)) {
       goal = view.arena.clamp(*x);
