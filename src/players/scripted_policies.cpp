@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "geometry/apollonius.hpp"
 #include "geometry/plane_section.hpp"
@@ -17,6 +18,16 @@ Steering steer_toward(const game::AgentView& view, const Vec3& direction) {
 namespace {
 
 Vec3 velocity(const KinematicState& s, double speed) { return speed * peg3d::direction(s.heading); }
+
+// Where the view's evader, on its straight course at its speed, meets this agent heading straight for it, held in
+// the arena (geometry/apollonius.hpp); nothing for an evader at rest or one it never meets.
+std::optional<Vec3> interception_goal(const game::AgentView& view) {
+  if (!(view.other_speed > 0.0)) return std::nullopt;
+  const auto x = interception_point(view.self.position, view.other.position, peg3d::direction(view.other.heading),
+                                    view.other_speed / view.self_speed);
+  if (!x) return std::nullopt;
+  return view.arena.clamp(*x);
+}
 
 // Fixed, evenly spread unit directions (a Fibonacci sphere) to search the Apollonius sphere with.
 constexpr int kSearchDirections = 256;
@@ -67,12 +78,8 @@ Steering ProportionalNavigation::act(const game::AgentView& view) {
 
 Steering ApolloniusInterceptor::act(const game::AgentView& view) {
   const Vec3& p = view.self.position;
-  const Vec3& e = view.other.position;
-  if (view.other_speed > 0.0) {
-    const auto x = interception_point(p, e, peg3d::direction(view.other.heading), view.other_speed / view.self_speed);
-    if (x) return steer_toward(view, view.arena.clamp(*x) - p);
-  }
-  return steer_toward(view, e - p);
+  if (const auto x = interception_goal(view)) return steer_toward(view, *x - p);
+  return steer_toward(view, view.other.position - p);
 }
 
 void VoronoiPursuer::begin_episode(const game::AgentView& view, bool learning) {
@@ -125,11 +132,10 @@ Steering VoronoiPursuer::act(const game::AgentView& view) {
     if (face) goal = *face;
   }
   if (chase && chase_way_ == VoronoiChase::kInterception && view.other_age <= kVoronoiSightAge &&
-      view.other_speed > 0.0 && view.self_speed > 0.0) {
+      view.self_speed > 0.0) {
     // Where the courses meet (always for a slower evader, for a faster one only while it comes this way), cut it off.
-    if (const auto x = interception_point(p, view.other.position, peg3d::direction(view.other.heading),
-                                          view.other_speed / view.self_speed)) {
-      goal = view.arena.clamp(*x);
+    if (const auto x = interception_goal(view)) {
+      goal = *x;
       chase = false;
     }
   }
