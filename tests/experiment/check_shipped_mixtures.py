@@ -1,17 +1,15 @@
 #!/usr/bin/env python3
 """The self-play mixtures shipped in policies/selfplay/<map>/ play: each map's final pursuer and evader mixtures
-(their members: players by name, policy files beside them) against each other in peg-matchup on maps/<map>.yaml,
-with the settings they were trained with (docs/learning.md, "Self-play"). A renamed player or a missing member file
-fails here. Usage: check_shipped_mixtures.py BIN_DIR SOURCE_DIR WORK_DIR"""
+(their members: players by name, policy files beside them) against each other in peg-matchup, on the map and with
+the overrides of the run that trained them (its settings.json, shipped beside them). A renamed player, a missing
+member file or a setting the game no longer takes fails here. Usage: check_shipped_mixtures.py BIN_DIR SOURCE_DIR
+WORK_DIR"""
 import csv
+import json
 import pathlib
 import shutil
 import subprocess
 import sys
-
-SETTINGS = ["pursuer.sight.enabled=true", "evader.sight.enabled=true", "pursuer.sight.fov=120",
-            "pursuer.sight.share=true", "pursuer.speed=1.0", "evader.speed=1.3", "capture_distance=0.3",
-            "initial_heading=random"]
 
 
 def main(bin_dir, source, work):
@@ -21,12 +19,14 @@ def main(bin_dir, source, work):
     assert shipped, "no shipped mixtures"
     for d in shipped:
         out = work / d.name
-        cmd = [str(bin_dir / "peg-matchup"), "--map", str(source / "maps" / f"{d.name}.yaml"),
+        settings = json.loads((d / "settings.json").read_text())
+        assert pathlib.Path(settings["map"]).stem == d.name, f"{d.name}: trained on {settings['map']}"
+        cmd = [str(bin_dir / "peg-matchup"), "--map", str(source / settings["map"]),
                "--pursuers", "facl", "--pursuer-policy", str(d / "final_pursuer.json"),
                "--evaders", "facl", "--evader-policy", str(d / "final_evader.json"),
                "--repeats", "2", "--seed", "1", "--threads", "1", "--out", str(out)]
-        for s in SETTINGS:
-            cmd += ["--set", s]
+        for key, value in settings["set"].items():
+            cmd += ["--set", f"{key}={value}"]
         r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
         assert r.returncode == 0, f"{d.name}: exit {r.returncode}\n{r.stderr}"
         rows = list(csv.DictReader(open(out / "matchups.csv")))
