@@ -25,8 +25,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def label(member):
-    name = os.path.splitext(member)[0]
-    return name.replace("iteration_", "BR ").replace("/pursuer", "").replace("/evader", "")
+    """"BR k" for a run's own best responses; a first member from another run's folder gets that run's name."""
+    parts = os.path.splitext(member)[0].split("/")
+    run = parts[-3].removeprefix("selfplay_") + " " if len(parts) > 2 else ""
+    name = "/".join(parts[-2:])
+    return run + name.replace("iteration_", "BR ").replace("/pursuer", "").replace("/evader", "")
 
 
 def main(argv):
