@@ -25,7 +25,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def label(member):
-    """"BR k" for a run's own best responses; a first member from another run's folder gets that run's name."""
+    """'BR k' for a run's own best responses; a first member from another run's folder gets that run's name."""
     parts = os.path.splitext(member)[0].split("/")
     run = parts[-3].removeprefix("selfplay_") + " " if len(parts) > 2 else ""
     name = "/".join(parts[-2:])
