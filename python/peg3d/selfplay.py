@@ -61,7 +61,10 @@ class Settings:
     evaders: list = field(default_factory=lambda: list(_core.BASELINE_PLAYERS["evader"]))
     iterations: int = 4               # best responses per role, >= 1
     budget: Budget = Budget()         # each best response's training
-    final_budget: Budget | None = None  # the exploitability's fresh best responses (None: budget)
+    # Env steps of one role's best responses, role -> steps >= 1, in place of budget.steps for that role (a role
+    # left out trains budget.steps); the exploitability's fresh ones too, unless final_budget is given.
+    role_steps: dict = field(default_factory=dict)
+    final_budget: Budget | None = None  # the exploitability's fresh best responses, both roles (None: budget_of)
     # FACL best responses: training episodes per role and iteration, in [0, 10^7] (0: none, MAPPO's alone), and
     # the FACL learners' own settings, key -> value under their role (pursuer.KEY or evader.KEY): by default the
     # sight entries are two more fuzzy inputs (in sight now: sets at 0 and 1; the sighting's age: observation.sets
@@ -91,9 +94,23 @@ class Settings:
                     raise TypeError(f"{role}s.{k}: a player's name or a policy file, not {m!r}")
         if not isinstance(self.facl_set, dict) or not all(isinstance(k, str) and k for k in self.facl_set):
             raise TypeError("facl_set: a dict of setting -> value")
+        if not isinstance(self.role_steps, dict):
+            raise TypeError("role_steps: a dict of role -> env steps")
+        for role, steps in self.role_steps.items():
+            if role not in ROLES:
+                raise ValueError(f"role_steps: {role!r} is not a role ({', '.join(ROLES)})")
+            if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
+                raise ValueError(f"role_steps.{role}: an integer >= 1, not {steps!r}")
         self.budget.check()
         if self.final_budget is not None:
             self.final_budget.check()
+
+    def budget_of(self, role, final=False):
+        """The budget of `role`'s best responses (`final`: the exploitability's fresh one)."""
+        if final and self.final_budget is not None:
+            return self.final_budget
+        steps = self.role_steps.get(role)
+        return self.budget if steps is None else dataclasses.replace(self.budget, steps=int(steps))
 
     def to_json(self):
         d = dataclasses.asdict(self)
@@ -378,7 +395,7 @@ class SelfPlay:
                         "evader": _mixture(members["evader"], y, self.out)}
             folder = os.path.join(self.out, f"iteration_{k}")
             os.makedirs(folder, exist_ok=True)
-            calls = [(s, r, mixtures[ROLES[1 - ROLES.index(r)]], s.budget, derive_seed(s.seed, "train", k, r))
+            calls = [(s, r, mixtures[ROLES[1 - ROLES.index(r)]], s.budget_of(r), derive_seed(s.seed, "train", k, r))
                      for r in ROLES]
             trained = {}
             for r, net in zip(ROLES, self.runner.map("train", calls)):
@@ -440,8 +457,8 @@ class SelfPlay:
             with open(fresh_path) as f:
                 fresh = json.load(f)
         else:
-            budget = s.final_budget or s.budget
-            calls = [(s, r, final[ROLES[1 - ROLES.index(r)]], budget, derive_seed(s.seed, "exploit", r)) for r in ROLES]
+            calls = [(s, r, final[ROLES[1 - ROLES.index(r)]], s.budget_of(r, final=True), derive_seed(s.seed, "exploit", r))
+                     for r in ROLES]
             fresh = {}
             for r, net in zip(ROLES, self.runner.map("train", calls)):
                 name = BEST_RESPONSE.format(r)
@@ -483,7 +500,10 @@ def main(argv=None):
     ap.add_argument("--evader", action="append", help=f"likewise for the evaders (default: {','.join(d.evaders)})")
     ap.add_argument("--iterations", type=int, default=d.iterations)
     ap.add_argument("--steps", type=int, default=d.budget.steps, help="env steps of each best response's training")
-    ap.add_argument("--final-steps", type=int, help="env steps of the exploitability's best responses (default: --steps)")
+    for r in ROLES:
+        ap.add_argument(f"--{r}-steps", type=int, help=f"env steps of each {r} best response (default: --steps)")
+    ap.add_argument("--final-steps", type=int, help="env steps of the exploitability's best responses, both roles "
+                    "(default: each role's)")
     ap.add_argument("--num-envs", type=int, default=d.budget.num_envs)
     ap.add_argument("--rollout", type=int, default=d.budget.rollout)
     ap.add_argument("--threads", type=int, default=1, help="C++ threads for training and evaluation")
@@ -503,9 +523,10 @@ def main(argv=None):
     except ValueError:
         ap.error("--set and --facl-set: key=value")
     budget = Budget(steps=a.steps, num_envs=a.num_envs, rollout=a.rollout, threads=a.threads)
+    role_steps = {r: getattr(a, f"{r}_steps") for r in ROLES if getattr(a, f"{r}_steps") is not None}
     settings = Settings(map=a.map, scenario=a.scenario, set=sets, neighbours=a.neighbours,
                         pursuers=a.pursuer or d.pursuers, evaders=a.evader or d.evaders, iterations=a.iterations,
-                        budget=budget, final_budget=None if a.final_steps is None else dataclasses.replace(budget, steps=a.final_steps),
+                        budget=budget, role_steps=role_steps, final_budget=None if a.final_steps is None else dataclasses.replace(budget, steps=a.final_steps),
                         facl_episodes=a.facl_episodes, facl_set=facl_set, eval_games=a.eval_games,
                         eval_threads=a.threads, seed=a.seed)
     try:

@@ -164,6 +164,8 @@ def test_a_finished_run_resumed_with_more_iterations_is_the_longer_run(tmp_path)
     ({"evaders": []}, ValueError, "evaders: at least one"),
     ({"iterations": 0}, ValueError, "iterations"),
     ({"budget": Budget(steps=0)}, ValueError, "budget.steps"),
+    ({"role_steps": {"seeker": 512}}, ValueError, "role_steps: 'seeker'"),
+    ({"role_steps": {"evader": 0}}, ValueError, "role_steps.evader"),
 ])
 def test_bad_settings_are_refused_before_any_training(tmp_path, change, error, message):
     s = tiny()
@@ -172,6 +174,22 @@ def test_bad_settings_are_refused_before_any_training(tmp_path, change, error, m
     with pytest.raises(error, match=message):
         selfplay.SelfPlay(s, tmp_path / "run")
     assert not (tmp_path / "run").exists()
+
+
+def test_each_role_trains_its_own_steps(tmp_path):
+    pytest.importorskip("torch")
+    s = tiny(iterations=1, role_steps={"evader": 512})
+    assert s.budget_of("pursuer").steps == 256 and s.budget_of("evader").steps == 512
+    assert s.budget_of("evader", final=True).steps == 512  # the fresh best response as the role's
+    assert tiny(role_steps={"evader": 512}, final_budget=Budget(steps=64)).budget_of("evader", final=True).steps == 64
+    selfplay.SelfPlay(s, tmp_path / "run", log=lambda *_: None).run()
+    with open(tmp_path / "run" / "iteration_0" / "state.json") as f:
+        trained = json.load(f)["history"][0]["trained"]
+    # An update takes num_envs x rollout = 128 env steps; the history counts them.
+    assert trained["pursuer"]["history"][-1]["steps"] == 256
+    assert trained["evader"]["history"][-1]["steps"] == 512
+    with open(tmp_path / "run" / "settings.json") as f:
+        assert json.load(f)["role_steps"] == {"evader": 512}
 
 
 def test_a_policy_file_of_the_other_role_is_refused_naming_it(tmp_path):
