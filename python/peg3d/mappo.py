@@ -35,15 +35,16 @@ class Budget:
     init_std: float = 0.5     # the exploration's initial standard deviation, a fraction of the steering bound, > 0
     threads: int = 1          # C++ threads stepping the games, >= 1
 
-    def check(self):
+    def check(self, where="budget"):
+        """Raises ValueError naming `where`.FIELD for a field out of its range."""
         for name, low in (("steps", 1), ("num_envs", 1), ("rollout", 1), ("epochs", 1), ("threads", 1)):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < low:
-                raise ValueError(f"budget.{name}: an integer >= {low}, not {v!r}")
+                raise ValueError(f"{where}.{name}: an integer >= {low}, not {v!r}")
         for name in ("lr", "init_std"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-                raise ValueError(f"budget.{name}: a finite number > 0, not {v!r}")
+                raise ValueError(f"{where}.{name}: a finite number > 0, not {v!r}")
 
 
 class RunningStats:

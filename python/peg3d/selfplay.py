@@ -96,21 +96,21 @@ class Settings:
             raise TypeError("facl_set: a dict of setting -> value")
         if not isinstance(self.role_steps, dict):
             raise TypeError("role_steps: a dict of role -> env steps")
-        for role, steps in self.role_steps.items():
+        for role in self.role_steps:
             if role not in ROLES:
                 raise ValueError(f"role_steps: {role!r} is not a role ({', '.join(ROLES)})")
-            if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
-                raise ValueError(f"role_steps.{role}: an integer >= 1, not {steps!r}")
         self.budget.check()
+        for role in self.role_steps:  # the role's budget: its steps are the only field not checked above
+            self.budget_of(role).check(f"role_steps.{role}")
         if self.final_budget is not None:
-            self.final_budget.check()
+            self.final_budget.check("final_budget")
 
     def budget_of(self, role, final=False):
         """The budget of `role`'s best responses (`final`: the exploitability's fresh one)."""
         if final and self.final_budget is not None:
             return self.final_budget
         steps = self.role_steps.get(role)
-        return self.budget if steps is None else dataclasses.replace(self.budget, steps=int(steps))
+        return self.budget if steps is None else dataclasses.replace(self.budget, steps=steps)
 
     def to_json(self):
         d = dataclasses.asdict(self)
