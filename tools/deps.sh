@@ -10,7 +10,7 @@ PACKAGES=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libboost-dev libmeshoptimizer-dev libjs-three libopenmpi-dev openmpi-bin libembree-dev
-  python3-matplotlib python3-numpy python3-dev python3-venv python3-pip
+  python3-matplotlib python3-numpy python3-scipy python3-dev python3-venv python3-pip
 )
 if [[ "${1:-}" == "--test" ]]; then
   PACKAGES+=(chromium python3-websocket python3-pil python3-pytest python3-hypothesis)
