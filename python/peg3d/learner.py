@@ -9,12 +9,12 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from . import _core, _loading
+from ._roles import ROLES, other_role
 
-ROLES = ("pursuer", "evader")
 # What plays the other agents unless told: each role's first baseline player of the C++ registry (flee for the
 # evaders, pure-pursuit for the pursuers): the learner's opponents and its teammates.
-DEFAULT_PLAYERS = {learner: (_core.BASELINE_PLAYERS[ROLES[1 - k]][0], _core.BASELINE_PLAYERS[learner][0])
-                   for k, learner in enumerate(ROLES)}
+DEFAULT_PLAYERS = {learner: (_core.BASELINE_PLAYERS[other_role(learner)][0], _core.BASELINE_PLAYERS[learner][0])
+                   for learner in ROLES}
 
 
 def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, threads, seed, neighbours, cache,
@@ -22,7 +22,7 @@ def _make(map, learner, opponent, teammates, config, scenario, set, num_envs, th
     """The batch, with every agent but the learner (agent 0 of its role) left to the C++ side."""
     if learner not in ROLES:
         raise ValueError(f"learner: 'pursuer' or 'evader', not {learner!r}")
-    other = ROLES[1 - ROLES.index(learner)]
+    other = other_role(learner)
     opponent = DEFAULT_PLAYERS[learner][0] if opponent is None else opponent
     teammates = DEFAULT_PLAYERS[learner][1] if teammates is None else teammates
     # Later keys win: the role's players, then the learner itself back to the caller ("").

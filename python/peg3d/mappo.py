@@ -19,9 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import policy as _policy
+from ._roles import ROLES
 from .vector import VectorEnv
-
-ROLES = ("pursuer", "evader")
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,7 @@ import os
 import numpy as np
 
 from . import _core
+from ._roles import ROLES
 
 FORMAT = "peg3d-mlp"
 VERSION = 2
@@ -48,7 +49,7 @@ def save_policy(path, *, role, observation, layers, action_bound, input_mean=Non
     (default 0 and 1). action_std: the Gaussian's standard deviations (rad), which play="sample" draws with.
     extra: more keys to record (the C++ loader ignores them): what trained it, its opponents, ...
     """
-    if role not in ("pursuer", "evader"):
+    if role not in ROLES:
         raise ValueError(f"role: 'pursuer' or 'evader', not {role!r}")
     segments = _segments(observation)
     inputs = sum(s["size"] for s in segments)
@@ -106,7 +107,7 @@ def read_policy(path):
 
     # The C++ loader's checks (players::load_saved_policy: version, role, members, weights, no nested mixture, the
     # members' roles and FACL configurations), so that Python refuses what the programs refuse, with their messages.
-    role = doc.get("role") if doc.get("role") in ("pursuer", "evader") else "pursuer"
+    role = doc.get("role") if doc.get("role") in ROLES else "pursuer"
     _core.check_policy(os.fspath(path), role)
     for m in doc["members"]:
         source = m["policy"]

@@ -37,10 +37,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _core
+from ._roles import ROLES, other_role
 from .mappo import Budget
 from .vector import VectorEnv
 
-ROLES = ("pursuer", "evader")
 # The files of a run's ending (`SelfPlay._finish`), in its folder; an extended run removes them before any new work.
 SUMMARY, EXPLOITABILITY = "summary.json", "exploitability.json"
 FINAL, BEST_RESPONSE = "final_{}.json", "best_response_{}.json"  # .format(role)
@@ -190,7 +190,7 @@ def play_pairing(settings, pursuer, evader, games, seed):
 def _train(settings, role, opponents, budget, seed):
     """A best response of `role` against the other role's mixture `opponents` ({member: weight}): a Network."""
     from . import mappo
-    other = ROLES[1 - ROLES.index(role)]
+    other = other_role(role)
     env = dict(_env_keywords(settings), opponents={other: opponents})
     return mappo.train(role, env, budget, seed)
 
@@ -395,19 +395,19 @@ class SelfPlay:
                         "evader": _mixture(members["evader"], y, self.out)}
             folder = os.path.join(self.out, f"iteration_{k}")
             os.makedirs(folder, exist_ok=True)
-            calls = [(s, r, mixtures[ROLES[1 - ROLES.index(r)]], s.budget_of(r), derive_seed(s.seed, "train", k, r))
+            calls = [(s, r, mixtures[other_role(r)], s.budget_of(r), derive_seed(s.seed, "train", k, r))
                      for r in ROLES]
             trained = {}
             for r, net in zip(ROLES, self.runner.map("train", calls)):
                 name = f"iteration_{k}/{r}.json"
                 net.save(os.path.join(self.out, name), trained_by="peg3d.selfplay", iteration=k,
-                         opponents=sorted(mixtures[ROLES[1 - ROLES.index(r)]]))
+                         opponents=sorted(mixtures[other_role(r)]))
                 trained[r] = {"file": name, "history": net.history}
             if s.facl_episodes > 0:
                 # The paper's learner against the same mixtures, from files the C++ side reads.
                 calls = []
                 for r in ROLES:
-                    o = ROLES[1 - ROLES.index(r)]
+                    o = other_role(r)
                     mixture = os.path.join(folder, f"{o}_mixture.json")
                     _write_mixture(mixture, o, members[o], x if o == "pursuer" else y, self.out)
                     calls.append((s, r, os.path.abspath(mixture), s.facl_episodes, derive_seed(s.seed, "facl", k, r)))
@@ -457,13 +457,13 @@ class SelfPlay:
             with open(fresh_path) as f:
                 fresh = json.load(f)
         else:
-            calls = [(s, r, final[ROLES[1 - ROLES.index(r)]], s.budget_of(r, final=True), derive_seed(s.seed, "exploit", r))
+            calls = [(s, r, final[other_role(r)], s.budget_of(r, final=True), derive_seed(s.seed, "exploit", r))
                      for r in ROLES]
             fresh = {}
             for r, net in zip(ROLES, self.runner.map("train", calls)):
                 name = BEST_RESPONSE.format(r)
                 net.save(os.path.join(self.out, name), trained_by="peg3d.selfplay (exploitability)",
-                         opponents=sorted(final[ROLES[1 - ROLES.index(r)]]))
+                         opponents=sorted(final[other_role(r)]))
                 fresh[r] = name
             seed = derive_seed(s.seed, "evaluation")
             plays = self.runner.map("play", [

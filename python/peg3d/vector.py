@@ -6,9 +6,8 @@ from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
 from . import _loading
+from ._roles import ROLES
 from .parallel import REWARD_TERMS
-
-ROLES = ("pursuer", "evader")
 
 
 class VectorEnv(_loading.Rebuilt, _loading.Closable):
