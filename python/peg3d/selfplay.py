@@ -71,6 +71,10 @@ class Settings:
     # sets over [0, 10 s]).
     facl_episodes: int = 0
     facl_set: dict = field(default_factory=lambda: {"observation.sight_inputs": "true"})
+    # Share of each best response's opponents drawn from the other role's whole population, in [0, 1) (0: the
+    # meta-game's mixture alone, PSRO's rule): weighted by prioritised fictitious self-play (`league_weights`), the
+    # rest from the mixture. The exploitability's fresh best responses train against the final mixture alone.
+    league_share: float = 0.0
     eval_games: int = 64              # held-out games per pairing, in [1, 65536]
     eval_threads: int = 1             # C++ threads playing them, >= 1
     solver_iterations: int = 20000    # fictitious play's rounds, >= 1
@@ -92,6 +96,9 @@ class Settings:
             for k, m in enumerate(members):
                 if not isinstance(m, (str, os.PathLike)) or not str(m):
                     raise TypeError(f"{role}s.{k}: a player's name or a policy file, not {m!r}")
+        v = self.league_share
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not 0 <= v < 1:
+            raise ValueError(f"league_share: a number in [0, 1), not {v!r}")
         if not isinstance(self.facl_set, dict) or not all(isinstance(k, str) and k for k in self.facl_set):
             raise TypeError("facl_set: a dict of setting -> value")
         if not isinstance(self.role_steps, dict):
@@ -145,6 +152,24 @@ def solve_zero_sum(matrix, iterations=20000):
         i, j = int(np.argmax(row_sum)), int(np.argmin(col_sum))
     x, y = rows / rows.sum(), cols / cols.sum()
     return x, y, float((x @ m).min()), float((m @ y).max())
+
+
+def league_weights(rate, x, y, share):
+    """Each role's training opponents, role -> weights over the other role's members: (1 - share) x the meta-game's
+    mixture + share x prioritised fictitious self-play over the whole population (AlphaStar, Vinyals et al. 2019:
+    opponent o in proportion to (1 - P[the learner beats o])^2, P estimated by the learner's role's mixture; uniform
+    when no member beats it). `rate`: capture rates, pursuers x evaders; x, y: the pursuers' and evaders' mixtures."""
+    rate, x, y = np.asarray(rate, dtype=np.float64), np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
+    if share == 0:
+        return {"pursuer": y, "evader": x}
+    # How often each evader escapes the pursuers' mixture; how often each pursuer catches the evaders' mixture.
+    hard = {"pursuer": 1.0 - x @ rate, "evader": rate @ y}
+    out = {}
+    for role, mixture in (("pursuer", y), ("evader", x)):
+        w = np.clip(hard[role], 0.0, 1.0) ** 2
+        w = w / w.sum() if w.sum() > 0 else np.full(len(w), 1.0 / len(w))
+        out[role] = (1.0 - share) * mixture + share * w
+    return out
 
 
 def payoff(caught, steps, max_steps):
@@ -391,17 +416,18 @@ class SelfPlay:
             self._evaluate(members, payoffs)
             m = self._matrix(members, payoffs)
             x, y, low, high = solve_zero_sum(m, s.solver_iterations)
-            mixtures = {"pursuer": _mixture(members["pursuer"], x, self.out),
-                        "evader": _mixture(members["evader"], y, self.out)}
+            # Each role's best responses train against these opponents (the other role's members).
+            league = league_weights(self._matrix(members, payoffs, "capture_rate"), x, y, s.league_share)
+            mixtures = {r: _mixture(members[other_role(r)], league[r], self.out) for r in ROLES}
             folder = os.path.join(self.out, f"iteration_{k}")
             os.makedirs(folder, exist_ok=True)
-            calls = [(s, r, mixtures[other_role(r)], s.budget_of(r), derive_seed(s.seed, "train", k, r))
+            calls = [(s, r, mixtures[r], s.budget_of(r), derive_seed(s.seed, "train", k, r))
                      for r in ROLES]
             trained = {}
             for r, net in zip(ROLES, self.runner.map("train", calls)):
                 name = f"iteration_{k}/{r}.json"
                 net.save(os.path.join(self.out, name), trained_by="peg3d.selfplay", iteration=k,
-                         opponents=sorted(mixtures[other_role(r)]))
+                         opponents=sorted(mixtures[r]))
                 trained[r] = {"file": name, "history": net.history}
             if s.facl_episodes > 0:
                 # The paper's learner against the same mixtures, from files the C++ side reads.
@@ -409,7 +435,7 @@ class SelfPlay:
                 for r in ROLES:
                     o = other_role(r)
                     mixture = os.path.join(folder, f"{o}_mixture.json")
-                    _write_mixture(mixture, o, members[o], x if o == "pursuer" else y, self.out)
+                    _write_mixture(mixture, o, members[o], league[r], self.out)
                     calls.append((s, r, os.path.abspath(mixture), s.facl_episodes, derive_seed(s.seed, "facl", k, r)))
                 for r, text in zip(ROLES, self.runner.map("train_facl", calls)):
                     name = f"iteration_{k}/{r}_facl.json"
@@ -419,6 +445,8 @@ class SelfPlay:
             entry = {"iteration": k, "pursuer_mixture": x.tolist(), "evader_mixture": y.tolist(),
                      "value": [low, high], "members": {r: len(members[r]) for r in ROLES},
                      "trained": trained}
+            if s.league_share > 0:
+                entry["opponents"] = {r: league[r].tolist() for r in ROLES}
             for r in ROLES:
                 members[r].append(trained[r]["file"])
                 if "facl" in trained[r]:
@@ -511,6 +539,9 @@ def main(argv=None):
                     help="episodes of each FACL best response (one per role and iteration; 0: none)")
     ap.add_argument("--facl-set", action="append", default=[],
                     help="a FACL learner's setting key=value under its role (default: observation.sight_inputs=true)")
+    ap.add_argument("--league-share", type=float, default=d.league_share,
+                    help="share of each best response's opponents drawn from the other role's whole population by "
+                    "prioritised fictitious self-play, in [0, 1) (default 0: the meta-game's mixture alone)")
     ap.add_argument("--eval-games", type=int, default=d.eval_games)
     ap.add_argument("--seed", type=int, default=d.seed)
     ap.add_argument("--out", required=True)
@@ -527,7 +558,8 @@ def main(argv=None):
     settings = Settings(map=a.map, scenario=a.scenario, set=sets, neighbours=a.neighbours,
                         pursuers=a.pursuer or d.pursuers, evaders=a.evader or d.evaders, iterations=a.iterations,
                         budget=budget, role_steps=role_steps, final_budget=None if a.final_steps is None else dataclasses.replace(budget, steps=a.final_steps),
-                        facl_episodes=a.facl_episodes, facl_set=facl_set, eval_games=a.eval_games,
+                        facl_episodes=a.facl_episodes, facl_set=facl_set, league_share=a.league_share,
+                        eval_games=a.eval_games,
                         eval_threads=a.threads, seed=a.seed)
     try:
         summary = SelfPlay(settings, a.out, resume=a.resume, ray_address=a.ray).run()

@@ -166,6 +166,9 @@ def test_a_finished_run_resumed_with_more_iterations_is_the_longer_run(tmp_path)
     ({"budget": Budget(steps=0)}, ValueError, "budget.steps"),
     ({"role_steps": {"seeker": 512}}, ValueError, "role_steps: 'seeker'"),
     ({"role_steps": {"evader": 0}}, ValueError, "role_steps.evader"),
+    ({"league_share": 1.0}, ValueError, r"league_share: a number in \[0, 1\), not 1.0"),
+    ({"league_share": -0.1}, ValueError, "league_share"),
+    ({"league_share": "0.5"}, ValueError, "league_share"),
 ])
 def test_bad_settings_are_refused_before_any_training(tmp_path, change, error, message):
     s = tiny()
@@ -250,3 +253,44 @@ def test_a_mixture_file_names_its_members_where_the_cpp_loader_finds_them(tmp_pa
     doc = peg3d.read_policy(mixture)  # checked by the C++ loader
     assert [m["policy"] for m in doc["members"]] == ["flee", os.path.abspath(robust), "../iteration_0/evader.json"]
     assert [m["weight"] for m in doc["members"]] == [0.5, 0.25, 0.25]
+
+
+def test_league_weights_mix_the_equilibrium_with_prioritised_fictitious_self_play():
+    rate = np.array([[1.0, 0.5],   # pursuers down, evaders across
+                     [0.0, 0.0]])
+    x, y = np.array([1.0, 0.0]), np.array([0.0, 1.0])
+    assert all(np.array_equal(w, m) for w, m in zip(selfplay.league_weights(rate, x, y, 0).values(), (y, x)))
+    w = selfplay.league_weights(rate, x, y, 0.5)
+    # The evaders' learner: pursuer 0 catches the evaders' mixture in 0.5, pursuer 1 never: PFSP 1 : 0.
+    assert np.allclose(w["evader"], 0.5 * x + 0.5 * np.array([1.0, 0.0]))
+    # The pursuers' learner: evader 0 never escapes the pursuers' mixture, evader 1 in 0.5: PFSP 0 : 1.
+    assert np.allclose(w["pursuer"], 0.5 * y + 0.5 * np.array([0.0, 1.0]))
+    # No evader escapes: the league part is uniform.
+    w = selfplay.league_weights(np.ones((2, 2)), x, y, 0.2)
+    assert np.allclose(w["pursuer"], 0.8 * y + 0.2 * np.array([0.5, 0.5]))
+    rate = np.array([[0.9, 0.6], [0.3, 0.2]])
+    w = selfplay.league_weights(rate, x, y, 0.5)["evader"]
+    assert np.allclose(w, 0.5 * x + 0.5 * np.array([0.36, 0.04]) / 0.40)
+
+
+def test_a_league_run_trains_against_the_weights_it_records(tmp_path):
+    pytest.importorskip("torch")
+    summary = selfplay.SelfPlay(tiny(league_share=0.5, facl_episodes=2), tmp_path, log=lambda *_: None).run()
+    with open(tmp_path / "iteration_1" / "state.json") as f:
+        state = json.load(f)
+    entry = state["history"][1]
+    n = entry["members"]
+    members = {r: summary["members"][r][:n[r]] for r in selfplay.ROLES}
+    rate = np.array([[state["payoffs"][f"{i},{j}"]["capture_rate"] for j in range(n["evader"])]
+                     for i in range(n["pursuer"])])
+    want = selfplay.league_weights(rate, entry["pursuer_mixture"], entry["evader_mixture"], 0.5)
+    for r in selfplay.ROLES:
+        assert np.allclose(entry["opponents"][r], want[r])
+        assert entry["opponents"][r] != entry[f"{selfplay.other_role(r)}_mixture"]
+    # The FACL learner of the pursuers read the same weights from its mixture file.
+    with open(tmp_path / "iteration_1" / "evader_mixture.json") as f:
+        written = [m["weight"] for m in json.load(f)["members"]]
+    assert np.allclose(written, [w for w in want["pursuer"] if w > 0])
+    # The network's record names the members it trained against: the whole population, not the mixture alone.
+    with open(tmp_path / "iteration_1" / "evader.json") as f:
+        assert len(json.load(f)["opponents"]) == sum(w > 0 for w in want["evader"])
