@@ -12,7 +12,9 @@ Each role's population starts from classic players (and any policy files given).
    role's team, which sees its teammates and nearest opponents, and a centralised critic), the opponents drawn
    per episode from the mixture inside the C++ batch; both join their populations. With `facl_episodes`, the
    paper's learner trains one more best response per role, in C++ (`_core.train_facl`): FACL tables whose inputs
-   include the sight entries (`facl_set`), against the same mixture; they join the populations too.
+   include the sight entries (`facl_set`), against the same mixture; they join the populations too. With
+   `league_share`, both train against a league instead: that share of their opponents drawn from the other role's
+   whole population by prioritised fictitious self-play (`league_weights`), the rest from the mixture.
 An iteration's files are written before its record (`iteration_K/state.json`), so an interrupted run resumes
 from its last finished iteration (`resume=True`) with the same results as one never stopped; resumed with more
 `iterations`, a run (finished or not) is extended to the run that asked for them from the start. After the last
