@@ -50,7 +50,8 @@ def _lp(objective, a_ub, b_ub):
     r = linprog(objective, A_ub=a_ub, b_ub=b_ub, A_eq=np.ones((1, n)), b_eq=[1.0], bounds=[(0, None)] * n)
     if r.status != 0:
         raise Error(f"linear program failed: {r.message}")
-    return np.clip(r.x, 0.0, None) / np.clip(r.x, 0.0, None).sum()
+    y = np.clip(r.x, 0.0, None)  # the solver's -1e-12s
+    return y / y.sum()
 
 
 def near_equilibria(members, payoff, rate, role, against, margins):

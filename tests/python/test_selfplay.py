@@ -275,12 +275,11 @@ def test_league_weights_mix_the_equilibrium_with_prioritised_fictitious_self_pla
 
 def test_a_league_run_trains_against_the_weights_it_records(tmp_path):
     pytest.importorskip("torch")
-    summary = selfplay.SelfPlay(tiny(league_share=0.5, facl_episodes=2), tmp_path, log=lambda *_: None).run()
+    selfplay.SelfPlay(tiny(league_share=0.5, facl_episodes=2), tmp_path, log=lambda *_: None).run()
     with open(tmp_path / "iteration_1" / "state.json") as f:
         state = json.load(f)
     entry = state["history"][1]
     n = entry["members"]
-    members = {r: summary["members"][r][:n[r]] for r in selfplay.ROLES}
     rate = np.array([[state["payoffs"][f"{i},{j}"]["capture_rate"] for j in range(n["evader"])]
                      for i in range(n["pursuer"])])
     want = selfplay.league_weights(rate, entry["pursuer_mixture"], entry["evader_mixture"], 0.5)
