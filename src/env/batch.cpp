@@ -337,7 +337,7 @@ void Batch::start_episode(int g) {
   game::reset(*sim_, game.state, scenario_for(g, game.episode), derive_seed(game.seed, {game.slot, std::uint64_t(game.episode)}));
   choose_members(g);
   for (int i = 0; i < agents_; ++i) {
-    if (game.policies[std::size_t(i)]) game.policies[std::size_t(i)]->begin_episode(game::observe(game.state, i), false);
+    if (game.policies[std::size_t(i)]) game::begin_playing(*sim_, game.state, i, *game.policies[std::size_t(i)], false);
   }
   const std::size_t base = std::size_t(g) * std::size_t(agents_);
   for (int i = 0; i < agents_; ++i) {

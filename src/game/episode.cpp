@@ -205,12 +205,18 @@ const StepEvents& step_naming_file(const Sim& sim, SimState& st, std::span<const
   }
 }
 
+void begin_playing(const Sim& sim, SimState& st, int i, Policy& policy, bool learning) {
+  policy.begin_episode(observe(st, i), learning);
+  AgentState& a = st.agents[std::size_t(i)];
+  a.config = policy.scripted() ? &sim.scripted_config(a.role, a.rank) : &sim.config().agent(a.role, a.rank);
+}
+
 EpisodeResult play(const Sim& sim, SimState& st, const world::Scenario& scenario, std::span<Policy* const> policies,
                    bool learning, std::uint64_t seed, Trace* trace) {
   reset(sim, st, scenario, seed);
   const int n = st.agent_count();
   assert(static_cast<int>(policies.size()) == n);
-  for (int i = 0; i < n; ++i) policies[std::size_t(i)]->begin_episode(observe(st, i), learning);
+  for (int i = 0; i < n; ++i) begin_playing(sim, st, i, *policies[std::size_t(i)], learning);
   if (trace) trace->record(st, false);
 
   // Commands of agents out of the game are ignored by step(); the buffer is the state's, so no allocation.

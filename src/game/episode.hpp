@@ -151,6 +151,12 @@ std::string agent_label(const Trace& trace, int i);
 const StepEvents& step_naming_file(const Sim& sim, SimState& state, std::span<const Steering> commands,
                                    std::span<Policy* const> policies);
 
+/// Starts `policy`, which drives agent i, on the episode `state` was just reset to: its begin_episode, then, for a
+/// classic player (Policy::scripted), the agent's configuration without the motion space (Sim::scripted_config), so
+/// that a classic player plays the same game in every loop, drawn from a mixture or not. Every loop starts its
+/// policies with it.
+void begin_playing(const Sim& sim, SimState& state, int i, Policy& policy, bool learning);
+
 /// Plays one episode of `scenario`. policies[i] drives agent i (pursuers first, then evaders, in the
 /// scenario's order); distinct agents need distinct policy objects (they may share a FACL model). With
 /// `learning`, policies explore and learn after every step. `trace`, when given, receives every instant

@@ -108,6 +108,10 @@ class Policy {
   const std::filesystem::path& file() const { return file_; }
   void set_file(std::filesystem::path file) { file_ = std::move(file); }
 
+  /// Whether it is a classic (scripted) player this episode, which the game plays free of its agent's motion space
+  /// (scripted_agent, begin_playing). Read after begin_episode: a mixture's answer is its member's of the episode.
+  virtual bool scripted() const { return false; }
+
  private:
   std::filesystem::path file_;
 };

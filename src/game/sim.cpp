@@ -83,6 +83,18 @@ Sim::Sim(std::shared_ptr<const world::Arena> arena, GameConfig config)
     : arena_(std::move(arena)), config_(std::make_shared<const GameConfig>(std::move(config))) {
   config_->validate();
   max_steps_ = config_->max_steps();
+  // Every agent's configuration as scripted_agent makes it, kept once: classic players' agents point at it.
+  GameConfig scripted = *config_;
+  bool differs = false;
+  const auto script = [&](AgentConfig& a) {
+    differs = differs || a.motion_space;
+    a = scripted_agent(a, a.policy);
+  };
+  script(scripted.pursuer);
+  script(scripted.evader);
+  for (AgentConfig& a : scripted.pursuers) script(a);
+  for (AgentConfig& a : scripted.evaders) script(a);
+  scripted_ = differs ? std::make_shared<const GameConfig>(std::move(scripted)) : config_;
   const world::MapSpec& map = arena_->map();
   if (!map.movers.empty()) {
     const double substeps = config_->dt * map.physics.rate_hz;

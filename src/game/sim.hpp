@@ -70,7 +70,8 @@ struct CaptureEvent {
 struct AgentState {
   Role role = Role::kPursuer;
   int rank = 0;                       ///< index among the agents of its role
-  const AgentConfig* config = nullptr;  ///< its settings (owned by the Sim)
+  /// its settings (owned by the Sim): its own, or as a classic player plays them (Sim::scripted_config)
+  const AgentConfig* config = nullptr;
   KinematicState kinematics;
   Box bounds;                         ///< the arena shrunk by its radius: where its centre may go
   bool active = true;                 ///< in the game; an evader leaves it when captured
@@ -288,6 +289,9 @@ class Sim {
   Sim(std::shared_ptr<const world::Arena> arena, GameConfig config);
 
   const GameConfig& config() const { return *config_; }
+  /// Agent `rank` of `role`'s configuration as a classic player plays it: without the motion space
+  /// (scripted_agent), everything else its own (game/episode.hpp, begin_playing).
+  const AgentConfig& scripted_config(Role role, int rank) const { return scripted_->agent(role, rank); }
   const world::Arena& arena() const { return *arena_; }
   const std::shared_ptr<const world::Arena>& arena_ptr() const { return arena_; }
   int max_steps() const { return max_steps_; }
@@ -317,6 +321,7 @@ class Sim {
  private:
   std::shared_ptr<const world::Arena> arena_;
   std::shared_ptr<const GameConfig> config_;  // shared by copies: agents' config pointers stay valid
+  std::shared_ptr<const GameConfig> scripted_;  // config_ with no agent's motion space (config_ when none has one)
   int max_steps_ = 0;
   std::shared_ptr<const world::MoverTimeline> movers_;
   bool pushes_ = false;

@@ -35,6 +35,7 @@ class MixturePolicy final : public game::Policy {
     members_[std::size_t(current_)]->begin_episode(view, learning);
   }
   Steering act(const game::AgentView& view) override { return members_[std::size_t(current_)]->act(view); }
+  bool scripted() const override { return members_[std::size_t(current_)]->scripted(); }
 
  private:
   std::vector<std::unique_ptr<game::Policy>> members_;

@@ -13,8 +13,15 @@
 
 namespace peg3d::players {
 
+/// A classic player, which the game plays free of its agent's motion space wherever it plays (game::Policy::scripted,
+/// game::begin_playing), as the experiments always have (game::scripted_agent).
+class ScriptedPolicy : public game::Policy {
+ public:
+  bool scripted() const override { return true; }
+};
+
 /// Pure pursuit: head straight at the opponent.
-class PurePursuit final : public game::Policy {
+class PurePursuit final : public ScriptedPolicy {
  public:
   Steering act(const game::AgentView& view) override;
 };
@@ -22,7 +29,7 @@ class PurePursuit final : public game::Policy {
 /// 3D proportional navigation: the velocity direction turns at N times the rotation rate of the line of
 /// sight, omega = (r x v_rel) / |r|^2. While the target is behind (closing is impossible by PN alone) it
 /// pursues directly.
-class ProportionalNavigation final : public game::Policy {
+class ProportionalNavigation final : public ScriptedPolicy {
  public:
   explicit ProportionalNavigation(double gain) : gain_(gain) {}
   Steering act(const game::AgentView& view) override;
@@ -34,7 +41,7 @@ class ProportionalNavigation final : public game::Policy {
 /// Apollonius interceptor: constant bearing to the point where the evader, holding its current heading,
 /// meets the pursuer (the interception point on the Apollonius sphere), clamped into the arena; pure
 /// pursuit when there is none.
-class ApolloniusInterceptor final : public game::Policy {
+class ApolloniusInterceptor final : public ScriptedPolicy {
  public:
   Steering act(const game::AgentView& view) override;
 };
@@ -91,7 +98,7 @@ enum class VoronoiChase {
 ///   instead of kVoronoiChase. Gone to as kRoute. Without a probe, kStraight.
 /// How it chases: `VoronoiChase`.
 /// Its scratch (the cuts, the face, the roadmap's search) grows in the first calls and is reused after that.
-class VoronoiPursuer final : public game::Policy {
+class VoronoiPursuer final : public ScriptedPolicy {
  public:
   explicit VoronoiPursuer(double gain, VoronoiWay way = VoronoiWay::kStraight,
                           VoronoiChase chase = VoronoiChase::kNavigation)
@@ -117,20 +124,20 @@ class VoronoiPursuer final : public game::Policy {
 
 /// Flee along the line of sight, away from the pursuer, pushed off the arena boundary and the nearest
 /// obstacle by a repulsion that grows as they come within `kAvoidDistance`.
-class FleeLineOfSight final : public game::Policy {
+class FleeLineOfSight final : public ScriptedPolicy {
  public:
   Steering act(const game::AgentView& view) override;
 };
 
 /// Head for the farthest point from the pursuer of the evader's Apollonius dominance region (the ball of
 /// points it reaches first) that lies inside the arena, with the same repulsion as FleeLineOfSight.
-class FleeApollonius final : public game::Policy {
+class FleeApollonius final : public ScriptedPolicy {
  public:
   Steering act(const game::AgentView& view) override;
 };
 
 /// Random heading changes, uniform within the steering bound, from the policy's own seeded engine.
-class RandomWalk final : public game::Policy {
+class RandomWalk final : public ScriptedPolicy {
  public:
   RandomWalk(const SteeringConfig& steering, std::uint64_t seed) : steering_(steering), rng_(seed) {}
   Steering act(const game::AgentView& view) override;

@@ -21,7 +21,7 @@ namespace peg3d::players {
 /// point it can pass to straight that is nearest in the sum of the two legs, those whose second leg is not
 /// passable counting kBlockedLeg more; without a probe or a detour, it gives the goal up (a search point counts as
 /// visited; an estimate as arrived at). Allocates in begin_episode() only.
-class SearchPursuer final : public game::Policy {
+class SearchPursuer final : public ScriptedPolicy {
  public:
   static constexpr double kLattice = 5.0;     ///< m between the search points along each axis (at most)
   static constexpr double kArrive = 1.5;      ///< m from the estimate at which the search begins
@@ -60,7 +60,7 @@ class SearchPursuer final : public game::Policy {
 /// pursuer as half a metre less. It keeps that place while the pursuer cannot see it there, and flies about it.
 /// With no hiding place (or no probe: full information, or obstacles from its own map) it flees like
 /// FleeLineOfSight. Allocates nothing.
-class HideEvader final : public game::Policy {
+class HideEvader final : public ScriptedPolicy {
  public:
   static constexpr double kAlert = 1.0;  ///< s after the last sighting during which it still looks for cover
   static constexpr int kHideAzimuths = 12;

@@ -659,6 +659,76 @@ TEST(EnvBatch, AMixturesDrawnMemberPlaysAsThatPlayerAlone) {
   EXPECT_EQ(same[1], 0);
 }
 
+// A player that plays `inner` but is no classic player: the game keeps its agent's motion space.
+class Unscripted final : public game::Policy {
+ public:
+  explicit Unscripted(std::unique_ptr<game::Policy> inner) : inner_(std::move(inner)) {}
+  void begin_episode(const game::AgentView& view, bool learning) override { inner_->begin_episode(view, learning); }
+  Steering act(const game::AgentView& view) override { return inner_->act(view); }
+
+ private:
+  std::unique_ptr<game::Policy> inner_;
+};
+
+TEST(EnvBatch, AClassicMemberPlaysFreeOfTheMotionSpaceAsTheExperimentsPlayIt) {
+  // peg3d's pursuers keep their heading in the motion space; the experiments play a classic pursuer without it
+  // (game::with_role_playing). Pursuers drawn from {pn, pure-pursuit} against the caller's evaders must follow, bit
+  // for bit, the drawn member played in a Sim made as the experiments make it; and the same member held by the
+  // motion space must part from it in some episode (else the test could not tell).
+  game::GameConfig c = standing_evaders();
+  c.evader.speed = 1.0;
+  c.initial_heading = game::InitialHeading::kRandom;
+  ASSERT_TRUE(c.pursuer.motion_space);
+  BatchSettings s = settings(1, 1, 9);
+  s.scenarios = {"timeout"};
+  s.controllers = {{"pursuer", {{"pn", 1.0}, {"pure-pursuit", 1.0}}}};
+  Batch batch(arena(), c, s);
+  const world::Scenario& start = arena()->map().scenarios[kTimeout];
+  std::array<int, 2> episodes{};
+  int parted = 0;
+  for (int seed = 0; seed < 8; ++seed) {
+    batch.reset_game(0, std::uint64_t(seed));
+    const int member = batch.member(0, 0);
+    ASSERT_EQ(batch.member(0, 1), member);
+    const std::string name = member == 0 ? "pn" : "pure-pursuit";
+    ++episodes[std::size_t(member)];
+    const game::Sim free_sim(arena(), game::with_role_playing(c, Role::kPursuer, name));
+    game::SimState free_state(free_sim), held_state(batch.sim());
+    // A mixture's member is seeded by its place (env/batch.hpp); the classic pursuers here draw nothing.
+    std::vector<std::unique_ptr<game::Policy>> free_players, held_players;
+    for (int i = 0; i < 2; ++i) {
+      free_players.push_back(players::make_player(free_sim.config().agent(Role::kPursuer, i), Role::kPursuer, 0));
+      held_players.push_back(std::make_unique<Unscripted>(players::make_player(free_sim.config().agent(Role::kPursuer, i), Role::kPursuer, 0)));
+    }
+    const std::uint64_t episode_seed = derive_seed(std::uint64_t(seed), {0, 0});
+    game::reset(free_sim, free_state, start, episode_seed);
+    game::reset(batch.sim(), held_state, start, episode_seed);
+    for (int i = 0; i < 2; ++i) {
+      game::begin_playing(free_sim, free_state, i, *free_players[std::size_t(i)], false);
+      game::begin_playing(batch.sim(), held_state, i, *held_players[std::size_t(i)], false);
+    }
+    bool apart = false;
+    for (int k = 1; k <= 60 && !free_state.done && !held_state.done; ++k) {
+      const std::vector<double> actions = varied_actions(1, 4, k);
+      std::vector<Steering> free_commands(4), held_commands(4);
+      for (const int i : {2, 3}) free_commands[std::size_t(i)] = held_commands[std::size_t(i)] = {actions[std::size_t(2 * i)], actions[std::size_t(2 * i + 1)]};
+      for (const int i : {0, 1}) {
+        free_commands[std::size_t(i)] = free_players[std::size_t(i)]->act(game::observe(free_state, i));
+        held_commands[std::size_t(i)] = held_players[std::size_t(i)]->act(game::observe(held_state, i));
+      }
+      batch.step(actions.data());
+      game::step(free_sim, free_state, free_commands);
+      game::step(batch.sim(), held_state, held_commands);
+      ASSERT_EQ(positions(batch.state(0)), positions(free_state)) << "seed " << seed << " (" << name << "), step " << k;
+      apart = apart || positions(held_state) != positions(free_state);
+    }
+    parted += apart;
+  }
+  EXPECT_GT(episodes[0], 0);
+  EXPECT_GT(episodes[1], 0);
+  EXPECT_GT(parted, 0);
+}
+
 TEST(EnvBatch, AMixtureIsRefusedNamingTheMemberOrWeightAtFault) {
   const std::string dir = std::string(PEG3D_TEST_DATA_DIR) + "/policies/";
   const auto refused = [](std::vector<MixtureEntry> mixture) {

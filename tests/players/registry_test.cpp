@@ -64,6 +64,16 @@ TEST(PlayerRegistry, TheFactoryBuildsTheNamedPlayer) {
   EXPECT_TRUE(learns(c = game::AgentConfig{}));
 }
 
+TEST(PlayerRegistry, EveryPlayerButTheLearnerIsAClassicPlayer) {
+  // The game plays classic players free of the motion space (game::begin_playing): every non-learning player is one.
+  for (const PlayerInfo& p : registry()) {
+    game::AgentConfig c;
+    c.policy = std::string(p.name);
+    const Role role = (p.roles & kPursuers) != 0 ? Role::kPursuer : Role::kEvader;
+    EXPECT_EQ(make_player(c, role, 3)->scripted(), !p.learns()) << p.name;
+  }
+}
+
 TEST(PlayerRegistry, BaselinesAreTheDefaultLineUps) {
   EXPECT_EQ(baseline_players(Role::kPursuer), (std::vector<std::string>{"pure-pursuit", "pn", "apollonius"}));
   EXPECT_EQ(baseline_players(Role::kEvader), (std::vector<std::string>{"flee", "flee-apollonius", "random"}));

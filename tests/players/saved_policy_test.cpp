@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -308,6 +309,31 @@ TEST(SavedPolicy, AMixtureFileDrawsAMemberByWeightEachEpisodeTheSameForATeam) {
     differ += x.d_alpha != y.d_alpha || x.d_theta != y.d_theta;
   }
   EXPECT_GT(differ, 0);
+}
+
+TEST(SavedPolicy, AMixtureIsAClassicPlayerInTheEpisodesItDrawsOne) {
+  // pn and an MLP, drawn per episode: the mixture reports itself scripted (played free of the motion space) exactly
+  // in the episodes whose actions are pn's, and not in those whose actions are the network's.
+  const std::filesystem::path dir = temp("mixture_scripted");
+  std::filesystem::create_directories(dir);
+  write_mlp(dir / "net.json", "pursuer");
+  write_mixture(dir / "mix.json", "pursuer", {{{"policy", "pn"}, {"weight", 1}}, {{"policy", "net.json"}, {"weight", 1}}});
+  const AgentConfig agent = agent_preset("peg3d", Role::kPursuer);
+  const auto mix = load_saved_policy(dir / "mix.json", Role::kPursuer)->make(1, agent, Role::kPursuer, 5);
+  const auto net = load_saved_policy(dir / "net.json", Role::kPursuer)->make(1, agent, Role::kPursuer, 5);
+  EXPECT_FALSE(net->scripted());
+  Rng rng(4);
+  std::array<int, 2> episodes{};
+  for (int e = 0; e < 200; ++e) {
+    const testing::WrittenView w(random_saved_view(rng));
+    mix->begin_episode(w.view, false);
+    const Steering m = mix->act(w.view), n = net->act(w.view);
+    const bool network = m.d_alpha == n.d_alpha && m.d_theta == n.d_theta;
+    ASSERT_EQ(mix->scripted(), !network) << "episode " << e;
+    ++episodes[network];
+  }
+  EXPECT_GT(episodes[0], 50);
+  EXPECT_GT(episodes[1], 50);
 }
 
 TEST(SavedPolicy, ABadMixtureFileIsRefusedNamingItsField) {
