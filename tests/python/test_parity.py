@@ -60,3 +60,27 @@ def test_python_driven_episode_has_the_cpp_trajectory_hash(tmp_path):
         k += 1
     assert k > 50
     assert fnv1a(frames) == recorded_hash(tmp_path)
+
+
+def episode_frames(pursuer_set):
+    """Every frame of one episode of `pn` against `flee`, both played on the C++ side, on open_wall's `ends` start."""
+    base = {"pursuer.speed": "1.0", "evader.speed": "1.3", "capture_distance": "0.3", "time_limit": "40"}
+    env = peg3d.VectorEnv(map=str(ROOT / "maps/open_wall.yaml"), scenario="ends", set={**base, **pursuer_set},
+                          opponents={"pursuer": "pn", "evader": "flee"})
+    env.reset(seed=0)
+    frames = [env._batch.agent_states(0)]
+    while True:
+        _, _, _, _, info = env.step({})
+        if info["reset"][0]:
+            break
+        frames.append(env._batch.agent_states(0))
+    env.close()
+    return frames
+
+
+def test_a_classic_opponent_plays_free_of_the_motion_space_as_the_experiments_play_it():
+    # The experiments play a classic player without the motion space (game::with_role_playing); so does the batch,
+    # whatever the configuration says: peg3d's pursuers keep it on, and pn plays the same episode as with it off.
+    on, off = episode_frames({}), episode_frames({"pursuer.motion_space": "false"})
+    assert len(on) > 50
+    assert fnv1a(on) == fnv1a(off)
