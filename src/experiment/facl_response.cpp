@@ -19,6 +19,7 @@ class Unlearning final : public game::Policy {
   void begin_episode(const game::AgentView& view, bool) override { inner_->begin_episode(view, false); }
   Steering act(const game::AgentView& view) override { return inner_->act(view); }
   void learn(double, const game::AgentView&, bool) override {}
+  bool scripted() const override { return inner_->scripted(); }
 
  private:
   std::unique_ptr<game::Policy> inner_;

@@ -28,6 +28,7 @@ class Resting final : public game::Policy {
   explicit Resting(game::Policy& policy) : policy_(&policy) {}
   void begin_episode(const game::AgentView& view, bool) override { policy_->begin_episode(view, false); }
   Steering act(const game::AgentView& view) override { return policy_->act(view); }
+  bool scripted() const override { return policy_->scripted(); }
 
  private:
   game::Policy* policy_;

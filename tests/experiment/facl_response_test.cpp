@@ -66,6 +66,30 @@ TEST(FaclResponse, IsAPureFunctionOfItsSeed) {
   EXPECT_NE(tables_hash(train_facl_response(sim, Role::kPursuer, *flee, s)), a);
 }
 
+TEST(FaclResponse, AClassicOpponentPlaysFreeOfTheMotionSpace) {
+  // FACL evaders against pn, a classic player, alone and drawn from a mixture: peg3d's pursuers keep the motion space,
+  // which a classic player plays without (game::begin_playing), so the evaders learn what they learn with it off.
+  // A learning evader's tables differ when the pursuer is held (the same pn, not a classic player), so they tell.
+  game::GameConfig c = config();
+  game::AgentConfig e = game::agent_preset("peg3d", Role::kEvader);
+  e.policy = std::string(players::kFacl);
+  c.evaders = {e};
+  c.pursuers.clear();
+  ASSERT_TRUE(c.pursuer.motion_space);
+  game::GameConfig off = c;
+  off.pursuer.motion_space = false;
+  const game::Sim held(room(), c), free_sim(room(), off);
+  FaclResponseSettings s;
+  s.episodes = 6;
+  s.seed = 4;
+  auto mixture = std::make_shared<players::SavedPolicy>();
+  mixture->members = {{"pn", nullptr, 1.0}, {"pure-pursuit", nullptr, 0.0}};
+  for (const auto& pn : {classic("pn"), std::shared_ptr<const players::SavedPolicy>(mixture)}) {
+    EXPECT_EQ(tables_hash(train_facl_response(held, Role::kEvader, *pn, s)),
+              tables_hash(train_facl_response(free_sim, Role::kEvader, *pn, s)));
+  }
+}
+
 TEST(FaclResponse, LearnsInSightAndOutOfSightInRulesOfTheirOwn) {
   // Behind the pillar the pursuer starts without sight of the evader, in the open with it: its tables learn where it
   // has lost the evader (visible 0) as well as where it sees it (visible 1), each in rules of its own.
