@@ -26,6 +26,7 @@
 #include "game/observation.hpp"
 #include "players/saved_policy.hpp"
 #include "support/numbers.hpp"
+#include "support/unscripted.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::env {
@@ -659,17 +660,6 @@ TEST(EnvBatch, AMixturesDrawnMemberPlaysAsThatPlayerAlone) {
   EXPECT_EQ(same[1], 0);
 }
 
-// A player that plays `inner` but is no classic player: the game keeps its agent's motion space.
-class Unscripted final : public game::Policy {
- public:
-  explicit Unscripted(std::unique_ptr<game::Policy> inner) : inner_(std::move(inner)) {}
-  void begin_episode(const game::AgentView& view, bool learning) override { inner_->begin_episode(view, learning); }
-  Steering act(const game::AgentView& view) override { return inner_->act(view); }
-
- private:
-  std::unique_ptr<game::Policy> inner_;
-};
-
 TEST(EnvBatch, AClassicMemberPlaysFreeOfTheMotionSpaceAsTheExperimentsPlayIt) {
   // peg3d's pursuers keep their heading in the motion space; the experiments play a classic pursuer without it
   // (game::with_role_playing). Pursuers drawn from {pn, pure-pursuit} against the caller's evaders must follow, bit
@@ -697,8 +687,9 @@ TEST(EnvBatch, AClassicMemberPlaysFreeOfTheMotionSpaceAsTheExperimentsPlayIt) {
     // A mixture's member is seeded by its place (env/batch.hpp); the classic pursuers here draw nothing.
     std::vector<std::unique_ptr<game::Policy>> free_players, held_players;
     for (int i = 0; i < 2; ++i) {
-      free_players.push_back(players::make_player(free_sim.config().agent(Role::kPursuer, i), Role::kPursuer, 0));
-      held_players.push_back(std::make_unique<Unscripted>(players::make_player(free_sim.config().agent(Role::kPursuer, i), Role::kPursuer, 0)));
+      const game::AgentConfig& a = free_sim.config().agent(Role::kPursuer, i);
+      free_players.push_back(players::make_player(a, Role::kPursuer, 0));
+      held_players.push_back(std::make_unique<testing::Unscripted>(players::make_player(a, Role::kPursuer, 0)));
     }
     const std::uint64_t episode_seed = derive_seed(std::uint64_t(seed), {0, 0});
     game::reset(free_sim, free_state, start, episode_seed);
@@ -711,7 +702,10 @@ TEST(EnvBatch, AClassicMemberPlaysFreeOfTheMotionSpaceAsTheExperimentsPlayIt) {
     for (int k = 1; k <= 60 && !free_state.done && !held_state.done; ++k) {
       const std::vector<double> actions = varied_actions(1, 4, k);
       std::vector<Steering> free_commands(4), held_commands(4);
-      for (const int i : {2, 3}) free_commands[std::size_t(i)] = held_commands[std::size_t(i)] = {actions[std::size_t(2 * i)], actions[std::size_t(2 * i + 1)]};
+      for (const int i : {2, 3}) {
+        free_commands[std::size_t(i)] = held_commands[std::size_t(i)] = {actions[std::size_t(2 * i)],
+                                                                         actions[std::size_t(2 * i + 1)]};
+      }
       for (const int i : {0, 1}) {
         free_commands[std::size_t(i)] = free_players[std::size_t(i)]->act(game::observe(free_state, i));
         held_commands[std::size_t(i)] = held_players[std::size_t(i)]->act(game::observe(held_state, i));

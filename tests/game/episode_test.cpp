@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <memory>
 
 #include "game/policy.hpp"
 #include "players/registry.hpp"
 #include "players/scripted_policies.hpp"
 #include "geometry/motion_cone.hpp"
+#include "support/unscripted.hpp"
 #include "test_arena.hpp"
 
 namespace peg3d::game {
@@ -74,23 +76,14 @@ TEST(Episode, GuardSteersAroundTheObstacleWithoutCollision) {
   EXPECT_GT(r.pursuer_path, 24.0);  // the detour is longer than the straight 24 m
 }
 
-// Random steering that is not a classic player (a classic player plays free of the motion space: begin_playing), as
-// a learner's exploration is: the motion space has to do all the work.
-class Wandering final : public Policy {
- public:
-  Wandering(const SteeringConfig& steering, std::uint64_t seed) : walk_(steering, seed) {}
-  Steering act(const AgentView& view) override { return walk_.act(view); }
-
- private:
-  RandomWalk walk_;
-};
-
-// One episode of `s` with agent `wanders` (0: the pursuer, 1: the evader) steered by Wandering seeded by `seed`, the
-// other by the configuration's policy.
+// One episode of `s` with agent `wanders` (0: the pursuer, 1: the evader) steered at random (RandomWalk seeded by
+// `seed`) but not as a classic player, which plays free of the motion space (begin_playing), so that, as for a
+// learner's exploration, the motion space has to do all the work; the other agent plays the configuration's policy.
 void play_wandering(const Sim& sim, const world::Scenario& s, int wanders, std::uint64_t seed, Trace& trace) {
   const GameConfig& c = sim.config();
-  Wandering wandering(c.agent(wanders == 0 ? Role::kPursuer : Role::kEvader).steering, seed);
-  auto other = make_player(c.agent(wanders == 0 ? Role::kEvader : Role::kPursuer), wanders == 0 ? Role::kEvader : Role::kPursuer, 6);
+  const Role role = wanders == 0 ? Role::kPursuer : Role::kEvader, other_role = wanders == 0 ? Role::kEvader : Role::kPursuer;
+  testing::Unscripted wandering(std::make_unique<RandomWalk>(c.agent(role).steering, seed));
+  auto other = make_player(c.agent(other_role), other_role, 6);
   std::array<Policy*, 2> policies{&wandering, other.get()};
   if (wanders == 1) std::swap(policies[0], policies[1]);
   SimState state(sim);
